@@ -1,0 +1,2 @@
+"""billiards_env: a Gymnasium pool environment over a batched numba simulator."""
+__version__ = "0.1.0"

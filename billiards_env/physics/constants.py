@@ -1,0 +1,54 @@
+"""Named tolerances and index constants shared by the kernels.
+
+Every tolerance carries a one-line reason. Units are SI throughout.
+"""
+
+# --- tolerances -----------------------------------------------------------
+# Balls closer than 2R - OVERLAP_TOL at input are rejected: 1 nm is far below
+# any physical placement error yet far above float64 rounding at table scale
+# (about 1e-16 * 2.54 m).
+OVERLAP_TOL = 1e-9
+# A contact gap below CONTACT_TOL (m) counts as touching: it is a few hundred
+# ulps of a table coordinate, so rounding cannot open or close a contact.
+CONTACT_TOL = 1e-12
+# Speeds (m/s) and spins (rad/s) below these are zero: 1e-12 m/s moves a ball
+# one picometre in a second, far below anything a trajectory can resolve.
+SPEED_EPS = 1e-12
+SPIN_EPS = 1e-10
+# Impacts slower than ZENO_SPEED (m/s) are treated as resting contacts
+# (restitution 0, sliding ended at once). Without this a ball pushed by its own
+# felt friction into a neighbour or a cushion bounces ever faster and smaller,
+# an infinite (Zeno) sequence of events; 10 um/s changes no outcome.
+ZENO_SPEED = 1e-5
+# Simulated events per table before the solver gives up and flags the table
+# as truncated (never silently): a 15-ball break takes a few hundred.
+MAX_EVENTS = 20_000
+# Fixed steps per table before the step solver flags truncation (600 s of
+# simulated time at dt = 1e-5 would be 6e7 steps: far beyond any shot).
+MAX_STEPS = 100_000_000
+# Root polishing: bisection/Newton stops when the bracket is below this (s);
+# 1e-15 s at 10 m/s is 1e-14 m.
+ROOT_TIME_TOL = 1e-15
+
+# --- motion states --------------------------------------------------------
+STATIONARY = 0
+SPINNING = 1   # no translation, spin about the vertical axis only
+SLIDING = 2
+ROLLING = 3
+POCKETED = 4
+
+# --- event kinds (event log) ----------------------------------------------
+EV_START = 0
+EV_BALL_BALL = 1
+EV_CUSHION = 2      # linear cushion segment
+EV_JAW_TIP = 3      # cushion vertex at a pocket jaw
+EV_POCKET = 4
+EV_SLIDE_ROLL = 5
+EV_ROLL_STOP = 6
+EV_SPIN_STOP = 7
+EVENT_NAMES = ("start", "ball-ball", "cushion", "jaw-tip", "pocket",
+               "slide-roll", "roll-stop", "spin-stop")
+
+# --- parameter vector layout (PhysicsParams.as_array) -----------------------
+P_M, P_R, P_G, P_MU_S, P_MU_R, P_MU_SP, P_MU_B, P_E_B, P_E_C, P_F_C, P_H_C = range(11)
+N_PARAMS = 11

@@ -1,0 +1,74 @@
+"""Which physical effects a scene simulates.
+
+Each combination compiles its own kernel (the flags are compile-time
+constants of a numba closure), so an effect that is off is not executed at
+all, not branch-tested per ball. A new combination compiles once and is cached
+on disk.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+
+@dataclasses.dataclass(frozen=True)
+class Effects:
+    """Physics effects of a scene.
+
+    - ``spin``: balls carry angular velocity. Off: point masses that roll
+      from the start (rolling resistance only, no slide phase, frictionless
+      collisions, no spin transfer).
+    - ``sliding``: felt sliding friction acts over time. Off: a ball that
+      would slide takes at once the rolling state its slide would end in
+      (same final velocity by conservation of angular momentum about the
+      contact point, zero slide time and distance).
+    - ``vertical_spin``: spin about the vertical axis (side spin, english).
+    - ``ball_friction``: ball-ball friction (throw and spin transfer).
+    - ``cushion_friction``: cushion friction and spin (Han 2005); off: a
+      plain reflection with the cushion restitution.
+    - ``pockets``: six pockets with jaws; off: a closed box.
+
+    Rolling resistance is always on: without it no ball ever stops.
+    """
+
+    spin: bool = True
+    sliding: bool = True
+    vertical_spin: bool = True
+    ball_friction: bool = True
+    cushion_friction: bool = True
+    pockets: bool = True
+
+    @classmethod
+    def all(cls) -> "Effects":
+        return cls()
+
+    @classmethod
+    def minimal(cls) -> "Effects":
+        return cls(spin=False, sliding=False, vertical_spin=False,
+                   ball_friction=False, cushion_friction=False, pockets=False)
+
+    @classmethod
+    def from_dict(cls, d: dict | None) -> "Effects":
+        d = dict(d or {})
+        names = {f.name for f in dataclasses.fields(cls)}
+        unknown = set(d) - names
+        if unknown:
+            raise ValueError(f"unknown effects {sorted(unknown)}; known: {sorted(names)}")
+        for k, v in d.items():
+            if not isinstance(v, bool):
+                raise ValueError(f"effect {k!r} must be true or false, got {v!r}")
+        return cls(**d)
+
+    def normalized(self) -> "Effects":
+        """Switch off what a disabled parent makes meaningless, so that
+        equivalent settings share one compiled kernel."""
+        if not self.spin:
+            return dataclasses.replace(self, sliding=False, vertical_spin=False,
+                                       ball_friction=False, cushion_friction=False)
+        return self
+
+    def key(self) -> tuple:
+        n = self.normalized()
+        return (n.spin, n.sliding, n.vertical_spin, n.ball_friction, n.cushion_friction, n.pockets)
+
+    def to_dict(self) -> dict:
+        return dataclasses.asdict(self)

@@ -1,0 +1,155 @@
+"""First-contact times: the earliest t in [0, H] where a polynomial gap
+function f(t) (degree <= 4) goes from positive to non-positive.
+
+Root isolation by derivatives rather than closed-form Ferrari: the real roots
+of f' split [0, H] into intervals on which f is monotone, and those of f''
+split it for f'. Each monotone bracket with a sign change is solved by
+Newton's method guarded by bisection, so a root is never missed and every
+returned root lies inside its bracket. Degenerate polynomials (leading
+coefficients zero, e.g. two balls with equal accelerations) need no special
+case: the same isolation applies to any degree.
+"""
+import math
+
+from ._jit import njit
+from . import constants as C
+
+
+@njit
+def _poly(c4, c3, c2, c1, c0, t):
+    return (((c4 * t + c3) * t + c2) * t + c1) * t + c0
+
+
+@njit
+def _solve_bracket(c4, c3, c2, c1, c0, a, b, fa):
+    """Root of a polynomial that is monotone on [a, b] with a sign change:
+    Newton steps, falling back to bisection when a step leaves the bracket."""
+    t = 0.5 * (a + b)
+    for _ in range(200):
+        f = _poly(c4, c3, c2, c1, c0, t)
+        if f == 0.0:
+            return t
+        if (f > 0.0) == (fa > 0.0):
+            a = t
+        else:
+            b = t
+        if b - a <= C.ROOT_TIME_TOL * max(1.0, abs(a)):
+            break
+        d = ((4.0 * c4 * t + 3.0 * c3) * t + 2.0 * c2) * t + c1
+        tn = t - f / d if d != 0.0 else a - 1.0
+        if tn <= a or tn >= b:
+            tn = 0.5 * (a + b)
+        t = tn
+    # return the end of the bracket on the non-positive side for f decreasing
+    # through zero (fa > 0): contact is reached, never overshot by rounding.
+    return b if fa > 0.0 else a
+
+
+@njit
+def _quadratic_roots(a, b, c):
+    """Real roots of a t^2 + b t + c (any degree <= 2), sorted; nan if absent.
+    Uses the cancellation-free form of the quadratic formula."""
+    if a == 0.0:
+        if b == 0.0:
+            return math.nan, math.nan
+        return -c / b, math.nan
+    disc = b * b - 4.0 * a * c
+    if disc < 0.0:
+        return math.nan, math.nan
+    sq = math.sqrt(disc)
+    q = -0.5 * (b + math.copysign(sq, b))
+    r1 = q / a
+    r2 = c / q if q != 0.0 else r1
+    if r1 > r2:
+        r1, r2 = r2, r1
+    return r1, r2
+
+
+@njit
+def _critical_points(c4, c3, c2, c1, H):
+    """Real roots in (0, H) of f'(t) = 4c4 t^3 + 3c3 t^2 + 2c2 t + c1, sorted:
+    returns (count, r0, r1, r2)."""
+    d3, d2, d1, d0 = 4.0 * c4, 3.0 * c3, 2.0 * c2, c1
+    x0 = x1 = x2 = math.inf
+    n = 0
+    if d3 == 0.0:
+        q1, q2 = _quadratic_roots(d2, d1, d0)
+        if q1 == q1 and 0.0 < q1 < H:
+            x0 = q1; n = 1
+        if q2 == q2 and 0.0 < q2 < H:
+            if n == 0:
+                x0 = q2
+            else:
+                x1 = q2
+            n += 1
+        return n, x0, x1, x2
+    # the roots of f'' split [0, H] into pieces on which f' is monotone
+    s1, s2 = _quadratic_roots(3.0 * d3, 2.0 * d2, d1)
+    a = 0.0
+    fa = d0
+    for k in range(3):
+        b = s1 if k == 0 else (s2 if k == 1 else H)
+        if not (b == b and a < b <= H):
+            continue
+        fb = ((d3 * b + d2) * b + d1) * b + d0
+        if (fa > 0.0 and fb < 0.0) or (fa < 0.0 and fb > 0.0):
+            x = _solve_bracket(0.0, d3, d2, d1, d0, a, b, fa)
+            if 0.0 < x < H:
+                if n == 0:
+                    x0 = x
+                elif n == 1:
+                    x1 = x
+                else:
+                    x2 = x
+                n += 1
+        a, fa = b, fb
+    return n, x0, x1, x2
+
+
+@njit
+def first_entry(c4, c3, c2, c1, c0, H, f_tol, f_floor):
+    """Earliest t in [0, H] at which f goes from > 0 to <= 0; inf if none.
+
+    At t = 0, a gap within ``f_tol`` of zero counts as contact if it is
+    closing (f' < 0) or held closed by the accelerations (f' = 0, f'' < 0);
+    a touching pair that is opening is not a contact. Below ``f_floor`` the
+    gap is not a contact at all (a ball far behind a cushion line).
+    """
+    if not H > 0.0:
+        H = 0.0
+    if f_floor <= c0 <= f_tol:
+        if c1 < 0.0 or (c1 == 0.0 and c2 < 0.0):
+            return 0.0
+    if H == 0.0:
+        return math.inf
+    n, r0, r1, r2 = _critical_points(c4, c3, c2, c1, H)
+    a = 0.0
+    fa = c0
+    for k in range(n + 1):
+        b = H if k == n else (r0 if k == 0 else (r1 if k == 1 else r2))
+        if b <= a:
+            continue
+        fb = _poly(c4, c3, c2, c1, c0, b)
+        if fa > 0.0 and fb <= 0.0:
+            return _solve_bracket(c4, c3, c2, c1, c0, a, b, fa)
+        a, fa = b, fb
+    return math.inf
+
+
+@njit
+def first_entry_quadratic(c2, c1, c0, H, f_tol, f_floor):
+    """``first_entry`` for straight-line motion (the step solver): f is convex
+    or linear (c2 >= 0), so the first closing root has a closed form, taken in
+    its cancellation-free version."""
+    if c0 <= f_tol:
+        return 0.0 if (c1 < 0.0 and c0 >= f_floor) else math.inf
+    if c1 >= 0.0:
+        return math.inf
+    if c2 == 0.0:
+        t = -c0 / c1
+    else:
+        disc = c1 * c1 - 4.0 * c2 * c0
+        if disc < 0.0:
+            return math.inf
+        t = 2.0 * c0 / (-c1 + math.sqrt(disc))
+    return t if t <= H else math.inf

@@ -1,0 +1,133 @@
+"""Public entry point: simulate a batch of tables until every ball rests."""
+from __future__ import annotations
+
+import dataclasses
+
+import numba
+import numpy as np
+
+from . import constants as C
+from .effects import Effects
+from .params import PhysicsParams
+from .solvers import make_solver
+from .state import BallState
+from .table import Table
+from .validation import check_arrays, check_finite, check_placement
+
+SOLVERS = ("event", "step")
+RECORD_CAPACITY = 4096  # events kept per table when record=True
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class EventLog:
+    """Events of one table: ``time [N]``, ``kind [N]`` (constants.EV_*),
+    ``balls [N, 2]`` (second id -1, or the cushion/tip/pocket index for
+    boundary events) and ``states [N, 2, 8]``: for each involved ball after the
+    event, (x, y, vx, vy, wx, wy, wz, motion state)."""
+
+    time: np.ndarray
+    kind: np.ndarray
+    balls: np.ndarray
+    states: np.ndarray
+
+    def __len__(self):
+        return len(self.time)
+
+    def kinds(self):
+        return [C.EVENT_NAMES[k] for k in self.kind]
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class SimResult:
+    state: BallState
+    time: np.ndarray           # [E] simulated time until every ball rests (s)
+    n_events: np.ndarray       # [E]
+    first_contact: np.ndarray  # [E] first ball the cue ball touched, -1 if none
+    cushion_hits: np.ndarray   # [E, B]
+    truncated: np.ndarray      # [E] True if the event or step cap was hit
+    events: list | None = None  # [E] EventLog with record=True
+    diagnostics: np.ndarray | None = None  # [E, 4]: max energy gain (J), max momentum error, min gap (m), max off-table (m)
+
+    @property
+    def pocketed(self) -> np.ndarray:
+        return self.state.pocket >= 0
+
+
+def simulate(state: BallState, table: Table, params: PhysicsParams | None = None, solver: str = "event",
+             dt: float | None = None, record: bool = False, effects: Effects | None = None,
+             max_events: int = C.MAX_EVENTS, diagnostics: bool = False, validate: bool = True) -> SimResult:
+    """Simulate every table of the batch until all balls rest.
+
+    ``solver="event"`` (exact, event-driven) or ``"step"`` (fixed step ``dt``).
+    ``effects`` selects the physics (default: all). ``record=True`` keeps
+    each table's event log. ``diagnostics=True`` compiles a checking variant
+    that reports per table the largest energy gain and momentum error of any
+    impact, the smallest gap between balls and the largest excursion off the
+    table. The input state is never modified.
+    """
+    params = params or PhysicsParams.standard()
+    effects = effects or Effects()
+    if solver not in SOLVERS:
+        raise ValueError(f"unknown solver {solver!r}; choose one of {SOLVERS}")
+    if solver == "step":
+        if dt is None:
+            raise ValueError("the step solver needs a time step: pass dt (s), e.g. dt=1e-4")
+        if not (isinstance(dt, (int, float)) and np.isfinite(dt) and dt > 0):
+            raise ValueError(f"dt must be a positive finite number of seconds, got {dt!r}")
+    if not isinstance(state, BallState):
+        raise TypeError(f"state must be a BallState, got {type(state).__name__}")
+    if not isinstance(table, Table):
+        raise TypeError(f"table must be a Table, got {type(table).__name__}")
+    if not isinstance(params, PhysicsParams):
+        raise TypeError(f"params must be a PhysicsParams, got {type(params).__name__}")
+    if validate:
+        check_arrays(state)
+        check_finite(state)
+        check_placement(state, table, params, effects.pockets)
+
+    s = state.copy()
+    s = BallState(np.ascontiguousarray(s.pos), np.ascontiguousarray(s.vel),
+                  np.ascontiguousarray(s.omega), np.ascontiguousarray(s.pocket, dtype=np.int64))
+    E, B = s.pos.shape[:2]
+    segs, norms, tips, pockets = (np.ascontiguousarray(a, dtype=np.float64) for a in table.geometry(effects.pockets))
+    p = params.as_array()
+    kernel = make_solver(solver, effects.key(), diagnostics)
+
+    out_time = np.zeros(E)
+    out_nev = np.zeros(E, dtype=np.int64)
+    out_first = np.full(E, -1, dtype=np.int64)
+    out_cush = np.zeros((E, B), dtype=np.int64)
+    out_trunc = np.zeros(E, dtype=np.bool_)
+    cap = RECORD_CAPACITY if record else 1
+    rec_n = np.zeros(E, dtype=np.int64)
+    rec_t = np.zeros((E if record else 1, cap))
+    rec_kind = np.zeros((E if record else 1, cap), dtype=np.int64)
+    rec_ij = np.zeros((E if record else 1, cap, 2), dtype=np.int64)
+    rec_state = np.zeros((E if record else 1, cap, 2, 8))
+    diag = np.zeros((E, 4))
+    st = np.zeros((E, B), dtype=np.int64)
+    common_in = (s.pos, s.vel, s.omega, s.pocket, p, segs, norms, tips, pockets, table.width, table.length,
+                 int(max_events), st)
+    outs = (out_time, out_nev, out_first, out_cush, out_trunc, record, rec_n, rec_t, rec_kind, rec_ij, rec_state, diag)
+    if solver == "event":
+        tt = np.zeros((E, B)); tb = np.zeros((E, B))
+        bkind = np.zeros((E, B), dtype=np.int64); bidx = np.zeros((E, B), dtype=np.int64)
+        tpair = np.zeros((E, B, B))
+        kernel(*common_in, tt, tb, bkind, bidx, tpair, *outs)
+    else:
+        kernel(*common_in, float(dt), int(C.MAX_STEPS), *outs)
+
+    events = None
+    if record:
+        if np.any(rec_n > cap):
+            raise RuntimeError(f"event log overflow: a table had {rec_n.max()} events, more than the "
+                               f"record capacity {cap}")
+        events = [EventLog(rec_t[e, :rec_n[e]].copy(), rec_kind[e, :rec_n[e]].copy(),
+                           rec_ij[e, :rec_n[e]].copy(), rec_state[e, :rec_n[e]].copy()) for e in range(E)]
+    return SimResult(s, out_time, out_nev, out_first, out_cush, out_trunc, events,
+                     diag if diagnostics else None)
+
+
+def set_num_threads(n: int) -> None:
+    """Threads numba uses for the batch loop (results do not depend on it)."""
+    numba.set_num_threads(int(n))

@@ -1,0 +1,159 @@
+"""Table geometry: cushion segments, jaw tips and pocket capture circles.
+
+Frame: origin at a corner of the playing surface, x across the width, y
+along the length, z up. Cushion segments are the lines the ball's *centre*
+must stay R away from (the cushion noses). Pool tables have six pockets; each
+corner pocket mouth is cut at 45 degrees with jaws at 142 degrees to the rail,
+each side pocket with jaws at 104 degrees (WPA equipment specifications). A
+ball whose centre enters a pocket's capture circle is pocketed.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+# WPA: playing surface of a 9 ft table 100 x 50 in; 8 ft 88 x 44; 7 ft 78 x 39.
+_POOL_SIZES = {9: (1.27, 2.54), 8: (1.1176, 2.2352), 7: (0.9906, 1.9812)}
+CORNER_MOUTH = 0.116     # m, corner pocket mouth (4.5-4.625 in, WPA)
+SIDE_MOUTH = 0.132       # m, side pocket mouth (5-5.125 in, WPA)
+CORNER_JAW_ANGLE = 142.0  # degrees between rail nose and jaw face
+SIDE_JAW_ANGLE = 104.0
+CORNER_JAW_LENGTH = 0.05  # m
+SIDE_JAW_LENGTH = 0.04
+CAPTURE_DEPTH = 0.004  # m a ball centre must pass the mouth line to drop
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Table:
+    """Playing surface of ``width`` x ``length`` with its cushions and pockets.
+
+    ``segments [S, 4]`` cushion noses (x0, y0, x1, y1), each with its unit
+    normal ``normals [S, 2]`` pointing into the table; ``tips [V, 2]`` jaw tips
+    (vertices a ball can strike); ``pockets [P, 3]`` capture circles (x, y, r).
+    ``box_segments`` is the closed box used when pockets are switched off.
+    """
+
+    width: float
+    length: float
+    segments: np.ndarray
+    normals: np.ndarray
+    tips: np.ndarray
+    pockets: np.ndarray
+    name: str = "custom"
+
+    @property
+    def box_segments(self) -> np.ndarray:
+        w, l = self.width, self.length
+        return np.array([[0, 0, w, 0], [w, 0, w, l], [w, l, 0, l], [0, l, 0, 0]], dtype=np.float64)
+
+    @property
+    def box_normals(self) -> np.ndarray:
+        return np.array([[0, 1], [-1, 0], [0, -1], [1, 0]], dtype=np.float64)
+
+    @property
+    def has_pockets(self) -> bool:
+        return len(self.pockets) > 0
+
+    def geometry(self, pockets: bool):
+        """Arrays the kernels read: (segments, normals, tips, pockets)."""
+        if pockets and self.has_pockets:
+            return self.segments, self.normals, self.tips, self.pockets
+        return self.box_segments, self.box_normals, np.zeros((0, 2)), np.zeros((0, 3))
+
+    @classmethod
+    def pocketless(cls, width: float = 1.27, length: float = 2.54) -> "Table":
+        """A closed rectangular box (carom-style scenes and tests)."""
+        if not (math.isfinite(width) and math.isfinite(length) and width > 0 and length > 0):
+            raise ValueError(f"table size must be finite and positive, got {width} x {length}")
+        t = cls(width, length, np.zeros((0, 4)), np.zeros((0, 2)), np.zeros((0, 2)), np.zeros((0, 3)),
+                name=f"pocketless {width:g}x{length:g}")
+        object.__setattr__(t, "segments", t.box_segments)
+        object.__setattr__(t, "normals", t.box_normals)
+        return t
+
+    @classmethod
+    def pool(cls, size_ft: int = 9) -> "Table":
+        """A pool table of 7, 8 or 9 ft with six pockets."""
+        if size_ft not in _POOL_SIZES:
+            raise ValueError(f"size_ft must be one of {sorted(_POOL_SIZES)}, got {size_ft!r}")
+        w, l = _POOL_SIZES[size_ft]
+        sc = CORNER_MOUTH / math.sqrt(2.0)  # rail end distance from the corner
+        ss = SIDE_MOUTH / 2.0
+        # Rails as (start, end) along the nose, walked counter-clockwise, each
+        # ending at a pocket mouth: (corner|side, point, direction along rail).
+        rails = [
+            ((sc, 0.0), (w - sc, 0.0)),            # bottom
+            ((w, sc), (w, l / 2 - ss)),             # right, lower half
+            ((w, l / 2 + ss), (w, l - sc)),         # right, upper half
+            ((w - sc, l), (sc, l)),                 # top
+            ((0.0, l - sc), (0.0, l / 2 + ss)),     # left, upper half
+            ((0.0, l / 2 - ss), (0.0, sc)),         # left, lower half
+        ]
+        segs, norms, tips = [], [], []
+        for (x0, y0), (x1, y1) in rails:
+            d = np.array([x1 - x0, y1 - y0]); d /= np.linalg.norm(d)
+            n = np.array([-d[1], d[0]])  # left of a counter-clockwise walk = into the table
+            segs.append((x0, y0, x1, y1)); norms.append(n)
+            for (px, py), away in (((x0, y0), d), ((x1, y1), -d)):
+                # the jaw leaves the rail end, turning outward (-n) by the jaw angle
+                at_side = (abs(px) < 1e-12 or abs(px - w) < 1e-12) and abs(py - l / 2) < l / 4
+                ang = math.radians(SIDE_JAW_ANGLE if at_side else CORNER_JAW_ANGLE)
+                length = SIDE_JAW_LENGTH if at_side else CORNER_JAW_LENGTH
+                # unit vector at angle `ang` from `away`, on the outside of the rail
+                jd = math.cos(ang) * away + math.sin(ang) * (-n)
+                qx, qy = px + length * jd[0], py + length * jd[1]
+                # jaw face as a segment whose table-side normal faces the pocket's throat
+                jn = np.array([-jd[1], jd[0]])
+                if np.dot(jn, away) > 0:
+                    jn = -jn
+                segs.append((px, py, qx, qy)); norms.append(jn)
+                tips.append((px, py))
+        # Capture circles: a ball drops once its centre is a few mm past the
+        # mouth line (corner) or the rail line (side); each circle also spans
+        # the whole throat between the jaws, so no ball can pass behind them.
+        rc = sc / math.sqrt(2.0) - CAPTURE_DEPTH
+        side_c, side_r = 0.06, 0.06 - CAPTURE_DEPTH
+        pockets = [(0.0, 0.0, rc), (w, 0.0, rc), (-side_c, l / 2, side_r),
+                   (w + side_c, l / 2, side_r), (0.0, l, rc), (w, l, rc)]
+        return cls(w, l, np.array(segs, dtype=np.float64), np.array(norms, dtype=np.float64),
+                   np.array(tips, dtype=np.float64), np.array(pockets, dtype=np.float64),
+                   name=f"pool {size_ft} ft")
+
+    def outline(self, pockets: bool = True) -> np.ndarray:
+        """Polygon [N, 2] of the region ball centres may occupy, before the
+        R clearance: rails, with each pocket's jaws leading into its throat."""
+        segs, _, _, pk = self.geometry(pockets)
+        if len(pk) == 0:
+            return segs[:, :2].copy()
+        pts = []
+        # layout from pool(): rail, jaw at its start, jaw at its end
+        for r in range(0, len(segs), 3):
+            rail, jaw0, jaw1 = segs[r], segs[r + 1], segs[r + 2]
+            pts += [jaw0[2:], rail[:2], rail[2:], jaw1[2:]]
+        return np.array(pts)
+
+    def contains(self, pos: np.ndarray, R: float, tol: float, pockets: bool = True) -> np.ndarray:
+        """True where a ball centre at ``pos [N, 2]`` lies legally on the table:
+        inside the outline, at least R - tol from every cushion nose and jaw
+        tip, and outside every pocket's capture circle."""
+        pos = np.asarray(pos, dtype=np.float64).reshape(-1, 2)
+        poly = self.outline(pockets)
+        x, y = pos[:, 0], pos[:, 1]
+        inside = np.zeros(len(pos), dtype=bool)
+        for k in range(len(poly)):  # even-odd ray casting
+            (x0, y0), (x1, y1) = poly[k - 1], poly[k]
+            crosses = (y0 > y) != (y1 > y)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                xc = x0 + (y - y0) * (x1 - x0) / (y1 - y0)
+            inside ^= crosses & (x < xc)
+        segs, _, tips, pk = self.geometry(pockets)
+        for x0, y0, x1, y1 in segs:
+            d = np.array([x1 - x0, y1 - y0]); L2 = d @ d
+            lam = np.clip(((pos - [x0, y0]) @ d) / L2, 0.0, 1.0)
+            near = np.array([x0, y0]) + lam[:, None] * d
+            inside &= np.linalg.norm(pos - near, axis=1) >= R - tol
+        for cx, cy, r in pk:
+            inside &= np.hypot(x - cx, y - cy) > r
+        return inside

@@ -1,0 +1,69 @@
+"""Input checks at the Python boundary: each raises a ValueError or TypeError
+that names the problem, before anything is modified."""
+from __future__ import annotations
+
+import numpy as np
+
+from . import constants as C
+
+
+def as_batch_vector(x, E: int, name: str) -> np.ndarray:
+    arr = np.asarray(x, dtype=np.float64)
+    if arr.ndim == 0:
+        arr = np.full(E, float(arr))
+    if arr.shape != (E,):
+        raise ValueError(f"{name} must be a scalar or have shape ({E},), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} contains NaN or infinite values")
+    return arr.copy()
+
+
+def check_arrays(state) -> None:
+    for name, arr, dims in (("pos", state.pos, 2), ("vel", state.vel, 2), ("omega", state.omega, 3)):
+        if not isinstance(arr, np.ndarray):
+            raise TypeError(f"BallState.{name} must be a numpy array, got {type(arr).__name__}")
+        if arr.dtype != np.float64:
+            raise TypeError(f"BallState.{name} must be float64, got {arr.dtype}")
+        if arr.ndim != 3 or arr.shape[2] != dims:
+            raise ValueError(f"BallState.{name} must have shape [E, B, {dims}], got {arr.shape}")
+    E, B = state.pos.shape[:2]
+    if E < 1 or B < 1:
+        raise ValueError(f"BallState needs at least one table and one ball, got shape {state.pos.shape}")
+    for name, arr in (("vel", state.vel), ("omega", state.omega)):
+        if arr.shape[:2] != (E, B):
+            raise ValueError(f"BallState.{name} has shape {arr.shape}, expected [{E}, {B}, ...] like pos")
+    if not isinstance(state.pocket, np.ndarray) or state.pocket.shape != (E, B):
+        raise ValueError(f"BallState.pocket must be an integer array of shape ({E}, {B})")
+    if not np.issubdtype(state.pocket.dtype, np.integer):
+        raise TypeError(f"BallState.pocket must be an integer array, got {state.pocket.dtype}")
+
+
+def check_finite(state) -> None:
+    for name in ("pos", "vel", "omega"):
+        arr = getattr(state, name)
+        if not np.all(np.isfinite(arr)):
+            bad = np.argwhere(~np.isfinite(arr))[0]
+            raise ValueError(f"BallState.{name} contains NaN or infinite values (first at index {tuple(bad)})")
+
+
+def check_placement(state, table, params, pockets: bool) -> None:
+    """No two balls on the table overlap by more than OVERLAP_TOL; every ball on
+    the table lies on the playing surface."""
+    R = params.R
+    on = state.pocket < 0
+    ok = table.contains(state.pos.reshape(-1, 2), R, C.OVERLAP_TOL, pockets).reshape(on.shape)
+    bad = on & ~ok
+    if bad.any():
+        e, i = np.argwhere(bad)[0]
+        raise ValueError(f"ball {i} in env {e} at {tuple(np.round(state.pos[e, i], 6))} is off the table "
+                         f"or inside a pocket/cushion ({table.name})")
+    d = state.pos[:, :, None, :] - state.pos[:, None, :, :]
+    dist = np.hypot(d[..., 0], d[..., 1])
+    both = on[:, :, None] & on[:, None, :]
+    B = state.pos.shape[1]
+    both &= ~np.eye(B, dtype=bool)[None]
+    over = both & (dist < 2 * R - C.OVERLAP_TOL)
+    if over.any():
+        e, i, j = np.argwhere(over)[0]
+        raise ValueError(f"balls {i} and {j} in env {e} overlap: centres {dist[e, i, j]:.9f} m apart, "
+                         f"less than 2R = {2 * R:.9f} m")
