@@ -1,0 +1,411 @@
+"""Gymnasium environments: one step = one shot.
+
+The cue ball is struck, the table is simulated until every ball rests, and
+the observation is the resting table. ``BilliardsEnv`` is a single-table
+``gymnasium.Env``; ``BilliardsVectorEnv`` is a native
+``gymnasium.vector.VectorEnv`` that shoots all its tables with one batched
+simulator call. Task classes below fix the rules.
+"""
+from __future__ import annotations
+
+import os
+import sys
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+from gymnasium import spaces
+from gymnasium.utils import seeding
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from .config import TaskConfig
+from .core import BilliardsCore
+
+_COMMON_DOC = """
+    **Observation** (``Box(0, 1, (4*B + 1,), float32)``, B = n_balls + 1 balls,
+    ball 0 the cue ball, then object balls 1..n_balls; balls are never reordered):
+
+    ==============  ===========================================================
+    index           meaning
+    ==============  ===========================================================
+    3*i             ball i x / table width (0 if pocketed)
+    3*i + 1         ball i y / table length (0 if pocketed)
+    3*i + 2         1 if ball i is on the table, 0 if pocketed
+    3*B + i         1 if ball i is the legal target ball (lowest-numbered
+                    object ball on the table), else 0 (slot 0 always 0)
+    4*B             shots taken this episode / max_shots
+    ==============  ===========================================================
+
+    **Action** (``Box(-1, 1, (4,), float32)``):
+
+    ===  ========================================================================
+    a0   aim: ``aim="relative"`` (default) phi = angle(cue -> legal target) + pi*a0,
+         so a0 = 0 aims straight at the target's centre; ``aim="absolute"``:
+         phi = pi*a0 counter-clockwise from +x
+    a1   cue draw: min_draw + (a1 + 1)/2 * (max_draw - min_draw) m
+         (speed = k * contact_time * draw / m, ~10 m/s at max_draw)
+    a2   side offset a = miscue_limit * a2 (units of R, + = right english)
+    a3   height offset b = miscue_limit * a3 (+ = follow, - = draw); (a, b) is
+         scaled radially into the disc of radius miscue_limit
+    ===  ========================================================================
+
+    Values outside [-1, 1] are clipped (``info["action_clipped"]``); NaN or
+    infinite values, or a wrong shape, raise ``ValueError``. ``action_to_shot``
+    and ``shot_to_action`` convert between actions and (phi, draw, a, b).
+
+    **Shot noise** (``noise=``: ``"none"`` default, ``"tournament"`` = std
+    0.125 deg aim, 0.075 m/s speed, 0.5 mm per offset, or a mapping) is drawn
+    from the env's own RNG, so seeding reproduces it.
+
+    **Reward**: sum of ``info["reward_terms"]``: ``pocket`` (per legal ball
+    pocketed), ``scratch``, ``foul``, ``contact`` (legal target hit first),
+    ``success`` and ``shaping`` = w * (gamma * Phi(s') - Phi(s)) with
+    Phi = -(distance of the legal target to its nearest pocket) / diagonal
+    (Phi = 0 in terminal states). Weights: ``RewardConfig``.
+
+    **Info**: ``pocketed`` (balls pocketed by this shot), ``n_pocketed``,
+    ``first_contact`` (-1 none), ``legal_target`` (before the shot), ``foul``,
+    ``scratch``, ``success``, ``n_events``, ``sim_time`` (s), ``sim_truncated``,
+    ``action_clipped``, ``shot``, ``reward_terms``.
+
+    **Configuration**: ``configs/tasks/<task>.yaml`` loaded into ``TaskConfig``;
+    ``config=`` (a path or TaskConfig) replaces it, and any TaskConfig field
+    given as a keyword argument (``n_balls=``, ``noise=``, ``solver=``,
+    ``dt=``, ``physics=``, ``reward={...}``, ``effects={...}``, ...) overrides it.
+"""
+
+
+def _make_config(task: str, config, overrides: dict) -> TaskConfig:
+    if config is None:
+        return TaskConfig.default(task, **overrides)
+    if isinstance(config, TaskConfig):
+        if config.task != task:
+            raise ValueError(f"config is for task {config.task!r}, this env is {task!r}")
+        return TaskConfig.from_dict(config.to_dict(), **overrides) if overrides else config
+    cfg = TaskConfig.from_yaml(config, **overrides)
+    if cfg.task != task:
+        raise ValueError(f"{config}: config is for task {cfg.task!r}, this env is {task!r}")
+    return cfg
+
+
+def _has_display() -> bool:
+    return sys.platform in ("darwin", "win32") or bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+class _Renderer:
+    """rgb_array / human rendering of one table, with the last shot's paths."""
+
+    def __init__(self, render_mode, render_ppm, render_paths):
+        self.render_mode, self.render_ppm, self.render_paths = render_mode, render_ppm, render_paths
+        self._fig = None
+        self._warned = False
+
+    def frame(self, core: BilliardsCore, k: int) -> np.ndarray:
+        from ..rendering import ball_paths, render_table
+        paths = None
+        if self.render_paths and core.last_events[k] is not None:
+            paths = ball_paths(core.last_events[k], core.params, core.n_balls)
+        s = core.state
+        return render_table(core.table, core.params, s.pos[k], s.pocket[k], paths=paths, ppm=self.render_ppm)
+
+    def show(self, img: np.ndarray, fps: int) -> None:
+        if not _has_display():
+            if not self._warned:
+                gym.logger.warn("render_mode='human' needs a display; none found, nothing is shown")
+                self._warned = True
+            return
+        import matplotlib.pyplot as plt
+        if self._fig is None:
+            plt.ion()
+            self._fig, ax = plt.subplots()
+            ax.axis("off")
+            self._im = ax.imshow(img)
+        else:
+            self._im.set_data(img)
+        self._fig.canvas.draw_idle()
+        plt.pause(1.0 / fps)
+
+    def close(self):
+        if self._fig is not None:
+            import matplotlib.pyplot as plt
+            plt.close(self._fig)
+            self._fig = None
+
+
+class BilliardsEnv(gym.Env):
+    """Single-table pool environment (base class; use a task subclass)."""
+
+    metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 4}
+    task: str = ""
+
+    def __init__(self, render_mode: str | None = None, config=None, render_ppm: int = 200,
+                 render_paths: bool = True, **overrides: Any):
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(f"render_mode must be one of {self.metadata['render_modes']} or None, got {render_mode!r}")
+        self.config = _make_config(self.task, config, overrides)
+        self.render_mode = render_mode
+        self._core = BilliardsCore(self.config, 1, record=render_mode is not None)
+        self._renderer = _Renderer(render_mode, render_ppm, render_paths)
+        d = self._core.obs_dim
+        self.observation_space = spaces.Box(0.0, 1.0, shape=(d,), dtype=np.float32)
+        self.action_space = spaces.Box(-1.0, 1.0, shape=(4,), dtype=np.float32)
+        self._done = True
+
+    # public views used by baselines
+    table = property(lambda self: self._core.table)
+    params = property(lambda self: self._core.params)
+    effects = property(lambda self: self._core.effects)
+    state = property(lambda self: self._core.state)
+    last_events = property(lambda self: self._core.last_events[0])
+    last_start = property(lambda self: self._core.last_start[0])
+
+    def legal_target(self) -> int:
+        return int(self._core.legal_target()[0])
+
+    def action_to_shot(self, actions):
+        """Actions [N, 4] (or [4]) -> (phi, draw, a, b) arrays [N] for this table (after clipping)."""
+        a = np.asarray(actions, dtype=np.float64)
+        a2 = self._core.validate_actions(a.reshape(-1, 4) if a.ndim == 1 else a, len(a.reshape(-1, 4)))
+        return self._core.action_to_shot(a2, np.zeros(len(a2), dtype=np.int64))
+
+    def shot_to_action(self, phi, draw, a=0.0, b=0.0) -> np.ndarray:
+        """(phi, draw, a, b) (scalars or arrays [N]) -> actions [N, 4] float32 for this table."""
+        n = max(np.size(phi), np.size(draw), np.size(a), np.size(b))
+        return self._core.shot_to_action(phi, draw, a, b, np.zeros(n, dtype=np.int64))
+
+    def set_state(self, state) -> np.ndarray:
+        """Start a new episode from ``state`` (a one-table ``BallState``, or
+        positions [B, 2]), balls at rest; returns the observation."""
+        self._core.set_state(state, np.array([0]))
+        self._done = False
+        return self._core.observe()[0]
+
+    def reset(self, *, seed: int | None = None, options: dict | None = None):
+        super().reset(seed=seed)
+        self._core.reset_tables([0], [self.np_random])
+        self._done = False
+        if self.render_mode == "human":
+            self.render()
+        return self._core.observe()[0], {"legal_target": self.legal_target()}
+
+    def step(self, action):
+        if self._done:
+            raise RuntimeError("the episode has ended (or never started): call reset() before step()")
+        if np.shape(action) != (4,):
+            raise ValueError(f"action must have shape (4,), got {np.shape(action)}")
+        a = self._core.validate_actions(np.asarray(action, dtype=np.float64).reshape(1, 4), 1)
+        out = self._core.step(a, [0], [self.np_random])
+        info = {k: (v[0] if k == "pocketed" else v[0].item()) for k, v in out["info"].items()}
+        info["reward_terms"] = {k: float(v[0]) for k, v in out["terms"].items()}
+        terminated, truncated = bool(out["terminated"][0]), bool(out["truncated"][0])
+        self._done = terminated or truncated
+        if self.render_mode == "human":
+            self.render()
+        return self._core.observe()[0], float(out["reward"][0]), terminated, truncated, info
+
+    def render(self):
+        if self.render_mode is None:
+            gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array' to gymnasium.make")
+            return None
+        if self._core.state is None:
+            raise RuntimeError("call reset() before render()")
+        img = self._renderer.frame(self._core, 0)
+        if self.render_mode == "human":
+            self._renderer.show(img, self.metadata["render_fps"])
+            return None
+        return img
+
+    def close(self):
+        self._renderer.close()
+
+
+class BilliardsVectorEnv(VectorEnv):
+    """Vector of pool tables shot with one batched simulator call per step
+    (base class; use a task subclass).
+
+    Seeding: ``reset(seed=s)`` seeds table k like a single env seeded with
+    ``s + k`` (or pass a list of N seeds), so table k reproduces that single
+    env's transitions. Autoreset: ``AutoresetMode.NEXT_STEP`` -- the step
+    after a table's episode ends resets that table (its action is ignored)
+    and returns its first observation with reward 0, terminated = truncated
+    = False and zeroed info entries; ``info["reset"]`` marks those tables.
+    """
+
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 4, "autoreset_mode": AutoresetMode.NEXT_STEP}
+    task: str = ""
+
+    def __init__(self, num_envs: int = 1, render_mode: str | None = None, config=None, render_ppm: int = 200,
+                 render_paths: bool = True, **overrides: Any):
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(f"render_mode must be one of {self.metadata['render_modes']} or None, got {render_mode!r}")
+        self.config = _make_config(self.task, config, overrides)
+        self.num_envs = int(num_envs)
+        self.render_mode = render_mode
+        self._core = BilliardsCore(self.config, self.num_envs, record=render_mode is not None)
+        self._renderer = _Renderer(render_mode, render_ppm, render_paths)
+        d = self._core.obs_dim
+        self.single_observation_space = spaces.Box(0.0, 1.0, shape=(d,), dtype=np.float32)
+        self.single_action_space = spaces.Box(-1.0, 1.0, shape=(4,), dtype=np.float32)
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+        self._table_rngs: list[np.random.Generator] | None = None
+        self._autoreset_envs = np.zeros(self.num_envs, dtype=bool)
+
+    table = property(lambda self: self._core.table)
+    params = property(lambda self: self._core.params)
+    effects = property(lambda self: self._core.effects)
+    state = property(lambda self: self._core.state)
+    last_events = property(lambda self: self._core.last_events)
+
+    def legal_target(self) -> np.ndarray:
+        """Legal target ball id of every table, int [N] (-1 if none)."""
+        return self._core.legal_target()
+
+    def action_to_shot(self, actions):
+        """Actions [N, 4] -> (phi, draw, a, b) arrays [N] for the current tables (after clipping)."""
+        a = self._core.validate_actions(actions, self.num_envs)
+        return self._core.action_to_shot(a, np.arange(self.num_envs))
+
+    def shot_to_action(self, phi, draw, a=0.0, b=0.0) -> np.ndarray:
+        """(phi, draw, a, b) scalars or arrays [N] -> actions [N, 4] float32 for the current tables."""
+        return self._core.shot_to_action(phi, draw, a, b, np.arange(self.num_envs))
+
+    def set_state(self, state) -> np.ndarray:
+        """Start new episodes on every table from ``state`` (a ``BallState``
+        of N tables, or positions [N, B, 2]), balls at rest; clears pending
+        autoresets; returns the observations. Call ``reset`` first (seeding)."""
+        if self._table_rngs is None:
+            raise RuntimeError("call reset() before set_state()")
+        self._core.set_state(state, np.arange(self.num_envs))
+        self._autoreset_envs = np.zeros(self.num_envs, dtype=bool)
+        return self._core.observe()
+
+    def reset(self, *, seed=None, options: dict | None = None):
+        N = self.num_envs
+        if seed is not None:
+            seeds = list(seed) if isinstance(seed, (list, tuple, np.ndarray)) else [int(seed) + k for k in range(N)]
+            if len(seeds) != N:
+                raise ValueError(f"seed must be an int or a list of {N} ints, got {len(seeds)}")
+            self._np_random, self._np_random_seed = seeding.np_random(seeds[0])
+            self._table_rngs = [seeding.np_random(int(s))[0] for s in seeds]
+        elif self._table_rngs is None:
+            self._table_rngs = [np.random.default_rng(int(self.np_random.integers(2 ** 63))) for _ in range(N)]
+        self._core.reset_tables(np.arange(N), self._table_rngs)
+        self._autoreset_envs = np.zeros(N, dtype=bool)
+        return self._core.observe(), {"legal_target": self.legal_target()}
+
+    def step(self, actions):
+        if self._table_rngs is None:
+            raise RuntimeError("call reset() before step()")
+        N, B = self.num_envs, self._core.n_balls
+        a = self._core.validate_actions(actions, N)
+        done_prev = self._autoreset_envs
+        act = np.nonzero(~done_prev)[0]
+        rst = np.nonzero(done_prev)[0]
+        reward = np.zeros(N)
+        terminated = np.zeros(N, dtype=bool)
+        truncated = np.zeros(N, dtype=bool)
+        info: dict[str, Any] = {
+            "pocketed": np.zeros((N, B), dtype=bool), "n_pocketed": np.zeros(N, dtype=np.int64),
+            "first_contact": np.full(N, -1, dtype=np.int64), "legal_target": np.full(N, -1, dtype=np.int64),
+            "foul": np.zeros(N, dtype=bool), "scratch": np.zeros(N, dtype=bool), "success": np.zeros(N, dtype=bool),
+            "n_events": np.zeros(N, dtype=np.int64), "sim_time": np.zeros(N), "sim_truncated": np.zeros(N, dtype=bool),
+            "action_clipped": np.zeros(N, dtype=bool), "shot": np.zeros(N, dtype=np.int64),
+        }
+        terms = {k: np.zeros(N) for k in ("pocket", "scratch", "foul", "contact", "success", "shaping")}
+        if len(act):
+            out = self._core.step(a[act], act, [self._table_rngs[k] for k in act])
+            reward[act] = out["reward"]
+            terminated[act] = out["terminated"]
+            truncated[act] = out["truncated"]
+            for k, v in out["info"].items():
+                info[k][act] = v
+            for k, v in out["terms"].items():
+                terms[k][act] = v
+        if len(rst):
+            self._core.reset_tables(rst, [self._table_rngs[k] for k in rst])
+        info["reward_terms"] = terms
+        info["reset"] = done_prev.copy()
+        self._autoreset_envs = terminated | truncated
+        return self._core.observe(), reward, terminated, truncated, info
+
+    def render(self):
+        if self.render_mode is None:
+            gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array' to gymnasium.make_vec")
+            return None
+        if self._core.state is None:
+            raise RuntimeError("call reset() before render()")
+        return [self._renderer.frame(self._core, k) for k in range(self.num_envs)]
+
+    def close_extras(self, **kwargs):
+        self._renderer.close()
+
+
+# ----------------------------------------------------------------- tasks
+_POT_ONE_DOC = """Billiards-PotOne-v0: the cue ball and one object ball at random
+    positions; one shot per episode. Success (``info["success"]``): the object
+    ball is pocketed and the cue ball is not. Every episode terminates after
+    its shot. Foul: the cue ball misses the object ball.
+"""
+_RUN_OUT_DOC = """Billiards-RunOut-v0: ``n_balls`` object balls (default 5) at random
+    positions. Any object ball may be hit first and pocketed; the legal
+    *target* (for relative aim, contact reward and shaping) is the
+    lowest-numbered ball on the table. The episode continues while every shot
+    pockets at least one ball without foul or scratch. It terminates on a
+    miss (nothing pocketed), a scratch (cue ball pocketed), a foul (the cue
+    ball hits no object ball) or when the table is cleared (success); it is
+    truncated after ``max_shots`` shots (default 10).
+"""
+_NINE_BALL_DOC = """Billiards-NineBall-v0: simplified single-player 9-ball.
+
+    Rules:
+
+    1. Each episode starts from a seeded 9-ball rack (1 on the foot spot, 9 in
+       the centre, others shuffled) broken from the head-spot area at
+       ~``break_speed`` (8 m/s) with small seeded variation of position, aim,
+       speed and tip offset. A cue ball pocketed on the break is respotted on
+       the head spot (or the nearest free spot behind it); a 9 pocketed on
+       the break is respotted on the foot spot (or the nearest free spot).
+    2. The legal target is the lowest-numbered ball on the table; the cue
+       ball must hit it first.
+    3. A wrong first contact (another ball, or none) is a foul; a pocketed
+       cue ball is a scratch. Either ends the episode (terminated).
+    4. Balls pocketed on a legal shot stay down (+``pocket`` each); pocketing
+       the 9 on a legal shot (directly or by combination) wins: success,
+       episode terminated. A 9 pocketed on a foul or scratch ends the episode
+       without success.
+    5. A legal shot that pockets nothing is a miss: the player shoots again
+       from where the balls lie (no turn passes). The episode is truncated
+       after ``max_shots`` shots (default 20).
+"""
+
+
+class PotOneEnv(BilliardsEnv):
+    task = "pot_one"
+    __doc__ = _POT_ONE_DOC + _COMMON_DOC
+
+
+class PotOneVectorEnv(BilliardsVectorEnv):
+    task = "pot_one"
+    __doc__ = _POT_ONE_DOC + BilliardsVectorEnv.__doc__ + _COMMON_DOC
+
+
+class RunOutEnv(BilliardsEnv):
+    task = "run_out"
+    __doc__ = _RUN_OUT_DOC + _COMMON_DOC
+
+
+class RunOutVectorEnv(BilliardsVectorEnv):
+    task = "run_out"
+    __doc__ = _RUN_OUT_DOC + BilliardsVectorEnv.__doc__ + _COMMON_DOC
+
+
+class NineBallEnv(BilliardsEnv):
+    task = "nine_ball"
+    __doc__ = _NINE_BALL_DOC + _COMMON_DOC
+
+
+class NineBallVectorEnv(BilliardsVectorEnv):
+    task = "nine_ball"
+    __doc__ = _NINE_BALL_DOC + BilliardsVectorEnv.__doc__ + _COMMON_DOC

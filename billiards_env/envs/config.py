@@ -1,0 +1,265 @@
+"""Typed, frozen task configuration loaded from YAML (``configs/tasks/<task>.yaml``).
+
+A ``TaskConfig`` holds everything a task needs: table, physics preset,
+solver, ball count, shot limit, action mapping, reward weights
+(``RewardConfig``), shot noise (``NoiseConfig``) and physics effects
+(``Effects``). Unknown keys anywhere raise a ``ValueError`` naming them.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from ..physics import Effects, PhysicsParams, Table
+
+CONFIG_VERSION = 1
+TASKS = ("pot_one", "run_out", "nine_ball")
+CONFIG_DIR = Path(__file__).resolve().parents[2] / "configs" / "tasks"
+
+
+def _check_keys(cls, d: dict, where: str) -> None:
+    if not isinstance(d, dict):
+        raise ValueError(f"{where} must be a mapping, got {type(d).__name__}")
+    names = {f.name for f in dataclasses.fields(cls)}
+    unknown = set(d) - names
+    if unknown:
+        raise ValueError(f"unknown key(s) {sorted(unknown)} in {where}; known keys: {sorted(names)}")
+
+
+def _number(v, name: str, lo: float | None = None) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+        raise ValueError(f"{name} must be a finite number, got {v!r}")
+    if lo is not None and v < lo:
+        raise ValueError(f"{name} must be >= {lo}, got {v!r}")
+    return float(v)
+
+
+@dataclasses.dataclass(frozen=True)
+class RewardConfig:
+    """Reward weights. Each term is reported separately in ``info["reward_terms"]``.
+
+    - ``pocket``: per legal ball pocketed on a shot without foul or scratch;
+    - ``scratch``: added when the cue ball is pocketed (a penalty: negative);
+    - ``foul``: added on a wrong first contact (no ball hit, or not the legal one);
+    - ``contact``: added when the cue ball first hits the legal target ball;
+    - ``success``: added when the shot completes the task (pot / run out / 9 legally);
+    - ``shaping``: weight of the potential-based term gamma*Phi(s') - Phi(s),
+      Phi = -(distance of the legal target ball to its nearest pocket) / table
+      diagonal, Phi = 0 in terminal states (so the optimal policy is unchanged).
+    """
+
+    pocket: float = 1.0
+    scratch: float = -1.0
+    foul: float = -1.0
+    contact: float = 0.1
+    success: float = 0.0
+    shaping: float = 0.0
+    gamma: float = 0.99
+
+    def __post_init__(self):
+        for f in dataclasses.fields(self):
+            object.__setattr__(self, f.name, _number(getattr(self, f.name), f"reward.{f.name}"))
+        if not 0.0 <= self.gamma <= 1.0:
+            raise ValueError(f"reward.gamma must lie in [0, 1], got {self.gamma}")
+
+    @classmethod
+    def from_dict(cls, d: dict | None) -> "RewardConfig":
+        d = dict(d or {})
+        _check_keys(cls, d, "reward config")
+        return cls(**d)
+
+    def to_dict(self) -> dict:
+        return dataclasses.asdict(self)
+
+
+NOISE_PRESETS = {
+    "none": dict(aim_deg=0.0, speed=0.0, side_mm=0.0, height_mm=0.0),
+    # tournament-level execution error
+    "tournament": dict(aim_deg=0.125, speed=0.075, side_mm=0.5, height_mm=0.5),
+}
+
+
+@dataclasses.dataclass(frozen=True)
+class NoiseConfig:
+    """Gaussian execution noise (standard deviations) on the aim angle
+    (degrees), the cue-ball speed (m/s) and the side / height offsets (mm;
+    converted to units of R when applied). Presets: ``none``, ``tournament``."""
+
+    aim_deg: float = 0.0
+    speed: float = 0.0
+    side_mm: float = 0.0
+    height_mm: float = 0.0
+
+    def __post_init__(self):
+        for f in dataclasses.fields(self):
+            object.__setattr__(self, f.name, _number(getattr(self, f.name), f"noise.{f.name}", 0.0))
+
+    @property
+    def enabled(self) -> bool:
+        return any(getattr(self, f.name) > 0 for f in dataclasses.fields(self))
+
+    @classmethod
+    def preset(cls, name: str) -> "NoiseConfig":
+        if name not in NOISE_PRESETS:
+            raise ValueError(f"unknown noise preset {name!r}; choose one of {sorted(NOISE_PRESETS)}")
+        return cls(**NOISE_PRESETS[name])
+
+    @classmethod
+    def from_any(cls, v) -> "NoiseConfig":
+        """A preset name, a mapping (optionally with ``preset`` plus overrides), a NoiseConfig or None."""
+        if v is None:
+            return cls()
+        if isinstance(v, NoiseConfig):
+            return v
+        if isinstance(v, str):
+            return cls.preset(v)
+        if isinstance(v, dict):
+            d = dict(v)
+            base = cls.preset(d.pop("preset")).to_dict() if "preset" in d else {}
+            _check_keys(cls, d, "noise config")
+            return cls(**{**base, **d})
+        raise ValueError(f"noise must be a preset name, a mapping or a NoiseConfig, got {type(v).__name__}")
+
+    def to_dict(self) -> dict:
+        return dataclasses.asdict(self)
+
+
+@dataclasses.dataclass(frozen=True)
+class TaskConfig:
+    """Everything that defines a task instance.
+
+    - ``task``: one of ``pot_one``, ``run_out``, ``nine_ball``;
+    - ``table``: ``pool`` (with ``table_size_ft`` 7, 8 or 9) or ``pocketless``;
+    - ``physics``: a ``PhysicsParams`` preset name (``standard``, ``seed``);
+    - ``solver``: ``event`` (exact) or ``step`` (fixed step ``dt`` seconds);
+    - ``n_balls``: object balls (pot_one: 1, nine_ball: 9);
+    - ``max_shots``: shots per episode before truncation;
+    - ``aim``: ``relative`` (a0 turns the aim away from the line cue -> legal
+      target ball) or ``absolute`` (a0 * pi from +x);
+    - ``min_draw``: cue draw (m) at a1 = -1 (small and positive so the cue ball moves);
+    - ``margin``: clearance (m) between randomly placed balls and from the cushions;
+    - ``break_speed``: nine_ball break-shot speed (m/s);
+    - ``effects``, ``reward``, ``noise``: nested configs.
+    """
+
+    task: str
+    version: int = CONFIG_VERSION
+    table: str = "pool"
+    table_size_ft: int = 9
+    physics: str = "standard"
+    solver: str = "event"
+    dt: float | None = None
+    n_balls: int = 1
+    max_shots: int = 1
+    aim: str = "relative"
+    min_draw: float = 0.01
+    margin: float = 0.01
+    break_speed: float = 8.0
+    effects: Effects = dataclasses.field(default_factory=Effects)
+    reward: RewardConfig = dataclasses.field(default_factory=RewardConfig)
+    noise: NoiseConfig = dataclasses.field(default_factory=NoiseConfig)
+
+    def __post_init__(self):
+        if self.version != CONFIG_VERSION:
+            raise ValueError(f"config version {self.version!r} is not supported (expected {CONFIG_VERSION})")
+        if self.task not in TASKS:
+            raise ValueError(f"unknown task {self.task!r}; choose one of {TASKS}")
+        if self.table not in ("pool", "pocketless"):
+            raise ValueError(f"table must be 'pool' or 'pocketless', got {self.table!r}")
+        if self.solver not in ("event", "step"):
+            raise ValueError(f"solver must be 'event' or 'step', got {self.solver!r}")
+        if self.solver == "step":
+            if self.dt is None or _number(self.dt, "dt") <= 0:
+                raise ValueError("the step solver needs a positive time step dt (s), e.g. dt: 1.0e-4")
+        if self.aim not in ("relative", "absolute"):
+            raise ValueError(f"aim must be 'relative' or 'absolute', got {self.aim!r}")
+        for name in ("n_balls", "max_shots", "table_size_ft", "version"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, int) or v < 1:
+                raise ValueError(f"{name} must be a positive integer, got {v!r}")
+        if self.task == "pot_one" and self.n_balls != 1:
+            raise ValueError("pot_one uses exactly one object ball (n_balls: 1)")
+        if self.task == "nine_ball" and self.n_balls != 9:
+            raise ValueError("nine_ball uses exactly nine object balls (n_balls: 9)")
+        if self.n_balls > 15:
+            raise ValueError(f"n_balls must be at most 15, got {self.n_balls}")
+        object.__setattr__(self, "min_draw", _number(self.min_draw, "min_draw"))
+        object.__setattr__(self, "margin", _number(self.margin, "margin", 0.0))
+        object.__setattr__(self, "break_speed", _number(self.break_speed, "break_speed"))
+        if not 0 < self.min_draw < self.params().max_draw:
+            raise ValueError(f"min_draw must lie in (0, max_draw = {self.params().max_draw}), got {self.min_draw}")
+        if not 0 < self.break_speed <= 2 * self.params().max_speed:
+            raise ValueError(f"break_speed must be positive and plausible, got {self.break_speed}")
+        for name, cls in (("effects", Effects), ("reward", RewardConfig), ("noise", NoiseConfig)):
+            if not isinstance(getattr(self, name), cls):
+                raise ValueError(f"{name} must be a {cls.__name__} (use TaskConfig.from_dict for mappings)")
+
+    # --- construction -----------------------------------------------------
+    @classmethod
+    def from_dict(cls, d: dict, **overrides) -> "TaskConfig":
+        d = {**dict(d), **overrides}
+        _check_keys(cls, d, "task config")
+        if "task" not in d:
+            raise ValueError("task config needs a 'task' key")
+        if "effects" in d and not isinstance(d["effects"], Effects):
+            d["effects"] = Effects.from_dict(d["effects"])
+        if "reward" in d and not isinstance(d["reward"], RewardConfig):
+            d["reward"] = RewardConfig.from_dict(d["reward"])
+        if "noise" in d:
+            d["noise"] = NoiseConfig.from_any(d["noise"])
+        return cls(**d)
+
+    @classmethod
+    def from_yaml(cls, path, **overrides) -> "TaskConfig":
+        path = Path(path)
+        with open(path) as f:
+            d = yaml.safe_load(f) or {}
+        try:
+            return cls.from_dict(d, **overrides)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"{path}: {exc}") from exc
+
+    @classmethod
+    def default(cls, task: str, **overrides) -> "TaskConfig":
+        """The task's shipped configuration ``configs/tasks/<task>.yaml``
+        (built-in defaults, identical to the file, when the file is absent)."""
+        path = CONFIG_DIR / f"{task}.yaml"
+        if path.exists():
+            return cls.from_yaml(path, **overrides)
+        return cls.from_dict(BUILTIN_DEFAULTS[task], **overrides)
+
+    def to_dict(self) -> dict:
+        d = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+        d["effects"] = self.effects.to_dict()
+        d["reward"] = self.reward.to_dict()
+        d["noise"] = self.noise.to_dict()
+        return d
+
+    def to_yaml(self, path) -> None:
+        with open(path, "w") as f:
+            yaml.safe_dump(self.to_dict(), f, sort_keys=False)
+
+    # --- derived objects --------------------------------------------------
+    def params(self) -> PhysicsParams:
+        return PhysicsParams.preset(self.physics)
+
+    def make_table(self) -> Table:
+        return Table.pool(self.table_size_ft) if self.table == "pool" else Table.pocketless()
+
+
+_EFFECTS_ALL = Effects().to_dict()
+BUILTIN_DEFAULTS: dict[str, dict[str, Any]] = {
+    "pot_one": dict(task="pot_one", version=1, n_balls=1, max_shots=1, effects=_EFFECTS_ALL,
+                    reward=dict(pocket=1.0, scratch=-1.0, foul=-0.5, contact=0.1, success=0.0,
+                                shaping=0.5, gamma=0.99), noise="none"),
+    "run_out": dict(task="run_out", version=1, n_balls=5, max_shots=10, effects=_EFFECTS_ALL,
+                    reward=dict(pocket=1.0, scratch=-1.0, foul=-0.5, contact=0.1, success=1.0,
+                                shaping=0.5, gamma=0.99), noise="none"),
+    "nine_ball": dict(task="nine_ball", version=1, n_balls=9, max_shots=20, effects=_EFFECTS_ALL,
+                      reward=dict(pocket=1.0, scratch=-1.0, foul=-1.0, contact=0.1, success=5.0,
+                                  shaping=0.5, gamma=0.99), noise="none"),
+}
