@@ -315,9 +315,10 @@ class BilliardsCore:
         reward = sum(terms.values())
 
         self._set(idx, end)
-        for j, k in enumerate(idx):
-            self.last_start[k] = start.take([j])
-            self.last_events[k] = res.events[j] if res.events is not None else None
+        if res.events is not None:  # kept for rendering the last shot's paths
+            for j, k in enumerate(idx):
+                self.last_start[k] = start.take([j])
+                self.last_events[k] = res.events[j]
         return dict(reward=reward, terminated=terminated, truncated=truncated, terms=terms,
                     info=dict(pocketed=new, n_pocketed=n_obj, first_contact=fc, legal_target=tgt,
                               foul=foul, scratch=scratch, success=success, n_events=res.n_events,

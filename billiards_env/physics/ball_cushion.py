@@ -11,8 +11,9 @@ is kept on the felt), as in pooltool's implementation of the same paper.
 Without cushion friction: a plain reflection of the normal velocity with
 restitution e_c; tangential velocity and spin unchanged.
 
-Impacts slower than ZENO_SPEED are resting contacts (restitution 0, the slide
-ends at once).
+Impacts slower than ZENO_SPEED, and contacts reported without approach (the
+felt pressing the ball into the cushion), are resting contacts: restitution
+0, the slide ends at once, no normal velocity into the cushion remains.
 """
 import math
 
@@ -27,9 +28,18 @@ def resolve_cushion(vel, om, st, e, i, nx, ny, p, friction_on, spin_on):
     points into the table. Returns the approach speed before the impact."""
     vn = vel[e, i, 0] * nx + vel[e, i, 1] * ny
     w = -vn
-    if w <= 0.0:
-        return w
     resting = w < C.ZENO_SPEED
+    if w <= 0.0:
+        # reported without approach: the felt presses the ball into the
+        # cushion (a slide whose friction points into it); end the slide
+        if spin_on:  # a no-op unless the ball slips on the felt
+            end_slide(vel, om, e, i, p[C.P_R])
+            vn = vel[e, i, 0] * nx + vel[e, i, 1] * ny
+            if vn < 0.0:  # the rolling ball now approaches: a resting impact
+                vel[e, i, 0] -= vn * nx
+                vel[e, i, 1] -= vn * ny
+        _unpress(vel, e, i, nx, ny)
+        return w
     e_c = 0.0 if resting else p[C.P_E_C]
     if not friction_on:
         vel[e, i, 0] -= (1.0 + e_c) * vn * nx
@@ -75,6 +85,21 @@ def resolve_cushion(vel, om, st, e, i, nx, ny, p, friction_on, spin_on):
         om[e, i, 0] = wx * Xx + wy * Yx
         om[e, i, 1] = wx * Xy + wy * Yy
         om[e, i, 2] = wz
-    if resting and spin_on and st[e, i] == C.SLIDING:
-        end_slide(vel, om, e, i, p[C.P_R])
+    if resting:
+        if spin_on:  # by the slip after the impulse, not the stale st
+            end_slide(vel, om, e, i, p[C.P_R])
+        _unpress(vel, e, i, nx, ny)
     return w
+
+
+@njit
+def _unpress(vel, e, i, nx, ny):
+    """After a resting contact, remove any normal velocity left into the
+    cushion (rounding, or a slide's end): the detector must not see the ball
+    approach again at the same instant. Removing it only lowers the energy."""
+    for _ in range(4):
+        vn = vel[e, i, 0] * nx + vel[e, i, 1] * ny
+        if vn >= 0.0:
+            break
+        vel[e, i, 0] -= vn * nx
+        vel[e, i, 1] -= vn * ny

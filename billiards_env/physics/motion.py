@@ -114,8 +114,10 @@ def _decay_vertical_spin(om, e, i, dt, rate):
 
 
 @njit
-def evolve(pos, vel, om, st, e, i, dt, p, zspin_on):
-    """Advance ball i exactly by dt (dt no later than its next transition)."""
+def evolve(pos, vel, om, st, e, i, dt, p, zspin_on, spin_on):
+    """Advance ball i exactly by dt (dt no later than its next transition).
+    Without spin (point masses) a rolling ball carries no angular velocity,
+    so none is given to it here (it would count as energy it never had)."""
     if dt <= 0.0:
         return
     R, g = p[C.P_R], p[C.P_G]
@@ -135,8 +137,9 @@ def evolve(pos, vel, om, st, e, i, dt, p, zspin_on):
         else:
             vel[e, i, 0] += ax * dt
             vel[e, i, 1] += ay * dt
-            om[e, i, 0] = -vel[e, i, 1] / R
-            om[e, i, 1] = vel[e, i, 0] / R
+            if spin_on:
+                om[e, i, 0] = -vel[e, i, 1] / R
+                om[e, i, 1] = vel[e, i, 0] / R
     if zspin_on and s != C.STATIONARY and s != C.POCKETED:
         _decay_vertical_spin(om, e, i, dt, 2.5 * p[C.P_MU_SP] * g / R)
 
@@ -169,7 +172,7 @@ def apply_transition(vel, om, st, e, i, p):
 
 
 @njit
-def friction_step(vel, om, st, e, i, dt, p, zspin_on):
+def friction_step(vel, om, st, e, i, dt, p, zspin_on, spin_on):
     """Explicit (Euler) friction update over one fixed step, as in the
     write-up's stage 2, clamped so that friction never reverses a velocity:
     a slide that would end within the step ends in its rolling state, a roll
@@ -200,7 +203,8 @@ def friction_step(vel, om, st, e, i, dt, p, zspin_on):
         else:
             f = 1.0 - dv / n
             vel[e, i, 0] = vx * f; vel[e, i, 1] = vy * f
-            om[e, i, 0] = -vel[e, i, 1] / R; om[e, i, 1] = vel[e, i, 0] / R
+            if spin_on:  # point masses (spin off) carry no angular velocity
+                om[e, i, 0] = -vel[e, i, 1] / R; om[e, i, 1] = vel[e, i, 0] / R
     if zspin_on and s != C.STATIONARY and s != C.POCKETED:
         _decay_vertical_spin(om, e, i, dt, 2.5 * p[C.P_MU_SP] * g / R)
         if st[e, i] == C.SPINNING and om[e, i, 2] == 0.0:

@@ -120,7 +120,22 @@ def first_entry(c4, c3, c2, c1, c0, H, f_tol, f_floor):
     if f_floor <= c0 <= f_tol:
         if c1 < 0.0 or (c1 == 0.0 and c2 < 0.0):
             return 0.0
+        if H > 0.0 and c1 > 0.0:
+            # Touching and opening: the gap may open by less than rounding
+            # can resolve and close again (a pair pressed by the felt after a
+            # slow impact). Contact is then when f returns to its current
+            # level: the first root of (f - c0) / t = c4 t^3 + c3 t^2 + c2 t + c1.
+            t_back = _entry(0.0, c4, c3, c2, c1, H)
+            return min(t_back, _entry(c4, c3, c2, c1, c0, H))
     if H == 0.0:
+        return math.inf
+    return _entry(c4, c3, c2, c1, c0, H)
+
+
+@njit
+def _entry(c4, c3, c2, c1, c0, H):
+    """First t in (0, H] where f goes from > 0 to <= 0 (inf if none)."""
+    if not H > 0.0:
         return math.inf
     n, r0, r1, r2 = _critical_points(c4, c3, c2, c1, H)
     a = 0.0

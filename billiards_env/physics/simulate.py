@@ -46,7 +46,7 @@ class SimResult:
     cushion_hits: np.ndarray   # [E, B]
     truncated: np.ndarray      # [E] True if the event or step cap was hit
     events: list | None = None  # [E] EventLog with record=True
-    diagnostics: np.ndarray | None = None  # [E, 4]: max energy gain (J), max momentum error, min gap (m), max off-table (m)
+    diagnostics: np.ndarray | None = None  # [E, 4]: max energy gain (J) of any impact or of the total from one event (step) to the next, max momentum error of a ball-ball impact (kg m/s), min gap (m), max off-table (m)
 
     @property
     def pocketed(self) -> np.ndarray:
@@ -109,13 +109,20 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
     common_in = (s.pos, s.vel, s.omega, s.pocket, p, segs, norms, tips, pockets, table.width, table.length,
                  int(max_events), st)
     outs = (out_time, out_nev, out_first, out_cush, out_trunc, record, rec_n, rec_t, rec_kind, rec_ij, rec_state, diag)
-    if solver == "event":
-        tt = np.zeros((E, B)); tb = np.zeros((E, B))
-        bkind = np.zeros((E, B), dtype=np.int64); bidx = np.zeros((E, B), dtype=np.int64)
-        tpair = np.zeros((E, B, B))
-        kernel(*common_in, tt, tb, bkind, bidx, tpair, *outs)
-    else:
-        kernel(*common_in, float(dt), int(C.MAX_STEPS), *outs)
+    # Waking worker threads costs more than a small batch takes: use no more
+    # threads than tables (results do not depend on the thread count).
+    threads = numba.get_num_threads()
+    numba.set_num_threads(max(1, min(threads, E)))
+    try:
+        if solver == "event":
+            tt = np.zeros((E, B)); tb = np.zeros((E, B))
+            bkind = np.zeros((E, B), dtype=np.int64); bidx = np.zeros((E, B), dtype=np.int64)
+            tpair = np.zeros((E, B, B))
+            kernel(*common_in, tt, tb, bkind, bidx, tpair, *outs)
+        else:
+            kernel(*common_in, float(dt), int(C.MAX_STEPS), *outs)
+    finally:
+        numba.set_num_threads(threads)
 
     events = None
     if record:

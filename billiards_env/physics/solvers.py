@@ -31,8 +31,8 @@ import numba
 import numpy as np
 
 from . import constants as C
-from ._jit import JIT
-from .ball_ball import resolve_ball_ball
+from ._jit import JIT, KERNEL_JIT
+from .ball_ball import resolve_ball_ball, rest_contact
 from .ball_cushion import resolve_cushion
 from .detection import boundary_time, pair_time, pair_time_linear
 from .motion import apply_transition, classify, end_slide, energy, evolve, friction_step, transition_time
@@ -119,7 +119,9 @@ def _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, t, k
     rec_ij[e, n, 1] = j
     for s in range(2):
         b = i if s == 0 else j
-        if b < 0:
+        # only ball-ball events name a second ball (else j is a cushion,
+        # tip or pocket index, not a ball)
+        if b < 0 or (s == 1 and kind != C.EV_BALL_BALL):
             continue
         rec_state[e, n, s, 0] = pos[e, b, 0]; rec_state[e, n, s, 1] = pos[e, b, 1]
         rec_state[e, n, s, 2] = vel[e, b, 0]; rec_state[e, n, s, 3] = vel[e, b, 1]
@@ -159,6 +161,14 @@ def _impact_energy(vel, om, st, e, i, j, p):
     en = energy(vel, om, st, e, i, p)
     if j >= 0:
         en += energy(vel, om, st, e, j, p)
+    return en
+
+
+@numba.njit(**JIT)
+def _total_energy(vel, om, st, e, p):
+    en = 0.0
+    for i in range(vel.shape[1]):
+        en += energy(vel, om, st, e, i, p)
     return en
 
 
@@ -205,12 +215,11 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
 
     @numba.njit(**JIT)
     def _impact_pair(pos, vel, om, st, e, i, j, p):
-        w = resolve_ball_ball(pos, vel, om, st, e, i, j, p, BALL_FRICTION, SPIN)
-        _after_impact(vel, om, st, e, i, p, SPIN, SLIDE, ZSPIN)
-        _after_impact(vel, om, st, e, j, p, SPIN, SLIDE, ZSPIN)
-        return w
+        # impulses only; resting contacts and state updates follow once the
+        # whole simultaneous set is resolved
+        return resolve_ball_ball(pos, vel, om, st, e, i, j, p, BALL_FRICTION, SPIN)
 
-    @numba.njit(**JIT, parallel=True)
+    @numba.njit(**KERNEL_JIT, parallel=True)
     def run(pos, vel, om, pocket, p, segs, norms, tips, pockets, width, length,
             max_events, st, tt, tb, bkind, bidx, tpair,
             out_time, out_nev, out_first, out_cush, out_trunc,
@@ -226,13 +235,16 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
             for i in range(B):
                 tpair[e, i, i] = math.inf
                 _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, i, 0.0, p, segs, norms, tips, pockets)
+            en_prev = 0.0
             if DIAG:
                 diag[e, 0] = 0.0; diag[e, 1] = 0.0; diag[e, 2] = math.inf; diag[e, 3] = 0.0
                 _check_geometry(pos, st, e, p, width, length, pockets, diag)
+                en_prev = _total_energy(vel, om, st, e, p)
             out_first[e] = -1
             nev = 0
             sim_i = np.empty(MAX_SIMULTANEOUS, dtype=np.int64)
             sim_j = np.empty(MAX_SIMULTANEOUS, dtype=np.int64)
+            sim_w = np.empty(MAX_SIMULTANEOUS)
             buf = np.empty((2 * MAX_SIMULTANEOUS, 6))
             buf2 = np.empty((2 * MAX_SIMULTANEOUS, 6))
             balls = np.empty(2 * MAX_SIMULTANEOUS, dtype=np.int64)
@@ -259,7 +271,7 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                     tmin = t
                 dt = tmin - t
                 for i in range(B):
-                    evolve(pos, vel, om, st, e, i, dt, p, ZSPIN)
+                    evolve(pos, vel, om, st, e, i, dt, p, ZSPIN, SPIN)
                 t = tmin
                 nev += 1
                 if kind == C.EV_BALL_BALL:
@@ -284,17 +296,18 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                             e0 += energy(vel, om, st, e, balls[q], p)
                             px0 += vel[e, balls[q], 0]; py0 += vel[e, balls[q], 1]
                     if ns == 1:
-                        _impact_pair(pos, vel, om, st, e, a, b, p)
+                        sim_w[0] = _impact_pair(pos, vel, om, st, e, a, b, p)
                     else:
                         for q in range(nb):
                             _save(pos, vel, om, st, e, balls[q], buf, q)
                         for s in range(ns):
-                            _impact_pair(pos, vel, om, st, e, sim_i[s], sim_j[s], p)
+                            sim_w[s] = _impact_pair(pos, vel, om, st, e, sim_i[s], sim_j[s], p)
                         for q in range(nb):
                             _save(pos, vel, om, st, e, balls[q], buf2, q)
                             _load(vel, om, st, e, balls[q], buf, q)
                         for s in range(ns - 1, -1, -1):
-                            _impact_pair(pos, vel, om, st, e, sim_i[s], sim_j[s], p)
+                            w2 = _impact_pair(pos, vel, om, st, e, sim_i[s], sim_j[s], p)
+                            sim_w[s] = min(sim_w[s], w2)
                         for q in range(nb):
                             bq = balls[q]
                             vel[e, bq, 0] = 0.5 * (vel[e, bq, 0] + buf2[q, 0])
@@ -302,7 +315,6 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                             om[e, bq, 0] = 0.5 * (om[e, bq, 0] + buf2[q, 2])
                             om[e, bq, 1] = 0.5 * (om[e, bq, 1] + buf2[q, 3])
                             om[e, bq, 2] = 0.5 * (om[e, bq, 2] + buf2[q, 4])
-                            _after_impact(vel, om, st, e, bq, p, SPIN, SLIDE, ZSPIN)
                     if DIAG:
                         e1 = 0.0; px1 = 0.0; py1 = 0.0
                         for q in range(nb):
@@ -310,6 +322,11 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                             px1 += vel[e, balls[q], 0]; py1 += vel[e, balls[q], 1]
                         diag[e, 0] = max(diag[e, 0], e1 - e0)
                         diag[e, 1] = max(diag[e, 1], math.hypot(px1 - px0, py1 - py0) * p[C.P_M])
+                    for s in range(ns):
+                        if sim_w[s] < C.ZENO_SPEED:
+                            rest_contact(pos, vel, om, st, e, sim_i[s], sim_j[s], p, SPIN)
+                    for q in range(nb):
+                        _after_impact(vel, om, st, e, balls[q], p, SPIN, SLIDE, ZSPIN)
                     for s in range(ns):
                         i, j = sim_i[s], sim_j[s]
                         if out_first[e] == -1 and (i == 0 or j == 0):
@@ -342,6 +359,10 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                     _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, a, t, p, segs, norms, tips, pockets)
                 if DIAG:
                     _check_geometry(pos, st, e, p, width, length, pockets, diag)
+                    # total energy may never rise from one event to the next
+                    en = _total_energy(vel, om, st, e, p)
+                    diag[e, 0] = max(diag[e, 0], en - en_prev)
+                    en_prev = en
             out_time[e] = t
             out_nev[e] = nev
 
@@ -351,7 +372,7 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
 # ----------------------------------------------------------- step solver --
 def _make_step(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIAG):
     TAG = SOURCE_TAG
-    @numba.njit(**JIT, parallel=True)
+    @numba.njit(**KERNEL_JIT, parallel=True)
     def run(pos, vel, om, pocket, p, segs, norms, tips, pockets, width, length,
             max_events, st, dt, max_steps,
             out_time, out_nev, out_first, out_cush, out_trunc,
@@ -364,8 +385,11 @@ def _make_step(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIA
             if rec_on:
                 for i in range(B):
                     _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, 0.0, C.EV_START, i, -1)
+            en_prev = 0.0
             if DIAG:
                 diag[e, 0] = 0.0; diag[e, 1] = 0.0; diag[e, 2] = math.inf; diag[e, 3] = 0.0
+                _check_geometry(pos, st, e, p, width, length, pk, diag)
+                en_prev = _total_energy(vel, om, st, e, p)
             out_first[e] = -1
             t = 0.0
             nev = 0
@@ -406,8 +430,16 @@ def _make_step(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIA
                     tev = t + (dt - rem)
                     if DIAG:
                         e0 = _impact_energy(vel, om, st, e, a, b if kind == C.EV_BALL_BALL else -1, p)
+                        px0 = 0.0; py0 = 0.0
+                        if kind == C.EV_BALL_BALL:
+                            px0 = vel[e, a, 0] + vel[e, b, 0]; py0 = vel[e, a, 1] + vel[e, b, 1]
                     if kind == C.EV_BALL_BALL:
-                        resolve_ball_ball(pos, vel, om, st, e, a, b, p, BALL_FRICTION, SPIN)
+                        wab = resolve_ball_ball(pos, vel, om, st, e, a, b, p, BALL_FRICTION, SPIN)
+                        if DIAG:
+                            px1 = vel[e, a, 0] + vel[e, b, 0]; py1 = vel[e, a, 1] + vel[e, b, 1]
+                            diag[e, 1] = max(diag[e, 1], math.hypot(px1 - px0, py1 - py0) * p[C.P_M])
+                        if wab < C.ZENO_SPEED:
+                            rest_contact(pos, vel, om, st, e, a, b, p, SPIN)
                         _after_impact(vel, om, st, e, a, p, SPIN, SLIDE, ZSPIN)
                         _after_impact(vel, om, st, e, b, p, SPIN, SLIDE, ZSPIN)
                         if out_first[e] == -1 and (a == 0 or b == 0):
@@ -426,15 +458,21 @@ def _make_step(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIA
                     if DIAG and kind != C.EV_POCKET:
                         e1 = _impact_energy(vel, om, st, e, a, b if kind == C.EV_BALL_BALL else -1, p)
                         diag[e, 0] = max(diag[e, 0], e1 - e0)
+                        en = _total_energy(vel, om, st, e, p)
+                        diag[e, 0] = max(diag[e, 0], en - en_prev)
+                        en_prev = en
                     if rec_on:
                         _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, tev, kind, a,
                                 b if kind == C.EV_BALL_BALL else b)
                 for i in range(B):
                     if st[e, i] != C.STATIONARY and st[e, i] != C.POCKETED:
-                        friction_step(vel, om, st, e, i, dt, p, ZSPIN)
+                        friction_step(vel, om, st, e, i, dt, p, ZSPIN, SPIN)
                 t += dt
                 if DIAG:
                     _check_geometry(pos, st, e, p, width, length, pk, diag)
+                    en = _total_energy(vel, om, st, e, p)
+                    diag[e, 0] = max(diag[e, 0], en - en_prev)
+                    en_prev = en
             out_time[e] = t
             out_nev[e] = nev
 

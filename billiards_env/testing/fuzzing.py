@@ -1,0 +1,81 @@
+"""Random shots for fuzzing (tests/test_fuzz.py, scripts/fuzz.py) and their
+JSON regression files."""
+from __future__ import annotations
+
+import json
+import pathlib
+import time
+
+import numpy as np
+
+from billiards_env.physics import BallState, PhysicsParams, Table, rack, simulate, strike
+from .invariants import check_invariants
+
+LAYOUTS = ("nine", "eight", "random")
+
+
+def random_batch(rng, n_envs, layout, preset, n_balls=None):
+    """``n_envs`` tables of one layout, each with a random cue strike."""
+    params = PhysicsParams.preset(preset)
+    table = Table.pool(9)
+    R = params.R
+    if layout in ("nine", "eight"):
+        s = rack(table, params, layout, n_envs, gap=0.0, seed=rng)
+    else:
+        B = n_balls or int(rng.integers(2, 17))
+        pos = np.empty((n_envs, B, 2))
+        lo, hi = np.array([R, R]), np.array([table.width - R, table.length - R])
+        for b in range(B):
+            todo = np.arange(n_envs)
+            while len(todo):
+                p = rng.uniform(lo, hi, size=(len(todo), 2))
+                # exactly frozen contacts are a hard case: sometimes snap to a neighbour
+                if b and rng.random() < 0.3:
+                    k = rng.integers(0, b)
+                    ang = rng.uniform(0, 2 * np.pi, len(todo))
+                    p = pos[todo, k] + 2 * R * np.stack([np.cos(ang), np.sin(ang)], 1)
+                ok = table.contains(p, R, 0.0)
+                if b:
+                    d = np.hypot(*(pos[todo, :b] - p[:, None]).transpose(2, 0, 1))
+                    ok &= (d >= 2 * R - 1e-12).all(1)
+                pos[todo[ok], b] = p[ok]
+                todo = todo[~ok]
+        s = BallState.from_positions(pos)
+    phi = rng.uniform(0, 2 * np.pi, n_envs)
+    draw = params.max_draw * rng.uniform(0, 1, n_envs) ** 0.5
+    r = params.miscue_limit * np.sqrt(rng.uniform(0, 1, n_envs)) * (1 - 1e-12)
+    ang = rng.uniform(0, 2 * np.pi, n_envs)
+    s = strike(s, phi, draw, r * np.cos(ang), r * np.sin(ang), params)
+    return s, table, params
+
+
+def run_batch(state, table, params, solver, dt=1e-3):
+    kw = {} if solver == "event" else {"dt": dt}
+    res = simulate(state, table, params, solver=solver, diagnostics=True, **kw)
+    return res, check_invariants(res, state, table, params)
+
+
+def case_dict(state, e, params, solver, dt, violations):
+    return {"solver": solver, "dt": dt, "table": "pool9", "params": params.to_dict(),
+            "pos": state.pos[e].tolist(), "vel": state.vel[e].tolist(),
+            "omega": state.omega[e].tolist(), "pocket": state.pocket[e].tolist(),
+            "violations": violations}
+
+
+def save_case(case, directory, tag="fuzz"):
+    """Write a failing case as JSON into ``directory`` (tests/regressions/ in
+    this repository, replayed by tests/test_regressions.py)."""
+    directory = pathlib.Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    path = directory / f"{tag}_{case['solver']}_{time.strftime('%Y%m%d_%H%M%S')}_{abs(hash(json.dumps(case['pos']))) % 10**8:08d}.json"
+    path.write_text(json.dumps(case, indent=1))
+    return path
+
+
+def load_case(path):
+    c = json.loads(pathlib.Path(path).read_text())
+    params = PhysicsParams(**c["params"])
+    table = Table.pool(9) if c["table"] == "pool9" else Table.pocketless(*c.get("size", (1.27, 2.54)))
+    s = BallState(np.array(c["pos"])[None], np.array(c["vel"])[None], np.array(c["omega"])[None],
+                  np.array(c["pocket"], dtype=np.int64)[None])
+    return c, s, table, params

@@ -1,0 +1,32 @@
+import numpy as np
+import pytest
+
+from billiards_env.physics import Effects, PhysicsParams, Table, random_placement, simulate, strike_velocity
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _compiled_kernels():
+    """Compile (or load from the disk cache) the kernel variants the tests
+    use, so that per-shot wall-time bounds measure simulation, not compilation."""
+    P = PhysicsParams.standard()
+    T = Table.pool(9)
+    s = strike_velocity(random_placement(T, P, 2, seed=0), 0.3, 0.5, params=P)
+    for eff in (None, Effects.minimal()):
+        simulate(s, T, P, solver="event", effects=eff, diagnostics=True)
+        simulate(s, T, P, solver="step", dt=1e-3, effects=eff, diagnostics=True)
+
+
+@pytest.fixture(scope="session")
+def params():
+    return PhysicsParams.standard()
+
+
+@pytest.fixture(scope="session")
+def pool():
+    return Table.pool(9)
+
+
+@pytest.fixture(scope="session")
+def big_box():
+    """A pocketless 20 m x 20 m table: no cushion within reach of a test shot."""
+    return Table.pocketless(20.0, 20.0)

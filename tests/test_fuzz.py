@@ -1,0 +1,30 @@
+"""Property-based fuzzing (hypothesis) of random racks, shots and presets on
+both solvers: the invariants of billiards_env.testing hold for every shot.
+A failing shot is written to tests/regressions/ (replayed by
+test_regressions.py) before the test fails."""
+import pathlib
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings, strategies as st
+
+from billiards_env.testing import LAYOUTS, case_dict, random_batch, run_batch, save_case
+
+REGRESSIONS = pathlib.Path(__file__).parent / "regressions"
+
+SETTINGS = settings(max_examples=12, deadline=None, derandomize=True,
+                    suppress_health_check=[HealthCheck.too_slow])
+
+
+@pytest.mark.parametrize("solver", ["event", "step"])
+@SETTINGS
+@given(seed=st.integers(0, 2**32 - 1), layout=st.sampled_from(LAYOUTS),
+       preset=st.sampled_from(["standard", "seed"]))
+def test_random_shots_keep_invariants(solver, seed, layout, preset):
+    rng = np.random.default_rng(seed)
+    state, table, params = random_batch(rng, 8, layout, preset)
+    res, viol = run_batch(state, table, params, solver)
+    bad = [e for e, v in enumerate(viol) if v]
+    for e in bad:
+        save_case(case_dict(state, e, params, solver, 1e-3, viol[e]), REGRESSIONS, tag="hyp")
+    assert not bad, {e: viol[e] for e in bad}
