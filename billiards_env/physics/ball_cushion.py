@@ -23,22 +23,24 @@ from .motion import end_slide
 
 
 @njit
-def resolve_cushion(vel, om, st, e, i, nx, ny, p, friction_on, spin_on):
-    """Resolve ball i's impact with a cushion whose unit normal (nx, ny)
-    points into the table. Returns the approach speed before the impact."""
-    vn = vel[e, i, 0] * nx + vel[e, i, 1] * ny
-    w = -vn
+def resolve_cushion(vel, om, st, e, i, rx, ry, p, friction_on, spin_on):
+    """Resolve ball i's impact with a cushion. (rx, ry) is the contact normal,
+    pointing into the table, exactly as the detector formed it (the unit
+    normal of a cushion segment, or ball centre minus jaw tip): the approach
+    test below uses the detector's own expression, so the two never disagree
+    by rounding about whether the ball is closing. Returns the approach speed
+    before the impact."""
+    d = math.hypot(rx, ry)
+    nx, ny = rx / d, ry / d
+    w = -(vel[e, i, 0] * rx + vel[e, i, 1] * ry) / d
+    vn = -w
     resting = w < C.ZENO_SPEED
     if w <= 0.0:
         # reported without approach: the felt presses the ball into the
         # cushion (a slide whose friction points into it); end the slide
         if spin_on:  # a no-op unless the ball slips on the felt
             end_slide(vel, om, e, i, p[C.P_R])
-            vn = vel[e, i, 0] * nx + vel[e, i, 1] * ny
-            if vn < 0.0:  # the rolling ball now approaches: a resting impact
-                vel[e, i, 0] -= vn * nx
-                vel[e, i, 1] -= vn * ny
-        _unpress(vel, e, i, nx, ny)
+        _unpress(vel, e, i, rx, ry)
         return w
     e_c = 0.0 if resting else p[C.P_E_C]
     if not friction_on:
@@ -88,18 +90,24 @@ def resolve_cushion(vel, om, st, e, i, nx, ny, p, friction_on, spin_on):
     if resting:
         if spin_on:  # by the slip after the impulse, not the stale st
             end_slide(vel, om, e, i, p[C.P_R])
-        _unpress(vel, e, i, nx, ny)
+        _unpress(vel, e, i, rx, ry)
     return w
 
 
 @njit
-def _unpress(vel, e, i, nx, ny):
-    """After a resting contact, remove any normal velocity left into the
-    cushion (rounding, or a slide's end): the detector must not see the ball
-    approach again at the same instant. Removing it only lowers the energy."""
+def _unpress(vel, e, i, rx, ry):
+    """After a resting contact, remove any velocity left into the cushion
+    along the detector's normal (rx, ry) (rounding, or a slide's end), so the
+    detector cannot see the ball closing again at the same instant. Removing
+    it only lowers the energy."""
+    r2 = rx * rx + ry * ry
     for _ in range(4):
-        vn = vel[e, i, 0] * nx + vel[e, i, 1] * ny
-        if vn >= 0.0:
+        vr = vel[e, i, 0] * rx + vel[e, i, 1] * ry
+        if vr >= 0.0:
             break
-        vel[e, i, 0] -= vn * nx
-        vel[e, i, 1] -= vn * ny
+        vel[e, i, 0] -= vr / r2 * rx
+        vel[e, i, 1] -= vr / r2 * ry
+    if vel[e, i, 0] * rx + vel[e, i, 1] * ry < 0.0:  # rounding: stop the normal motion outright
+        t = vel[e, i, 0] * (-ry) + vel[e, i, 1] * rx
+        vel[e, i, 0] = -t * ry / r2
+        vel[e, i, 1] = t * rx / r2

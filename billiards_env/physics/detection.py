@@ -17,9 +17,36 @@ from .motion import acceleration
 from .roots import first_entry, first_entry_quadratic
 
 
+# Slack of the bounding-box broad phase (m): boxes are computed in the same
+# float64 arithmetic as the roots, so 1 nm covers every rounding difference.
+BOX_SLACK = 1e-9
+
+
 @njit
 def _moving(s):
     return s == C.SLIDING or s == C.ROLLING
+
+
+@njit
+def _extent(x, v, a, H):
+    """Range of x + v t + a t^2 / 2 over t in [0, H]: the exact extent of a
+    ball's path in one coordinate until its next transition."""
+    x1 = x + v * H + 0.5 * a * H * H
+    lo = min(x, x1)
+    hi = max(x, x1)
+    if a != 0.0:
+        ts = -v / a
+        if 0.0 < ts < H:
+            xs = x + v * ts + 0.5 * a * ts * ts
+            lo = min(lo, xs)
+            hi = max(hi, xs)
+    return lo, hi
+
+
+@njit
+def _apart(lo1, hi1, lo2, hi2, gap):
+    """True if two intervals are more than ``gap`` apart."""
+    return lo1 - hi2 > gap or lo2 - hi1 > gap
 
 
 @njit
@@ -36,10 +63,16 @@ def pair_time(pos, vel, om, st, e, i, j, H, p):
     aix, aiy = acceleration(vel, om, st, e, i, p)
     ajx, ajy = acceleration(vel, om, st, e, j, p)
     dax, day = aix - ajx, aiy - ajy
-    # broad phase: the gap cannot close within H
-    gap = math.hypot(dx, dy) - R2
-    if gap > C.CONTACT_TOL and gap > math.hypot(dvx, dvy) * H + 0.5 * math.hypot(dax, day) * H * H:
-        return math.inf
+    # broad phase: the boxes swept by the two paths within H stay 2R apart
+    if H < math.inf:
+        xi0, xi1 = _extent(pos[e, i, 0], vel[e, i, 0], aix, H)
+        xj0, xj1 = _extent(pos[e, j, 0], vel[e, j, 0], ajx, H)
+        if _apart(xi0, xi1, xj0, xj1, R2 + BOX_SLACK):
+            return math.inf
+        yi0, yi1 = _extent(pos[e, i, 1], vel[e, i, 1], aiy, H)
+        yj0, yj1 = _extent(pos[e, j, 1], vel[e, j, 1], ajy, H)
+        if _apart(yi0, yi1, yj0, yj1, R2 + BOX_SLACK):
+            return math.inf
     c4 = 0.25 * (dax * dax + day * day)
     c3 = dvx * dax + dvy * day
     c2 = dvx * dvx + dvy * dvy + dx * dax + dy * day
@@ -80,12 +113,17 @@ def boundary_time(pos, vel, om, st, e, i, H, p, segs, norms, tips, pockets, quad
         ax, ay = 0.0, 0.0
     else:
         ax, ay = acceleration(vel, om, st, e, i, p)
-    reach = math.hypot(vx, vy) * H + 0.5 * math.hypot(ax, ay) * H * H
+    # broad phase: the box swept by the ball's path until its next transition
+    bx0, bx1, by0, by1 = -math.inf, math.inf, -math.inf, math.inf
+    if H < math.inf:  # (H is infinite only without sliding friction)
+        bx0, bx1 = _extent(x, vx, ax, H)
+        by0, by1 = _extent(y, vy, ay, H)
     for s in range(segs.shape[0]):
+        if (_apart(bx0, bx1, min(segs[s, 0], segs[s, 2]), max(segs[s, 0], segs[s, 2]), R + BOX_SLACK)
+                or _apart(by0, by1, min(segs[s, 1], segs[s, 3]), max(segs[s, 1], segs[s, 3]), R + BOX_SLACK)):
+            continue
         nx, ny = norms[s, 0], norms[s, 1]
         c0 = (x - segs[s, 0]) * nx + (y - segs[s, 1]) * ny - R
-        if c0 > reach + C.CONTACT_TOL:
-            continue
         c1 = vx * nx + vy * ny
         c2 = 0.5 * (ax * nx + ay * ny)
         if quadratic:
@@ -101,6 +139,9 @@ def boundary_time(pos, vel, om, st, e, i, H, p, segs, norms, tips, pockets, quad
             if 0.0 <= lam <= 1.0:
                 best = t; kind = C.EV_CUSHION; idx = s
     for v in range(tips.shape[0]):
+        if (_apart(bx0, bx1, tips[v, 0], tips[v, 0], R + BOX_SLACK)
+                or _apart(by0, by1, tips[v, 1], tips[v, 1], R + BOX_SLACK)):
+            continue
         if quadratic:
             dx, dy = x - tips[v, 0], y - tips[v, 1]
             c0 = dx * dx + dy * dy - R * R
@@ -113,6 +154,8 @@ def boundary_time(pos, vel, om, st, e, i, H, p, segs, norms, tips, pockets, quad
             best = t; kind = C.EV_JAW_TIP; idx = v
     for k in range(pockets.shape[0]):
         cx, cy, r = pockets[k, 0], pockets[k, 1], pockets[k, 2]
+        if _apart(bx0, bx1, cx, cx, r + BOX_SLACK) or _apart(by0, by1, cy, cy, r + BOX_SLACK):
+            continue
         if quadratic:
             dx, dy = x - cx, y - cy
             t = first_entry_quadratic(vx * vx + vy * vy, 2.0 * (dx * vx + dy * vy),

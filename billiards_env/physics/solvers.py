@@ -346,7 +346,6 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                             nx, ny = norms[b, 0], norms[b, 1]
                         else:
                             nx = pos[e, a, 0] - tips[b, 0]; ny = pos[e, a, 1] - tips[b, 1]
-                            d = math.hypot(nx, ny); nx /= d; ny /= d
                         if DIAG:
                             e0 = energy(vel, om, st, e, a, p)
                         resolve_cushion(vel, om, st, e, a, nx, ny, p, CUSHION_FRICTION, SPIN)
@@ -451,7 +450,6 @@ def _make_step(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIA
                             nx, ny = norms[b, 0], norms[b, 1]
                         else:
                             nx = pos[e, a, 0] - tips[b, 0]; ny = pos[e, a, 1] - tips[b, 1]
-                            d = math.hypot(nx, ny); nx /= d; ny /= d
                         resolve_cushion(vel, om, st, e, a, nx, ny, p, CUSHION_FRICTION, SPIN)
                         _after_impact(vel, om, st, e, a, p, SPIN, SLIDE, ZSPIN)
                         out_cush[e, a] += 1
