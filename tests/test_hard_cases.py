@@ -93,8 +93,8 @@ def test_newtons_cradle_full_physics(solver):
 @pytest.mark.parametrize("exact", [True, False])
 def test_simultaneous_two_ball_hit(solver, sep, exact):
     """The cue ball meets two balls at the same instant (mirror-symmetric
-    about the cue's line). The event solver resolves the pair in both orders
-    and averages: the result is mirror-symmetric to 1e-9 m."""
+    about the cue's line). Both solvers resolve the pair in both orders and
+    average: the result is mirror-symmetric to 1e-9 m."""
     c = BOX.width / 2
     y1 = 1.2
     s0 = place(BOX, [(c, 0.6), (c - sep * R, y1), (c + sep * R, y1)])
@@ -104,16 +104,7 @@ def test_simultaneous_two_ball_hit(solver, sep, exact):
     assert res.n_events[0] >= 2
     assert np.all(np.hypot(*(pos[1:] - s0.pos[0, 1:]).T) > 0.05)  # both object balls driven
     mirror_err = max(abs((pos[1, 0] - c) + (pos[2, 0] - c)), abs(pos[1, 1] - pos[2, 1]), abs(pos[0, 0] - c))
-    if solver == "event":
-        assert mirror_err < 1e-9
-    else:
-        # The step solver resolves the two impacts one after the other (in
-        # index order): the first-hit ball takes more of the cue ball's
-        # momentum, so mirror symmetry does not hold (measured: 0.15-0.9 m
-        # apart at rest). What holds is the invariants above, both balls
-        # driven, and one of the two recorded as the first contact.
-        assert res.first_contact[0] in (1, 2)
-        assert mirror_err > 1e-6  # documents the asymmetry; revisit if the step solver averages too
+    assert mirror_err < 1e-9
 
 
 # --------------------------------------------------------- the cushions --

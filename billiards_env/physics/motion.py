@@ -76,11 +76,15 @@ def acceleration(vel, om, st, e, i, p):
     if s == C.SLIDING:
         ux, uy = slip(vel[e, i, 0], vel[e, i, 1], om[e, i, 0], om[e, i, 1], R)
         n = math.hypot(ux, uy)
+        if n == 0.0:  # reached its slide end by rounding, a hair early
+            return 0.0, 0.0
         a = p[C.P_MU_S] * g / n
         return -a * ux, -a * uy
     if s == C.ROLLING:
         vx, vy = vel[e, i, 0], vel[e, i, 1]
         n = math.hypot(vx, vy)
+        if n == 0.0:  # reached its stop by rounding, a hair early
+            return 0.0, 0.0
         a = p[C.P_MU_R] * g / n
         return -a * vx, -a * vy
     return 0.0, 0.0
@@ -129,7 +133,7 @@ def evolve(pos, vel, om, st, e, i, dt, p, zspin_on, spin_on):
         if s == C.SLIDING:
             ux, uy = slip(vel[e, i, 0], vel[e, i, 1], om[e, i, 0], om[e, i, 1], R)
             n = math.hypot(ux, uy)
-            k = 2.5 * p[C.P_MU_S] * g / R * dt / n
+            k = 2.5 * p[C.P_MU_S] * g / R * dt / n if n > 0.0 else 0.0
             om[e, i, 0] -= k * uy
             om[e, i, 1] += k * ux
             vel[e, i, 0] += ax * dt

@@ -118,7 +118,10 @@ def first_entry(c4, c3, c2, c1, c0, H, f_tol, f_floor):
     if not H > 0.0:
         H = 0.0
     if f_floor <= c0 <= f_tol:
-        if c1 < 0.0 or (c1 == 0.0 and c2 < 0.0):
+        # closing means faster than SPEED_EPS: a rate below it is rounding
+        # (an impulse that small cannot even change a velocity's last bit)
+        c1_tol = f_tol * (C.SPEED_EPS / C.CONTACT_TOL)
+        if c1 < -c1_tol or (c1 <= 0.0 and c2 < 0.0):
             return 0.0
         if H > 0.0 and c1 > 0.0:
             # Touching and opening: the gap may open by less than rounding
@@ -157,7 +160,8 @@ def first_entry_quadratic(c2, c1, c0, H, f_tol, f_floor):
     or linear (c2 >= 0), so the first closing root has a closed form, taken in
     its cancellation-free version."""
     if c0 <= f_tol:
-        return 0.0 if (c1 < 0.0 and c0 >= f_floor) else math.inf
+        closing = c1 < -f_tol * (C.SPEED_EPS / C.CONTACT_TOL)  # as in first_entry
+        return 0.0 if (closing and c0 >= f_floor) else math.inf
     if c1 >= 0.0:
         return math.inf
     if c2 == 0.0:

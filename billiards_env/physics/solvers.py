@@ -157,14 +157,6 @@ def _check_geometry(pos, st, e, p, width, length, pockets, diag):
 
 
 @numba.njit(**JIT)
-def _impact_energy(vel, om, st, e, i, j, p):
-    en = energy(vel, om, st, e, i, p)
-    if j >= 0:
-        en += energy(vel, om, st, e, j, p)
-    return en
-
-
-@numba.njit(**JIT)
 def _total_energy(vel, om, st, e, p):
     en = 0.0
     for i in range(vel.shape[1]):
@@ -189,42 +181,91 @@ def _load(vel, om, st, e, i, buf, k):
 MAX_SIMULTANEOUS = 4  # ball-ball impacts resolved as one simultaneous set
 
 
+@numba.njit(**JIT)
+def _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, i, t, p, segs, norms, tips, pockets):
+    """Recompute every event time that involves ball i (absolute times)."""
+    B = pos.shape[1]
+    if st[e, i] == C.POCKETED:
+        tt[e, i] = math.inf; tb[e, i] = math.inf
+        for j in range(B):
+            tpair[e, i, j] = math.inf; tpair[e, j, i] = math.inf
+        return
+    tt[e, i] = t + transition_time(vel, om, st, e, i, p)
+    h = tt[e, i] - t
+    tb_rel, k, idx = boundary_time(pos, vel, om, st, e, i, h, p, segs, norms, tips, pockets, False)
+    tb[e, i] = t + tb_rel; bkind[e, i] = k; bidx[e, i] = idx
+    for j in range(B):
+        if j == i:
+            continue
+        hj = min(tt[e, i], tt[e, j]) - t
+        tij = t + pair_time(pos, vel, om, st, e, i, j, hj, p)
+        tpair[e, i, j] = tij; tpair[e, j, i] = tij
+
+
+@numba.njit(**JIT)
+def _balls_of(sim_i, sim_j, ns, balls):
+    """Distinct balls of the impact set, into ``balls``; returns how many."""
+    nb = 0
+    for s in range(ns):
+        for bb in (sim_i[s], sim_j[s]):
+            seen = False
+            for q in range(nb):
+                if balls[q] == bb:
+                    seen = True
+            if not seen:
+                balls[nb] = bb; nb += 1
+    return nb
+
+
+@numba.njit(**JIT)
+def _impact_set(pos, vel, om, st, e, sim_i, sim_j, sim_w, ns, balls, nb, buf, buf2, p, friction_on, spin_on):
+    """Impulses of a set of simultaneous ball-ball impacts (both solvers).
+    One impact: resolved directly. Several: resolved in index order and in
+    reverse order from the same state, and the two results averaged (see the
+    module docstring). sim_w receives each impact's approach speed."""
+    if ns == 1:
+        sim_w[0] = resolve_ball_ball(pos, vel, om, st, e, sim_i[0], sim_j[0], p, friction_on, spin_on)
+        return
+    for q in range(nb):
+        _save(pos, vel, om, st, e, balls[q], buf, q)
+    for s in range(ns):
+        sim_w[s] = resolve_ball_ball(pos, vel, om, st, e, sim_i[s], sim_j[s], p, friction_on, spin_on)
+    for q in range(nb):
+        _save(pos, vel, om, st, e, balls[q], buf2, q)
+        _load(vel, om, st, e, balls[q], buf, q)
+    for s in range(ns - 1, -1, -1):
+        w2 = resolve_ball_ball(pos, vel, om, st, e, sim_i[s], sim_j[s], p, friction_on, spin_on)
+        sim_w[s] = min(sim_w[s], w2)
+    for q in range(nb):
+        bq = balls[q]
+        vel[e, bq, 0] = 0.5 * (vel[e, bq, 0] + buf2[q, 0])
+        vel[e, bq, 1] = 0.5 * (vel[e, bq, 1] + buf2[q, 1])
+        om[e, bq, 0] = 0.5 * (om[e, bq, 0] + buf2[q, 2])
+        om[e, bq, 1] = 0.5 * (om[e, bq, 1] + buf2[q, 3])
+        om[e, bq, 2] = 0.5 * (om[e, bq, 2] + buf2[q, 4])
+
+
+@numba.njit(**JIT)
+def _after_impact_set(pos, vel, om, st, e, sim_i, sim_j, sim_w, ns, balls, nb, p, spin_on, slide_on, zspin_on):
+    """Resting contacts for impacts slower than ZENO_SPEED, then the new
+    motion states of every ball of the set."""
+    for s in range(ns):
+        if sim_w[s] < C.ZENO_SPEED:
+            rest_contact(pos, vel, om, st, e, sim_i[s], sim_j[s], p, spin_on)
+    for q in range(nb):
+        _after_impact(vel, om, st, e, balls[q], p, spin_on, slide_on, zspin_on)
+
+
 # ---------------------------------------------------------- event solver --
 def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIAG):
     TAG = SOURCE_TAG
-    @numba.njit(**JIT)
-    def _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, i, t, p, segs, norms, tips, pockets):
-        """Recompute every event time that involves ball i (absolute times)."""
-        B = pos.shape[1]
-        if st[e, i] == C.POCKETED:
-            tt[e, i] = math.inf; tb[e, i] = math.inf
-            for j in range(B):
-                tpair[e, i, j] = math.inf; tpair[e, j, i] = math.inf
-            return
-        tt[e, i] = t + transition_time(vel, om, st, e, i, p)
-        h = tt[e, i] - t
-        tb_rel, k, idx = boundary_time(pos, vel, om, st, e, i, h, p, segs, norms, tips,
-                                       pockets if POCKETS else pockets[:0], False)
-        tb[e, i] = t + tb_rel; bkind[e, i] = k; bidx[e, i] = idx
-        for j in range(B):
-            if j == i:
-                continue
-            hj = min(tt[e, i], tt[e, j]) - t
-            tij = t + pair_time(pos, vel, om, st, e, i, j, hj, p)
-            tpair[e, i, j] = tij; tpair[e, j, i] = tij
-
-    @numba.njit(**JIT)
-    def _impact_pair(pos, vel, om, st, e, i, j, p):
-        # impulses only; resting contacts and state updates follow once the
-        # whole simultaneous set is resolved
-        return resolve_ball_ball(pos, vel, om, st, e, i, j, p, BALL_FRICTION, SPIN)
-
     @numba.njit(**KERNEL_JIT, parallel=True)
     def run(pos, vel, om, pocket, p, segs, norms, tips, pockets, width, length,
             max_events, st, tt, tb, bkind, bidx, tpair,
             out_time, out_nev, out_first, out_cush, out_trunc,
             rec_on, rec_n, rec_t, rec_kind, rec_ij, rec_state, diag):
         E, B = pos.shape[0], pos.shape[1]
+        pk = pockets if POCKETS else pockets[:0]
         out_time[:] = 0.0 * TAG  # TAG keys the disk cache on the sources
         for e in numba.prange(E):
             _prepare(pos, vel, om, st, pocket, e, p, SPIN, SLIDE, ZSPIN)
@@ -234,7 +275,7 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                     _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, 0.0, C.EV_START, i, -1)
             for i in range(B):
                 tpair[e, i, i] = math.inf
-                _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, i, 0.0, p, segs, norms, tips, pockets)
+                _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, i, 0.0, p, segs, norms, tips, pk)
             en_prev = 0.0
             if DIAG:
                 diag[e, 0] = 0.0; diag[e, 1] = 0.0; diag[e, 2] = math.inf; diag[e, 3] = 0.0
@@ -281,40 +322,13 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                         for j in range(i + 1, B):
                             if tpair[e, i, j] <= tmin + SIMULTANEOUS_TIME and ns < MAX_SIMULTANEOUS:
                                 sim_i[ns] = i; sim_j[ns] = j; ns += 1
-                    nb = 0
-                    for s in range(ns):
-                        for bb in (sim_i[s], sim_j[s]):
-                            seen = False
-                            for q in range(nb):
-                                if balls[q] == bb:
-                                    seen = True
-                            if not seen:
-                                balls[nb] = bb; nb += 1
+                    nb = _balls_of(sim_i, sim_j, ns, balls)
                     if DIAG:
                         e0 = 0.0; px0 = 0.0; py0 = 0.0
                         for q in range(nb):
                             e0 += energy(vel, om, st, e, balls[q], p)
                             px0 += vel[e, balls[q], 0]; py0 += vel[e, balls[q], 1]
-                    if ns == 1:
-                        sim_w[0] = _impact_pair(pos, vel, om, st, e, a, b, p)
-                    else:
-                        for q in range(nb):
-                            _save(pos, vel, om, st, e, balls[q], buf, q)
-                        for s in range(ns):
-                            sim_w[s] = _impact_pair(pos, vel, om, st, e, sim_i[s], sim_j[s], p)
-                        for q in range(nb):
-                            _save(pos, vel, om, st, e, balls[q], buf2, q)
-                            _load(vel, om, st, e, balls[q], buf, q)
-                        for s in range(ns - 1, -1, -1):
-                            w2 = _impact_pair(pos, vel, om, st, e, sim_i[s], sim_j[s], p)
-                            sim_w[s] = min(sim_w[s], w2)
-                        for q in range(nb):
-                            bq = balls[q]
-                            vel[e, bq, 0] = 0.5 * (vel[e, bq, 0] + buf2[q, 0])
-                            vel[e, bq, 1] = 0.5 * (vel[e, bq, 1] + buf2[q, 1])
-                            om[e, bq, 0] = 0.5 * (om[e, bq, 0] + buf2[q, 2])
-                            om[e, bq, 1] = 0.5 * (om[e, bq, 1] + buf2[q, 3])
-                            om[e, bq, 2] = 0.5 * (om[e, bq, 2] + buf2[q, 4])
+                    _impact_set(pos, vel, om, st, e, sim_i, sim_j, sim_w, ns, balls, nb, buf, buf2, p, BALL_FRICTION, SPIN)
                     if DIAG:
                         e1 = 0.0; px1 = 0.0; py1 = 0.0
                         for q in range(nb):
@@ -322,11 +336,7 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                             px1 += vel[e, balls[q], 0]; py1 += vel[e, balls[q], 1]
                         diag[e, 0] = max(diag[e, 0], e1 - e0)
                         diag[e, 1] = max(diag[e, 1], math.hypot(px1 - px0, py1 - py0) * p[C.P_M])
-                    for s in range(ns):
-                        if sim_w[s] < C.ZENO_SPEED:
-                            rest_contact(pos, vel, om, st, e, sim_i[s], sim_j[s], p, SPIN)
-                    for q in range(nb):
-                        _after_impact(vel, om, st, e, balls[q], p, SPIN, SLIDE, ZSPIN)
+                    _after_impact_set(pos, vel, om, st, e, sim_i, sim_j, sim_w, ns, balls, nb, p, SPIN, SLIDE, ZSPIN)
                     for s in range(ns):
                         i, j = sim_i[s], sim_j[s]
                         if out_first[e] == -1 and (i == 0 or j == 0):
@@ -334,7 +344,7 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                         if rec_on:
                             _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, t, C.EV_BALL_BALL, i, j)
                     for q in range(nb):
-                        _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, balls[q], t, p, segs, norms, tips, pockets)
+                        _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, balls[q], t, p, segs, norms, tips, pk)
                 else:
                     if kind == -2:
                         kind = apply_transition(vel, om, st, e, a, p)
@@ -355,7 +365,7 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                         out_cush[e, a] += 1
                     if rec_on:
                         _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, t, kind, a, b)
-                    _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, a, t, p, segs, norms, tips, pockets)
+                    _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, a, t, p, segs, norms, tips, pk)
                 if DIAG:
                     _check_geometry(pos, st, e, p, width, length, pockets, diag)
                     # total energy may never rise from one event to the next
@@ -393,6 +403,12 @@ def _make_step(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIA
             t = 0.0
             nev = 0
             steps = 0
+            sim_i = np.empty(MAX_SIMULTANEOUS, dtype=np.int64)
+            sim_j = np.empty(MAX_SIMULTANEOUS, dtype=np.int64)
+            sim_w = np.empty(MAX_SIMULTANEOUS)
+            buf = np.empty((2 * MAX_SIMULTANEOUS, 6))
+            buf2 = np.empty((2 * MAX_SIMULTANEOUS, 6))
+            balls = np.empty(2 * MAX_SIMULTANEOUS, dtype=np.int64)
             while True:
                 moving = False
                 for i in range(B):
@@ -427,22 +443,38 @@ def _make_step(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIA
                         break
                     nev += 1
                     tev = t + (dt - rem)
-                    if DIAG:
-                        e0 = _impact_energy(vel, om, st, e, a, b if kind == C.EV_BALL_BALL else -1, p)
-                        px0 = 0.0; py0 = 0.0
-                        if kind == C.EV_BALL_BALL:
-                            px0 = vel[e, a, 0] + vel[e, b, 0]; py0 = vel[e, a, 1] + vel[e, b, 1]
                     if kind == C.EV_BALL_BALL:
-                        wab = resolve_ball_ball(pos, vel, om, st, e, a, b, p, BALL_FRICTION, SPIN)
+                        # every pair touching and closing now is one simultaneous set,
+                        # resolved by the event solver's policy
+                        ns = 0
+                        for i in range(B):
+                            for j in range(i + 1, B):
+                                if ns < MAX_SIMULTANEOUS and pair_time_linear(pos, vel, st, e, i, j, SIMULTANEOUS_TIME, p) <= SIMULTANEOUS_TIME:
+                                    sim_i[ns] = i; sim_j[ns] = j; ns += 1
+                        if ns == 0:  # rounding moved the pair off contact: resolve it alone
+                            sim_i[0] = a; sim_j[0] = b; ns = 1
+                        nb = _balls_of(sim_i, sim_j, ns, balls)
                         if DIAG:
-                            px1 = vel[e, a, 0] + vel[e, b, 0]; py1 = vel[e, a, 1] + vel[e, b, 1]
+                            e0 = 0.0; px0 = 0.0; py0 = 0.0
+                            for q in range(nb):
+                                e0 += energy(vel, om, st, e, balls[q], p)
+                                px0 += vel[e, balls[q], 0]; py0 += vel[e, balls[q], 1]
+                        _impact_set(pos, vel, om, st, e, sim_i, sim_j, sim_w, ns, balls, nb, buf, buf2, p, BALL_FRICTION, SPIN)
+                        if DIAG:
+                            e1 = 0.0; px1 = 0.0; py1 = 0.0
+                            for q in range(nb):
+                                e1 += energy(vel, om, st, e, balls[q], p)
+                                px1 += vel[e, balls[q], 0]; py1 += vel[e, balls[q], 1]
+                            diag[e, 0] = max(diag[e, 0], e1 - e0)
                             diag[e, 1] = max(diag[e, 1], math.hypot(px1 - px0, py1 - py0) * p[C.P_M])
-                        if wab < C.ZENO_SPEED:
-                            rest_contact(pos, vel, om, st, e, a, b, p, SPIN)
-                        _after_impact(vel, om, st, e, a, p, SPIN, SLIDE, ZSPIN)
-                        _after_impact(vel, om, st, e, b, p, SPIN, SLIDE, ZSPIN)
-                        if out_first[e] == -1 and (a == 0 or b == 0):
-                            out_first[e] = b if a == 0 else a
+                        _after_impact_set(pos, vel, om, st, e, sim_i, sim_j, sim_w, ns, balls, nb, p, SPIN, SLIDE, ZSPIN)
+                        for s in range(ns):
+                            i, j = sim_i[s], sim_j[s]
+                            if out_first[e] == -1 and (i == 0 or j == 0):
+                                out_first[e] = j if i == 0 else i
+                            if rec_on:
+                                _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, tev,
+                                        C.EV_BALL_BALL, i, j)
                     elif kind == C.EV_POCKET:
                         _pocket_ball(vel, om, st, pocket, e, a, b)
                     else:
@@ -450,18 +482,19 @@ def _make_step(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIA
                             nx, ny = norms[b, 0], norms[b, 1]
                         else:
                             nx = pos[e, a, 0] - tips[b, 0]; ny = pos[e, a, 1] - tips[b, 1]
+                        if DIAG:
+                            e0 = energy(vel, om, st, e, a, p)
                         resolve_cushion(vel, om, st, e, a, nx, ny, p, CUSHION_FRICTION, SPIN)
                         _after_impact(vel, om, st, e, a, p, SPIN, SLIDE, ZSPIN)
+                        if DIAG:
+                            diag[e, 0] = max(diag[e, 0], energy(vel, om, st, e, a, p) - e0)
                         out_cush[e, a] += 1
-                    if DIAG and kind != C.EV_POCKET:
-                        e1 = _impact_energy(vel, om, st, e, a, b if kind == C.EV_BALL_BALL else -1, p)
-                        diag[e, 0] = max(diag[e, 0], e1 - e0)
+                    if DIAG:
                         en = _total_energy(vel, om, st, e, p)
                         diag[e, 0] = max(diag[e, 0], en - en_prev)
                         en_prev = en
-                    if rec_on:
-                        _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, tev, kind, a,
-                                b if kind == C.EV_BALL_BALL else b)
+                    if rec_on and kind != C.EV_BALL_BALL:
+                        _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, tev, kind, a, b)
                 for i in range(B):
                     if st[e, i] != C.STATIONARY and st[e, i] != C.POCKETED:
                         friction_step(vel, om, st, e, i, dt, p, ZSPIN, SPIN)
