@@ -1,0 +1,292 @@
+"""Baseline policies behind one small interface.
+
+A policy has ``act(obs) -> actions [N, 4]`` (batched over the tables of a
+vector env). Geometric policies hold a reference to the native vector env
+(``env``) and read its ``.state``, ``.table``, ``.params``, ``.effects``,
+``legal_target()`` and ``shot_to_action()``; they produce a physical shot
+(aim angle, cue draw, side a, height b) and map it into the env's action
+space with the env's own inverse mapping, so they work with either aim mode.
+
+- ``RandomPolicy``: uniform actions.
+- ``GhostBallPolicy``: ghost-ball aim at the easiest pocket (agents.geometry)
+  and a speed from the distances.
+- ``SearchPolicy``: K candidate shots per table (ghost-ball aims for every
+  pocket, jittered, at various speeds and spins) simulated in one batched
+  ``billiards_env.physics.simulate`` call on K copies of each table; plays
+  the best. An upper reference (it uses the simulator as a perfect model).
+- ``SB3Policy``: a trained stable-baselines3 model (with its VecNormalize
+  observation statistics), deterministic.
+"""
+from __future__ import annotations
+
+import math
+from typing import Protocol
+
+import numpy as np
+
+from billiards_env.physics import BallState, simulate, strike_velocity
+
+from . import geometry as G
+
+
+class Policy(Protocol):
+    name: str
+
+    def act(self, obs: np.ndarray) -> np.ndarray: ...
+
+
+def native_env(env):
+    """The native billiards vector env under an SB3 adapter / wrappers."""
+    seen = 0
+    while seen < 10:
+        seen += 1
+        if hasattr(env, "legal_target") and hasattr(env, "shot_to_action"):
+            return env
+        for attr in ("venv", "unwrapped", "env"):
+            inner = getattr(env, attr, None)
+            if inner is not None and inner is not env:
+                env = inner
+                break
+        else:
+            break
+    if hasattr(env, "legal_target"):
+        return env
+    raise TypeError("this policy needs the native billiards vector env (with .state, legal_target(), shot_to_action())")
+
+
+class RandomPolicy:
+    name = "random"
+
+    def __init__(self, env=None, seed: int | None = 0, action_dim: int = 4):
+        self.rng = np.random.default_rng(seed)
+        self.env = env
+        self.action_dim = action_dim
+
+    def act(self, obs: np.ndarray) -> np.ndarray:
+        n = obs.shape[0]
+        return self.rng.uniform(-1.0, 1.0, size=(n, self.action_dim)).astype(np.float32)
+
+
+class GhostBallPolicy:
+    """Aim the cue ball at the ghost ball of the easiest pocket.
+
+    Pocket choice: smallest ``cut + dist_weight * (d_cg + d_op)`` among
+    pockets whose paths are not blocked by another ball and which the object
+    ball approaches at most 60 deg (corner) / 50 deg (side) off the pocket's
+    axis. Speed: ``geometry.required_speed`` (rolling resistance mu_r, cut
+    transfer cos(theta)(1 + e_b)/2, slide losses) times ``margin``; a centre
+    ball hit (stun) so that on straight shots the cue ball stops.
+    """
+
+    name = "ghost"
+
+    def __init__(self, env, b: float = 0.0, margin: float = 1.0, dist_weight: float = 0.5, inset: float = 0.0):
+        self.env = native_env(env)
+        self.b, self.margin, self.dist_weight, self.inset = b, margin, dist_weight, inset
+
+    def shots(self, state: BallState, target: np.ndarray):
+        env = self.env
+        table, params = env.table, env.params
+        sh = G.ghost_shots(state.pos, state.on_table, target, table, params, self.inset)
+        k = G.choose_pocket(sh, dist_weight=self.dist_weight, side_mask=G.side_pocket_mask(table))
+        ar = np.arange(state.n_envs)
+        phi = sh["phi"][ar, k]
+        speed = G.required_speed(sh["d_cg"][ar, k], sh["d_op"][ar, k], sh["cut"][ar, k], params,
+                                 b=self.b, margin=self.margin)
+        return phi, speed, np.zeros_like(phi), np.full_like(phi, self.b)
+
+    def act(self, obs: np.ndarray) -> np.ndarray:
+        env = self.env
+        target = np.asarray(env.legal_target(), dtype=np.int64)
+        phi, speed, a, b = self.shots(env.state, target)
+        return to_action(env, phi, speed, a, b)
+
+
+def to_action(env, phi, speed, a, b) -> np.ndarray:
+    params = env.params
+    draw = G.speed_to_draw(speed, params)
+    lo = getattr(getattr(env, "config", None), "min_draw", 0.0)
+    draw = np.clip(draw, lo, params.max_draw)
+    act = np.asarray(env.shot_to_action(phi, draw, a, b), dtype=np.float32)
+    return np.clip(act, -1.0, 1.0)
+
+
+class SearchPolicy:
+    """Try ``k`` candidate shots per table in the batched simulator; play the best.
+
+    Candidates (per table): the ghost-ball shot of every pocket at the
+    nominal speed, then random perturbations of them: aim jitter
+    N(0, ``aim_jitter_deg``), speed x log-uniform [0.6, 2.2], side a and
+    height b uniform in a disc of radius 0.35 R. Score: success (first
+    contact with the legal ball, an object ball pocketed, cue ball not
+    pocketed) + a small bonus for shots close to the nominal ghost-ball shot
+    (they are more robust to execution noise).
+    """
+
+    name = "search"
+
+    def __init__(self, env, k: int = 256, seed: int = 0, aim_jitter_deg: float = 1.5, chunk: int = 65536):
+        self.env = native_env(env)
+        self.k = int(k)
+        self.rng = np.random.default_rng(seed)
+        self.aim_jitter = math.radians(aim_jitter_deg)
+        self.chunk = chunk
+        self.name = f"search{self.k}"
+
+    def candidates(self, state: BallState, target: np.ndarray):
+        env = self.env
+        table, params = env.table, env.params
+        E, K = state.n_envs, self.k
+        sh = G.ghost_shots(state.pos, state.on_table, target, table, params, 0.0)
+        P = sh["phi"].shape[1]
+        # pockets ranked by the ghost-ball cost; candidates favour the easy ones
+        cost = sh["cut"] + 0.5 * (sh["d_cg"] + sh["d_op"])
+        cost = np.where(sh["valid"], cost, np.inf)
+        order = np.argsort(cost, axis=1)                       # [E, P]
+        n_valid = np.maximum(np.isfinite(cost).sum(axis=1), 1)
+        # pocket rank for each candidate: first P candidates cover every pocket
+        # once (nominal shot), the rest sample ranks with weights 1/(rank+1)
+        ranks = np.empty((E, K), dtype=np.int64)
+        ranks[:, :min(P, K)] = np.arange(min(P, K))[None]
+        if K > P:
+            w = 1.0 / (np.arange(P) + 1.0)
+            u = self.rng.random((E, K - P))
+            # restrict to the valid pockets of each table
+            wv = np.where(np.arange(P)[None] < n_valid[:, None], w[None], 0.0)
+            cdf = np.cumsum(wv, axis=1) / wv.sum(axis=1, keepdims=True)
+            ranks[:, P:] = (u[..., None] > cdf[:, None, :]).sum(axis=2)
+        ranks = np.minimum(ranks, P - 1)
+        pk = np.take_along_axis(order, ranks, axis=1)          # [E, K]
+        take = lambda a: np.take_along_axis(a, pk, axis=1)     # noqa: E731
+        phi0, cut, d_cg, d_op = take(sh["phi"]), take(sh["cut"]), take(sh["d_cg"]), take(sh["d_op"])
+        v0 = G.required_speed(d_cg, d_op, cut, params, b=0.0, margin=1.0)
+        nominal = np.zeros((E, K), dtype=bool)
+        nominal[:, :min(P, K)] = True
+        dphi = np.where(nominal, 0.0, self.rng.normal(0.0, self.aim_jitter, (E, K)))
+        smul = np.where(nominal, 1.0, np.exp(self.rng.uniform(math.log(0.6), math.log(2.2), (E, K))))
+        r = 0.35 * np.sqrt(self.rng.random((E, K)))
+        th = self.rng.uniform(0, 2 * math.pi, (E, K))
+        a = np.where(nominal, 0.0, r * np.cos(th))
+        b = np.where(nominal, 0.0, r * np.sin(th))
+        speed = np.clip(v0 * smul, 0.05, params.max_speed)
+        # keep speeds the env can express (its draw range)
+        lo = getattr(getattr(env, "config", None), "min_draw", 0.0)
+        vmin = params.k * params.contact_time * lo / params.m
+        speed = np.maximum(speed, vmin)
+        closeness = np.abs(dphi) / self.aim_jitter + np.abs(np.log(smul)) + (a ** 2 + b ** 2)
+        return phi0 + dphi, speed, a, b, closeness
+
+    def evaluate(self, state: BallState, target: np.ndarray, phi, speed, a, b) -> np.ndarray:
+        """Success [E, K] of each candidate, simulated on K copies of each table."""
+        env = self.env
+        E, K = phi.shape
+        rep = np.repeat(np.arange(E), K)
+        big = state.take(rep)
+        struck = strike_velocity(big, phi.ravel(), speed.ravel(), a.ravel(), b.ravel(), env.params)
+        ok = np.empty(E * K, dtype=bool)
+        for s0 in range(0, E * K, self.chunk):
+            sl = slice(s0, min(E * K, s0 + self.chunk))
+            sub = BallState(struck.pos[sl], struck.vel[sl], struck.omega[sl], struck.pocket[sl])
+            res = simulate(sub, env.table, env.params, effects=getattr(env, "effects", None), validate=False)
+            before = big.pocket[sl] >= 0
+            after = res.state.pocket >= 0
+            newly = after & ~before
+            tgt = target[rep[sl]]
+            legal_first = res.first_contact == tgt
+            cue_safe = ~after[:, 0]
+            potted_target = newly[np.arange(len(tgt)), tgt]
+            ok[sl] = legal_first & cue_safe & potted_target
+        return ok.reshape(E, K)
+
+    def shots(self, state: BallState, target: np.ndarray):
+        phi, speed, a, b, closeness = self.candidates(state, target)
+        ok = self.evaluate(state, target, phi, speed, a, b)
+        score = ok.astype(np.float64) * 10.0 - 0.01 * closeness
+        best = np.argmax(score, axis=1)
+        ar = np.arange(state.n_envs)
+        self.last_found = ok.any(axis=1)
+        return phi[ar, best], speed[ar, best], a[ar, best], b[ar, best]
+
+    def act(self, obs: np.ndarray) -> np.ndarray:
+        env = self.env
+        target = np.asarray(env.legal_target(), dtype=np.int64)
+        phi, speed, a, b = self.shots(env.state, target)
+        return to_action(env, phi, speed, a, b)
+
+
+class SB3Policy:
+    """A trained SB3 model; observations normalised with its VecNormalize stats."""
+
+    def __init__(self, model, vecnormalize=None, name: str = "model", features: bool = False,
+                 aim_scale: float = 1.0, env=None, action_mode: str = "direct"):
+        self.model, self.vecnormalize, self.name = model, vecnormalize, name
+        self.features, self.aim_scale, self.action_mode = features, aim_scale, action_mode
+        needs_env = features or action_mode != "direct"
+        self.env = native_env(env) if (env is not None and needs_env) else env
+
+    def bind(self, env) -> "SB3Policy":
+        """The same model playing on another (native) vector env."""
+        return SB3Policy(self.model, self.vecnormalize, self.name, self.features, self.aim_scale, env,
+                         self.action_mode)
+
+    def act(self, obs: np.ndarray) -> np.ndarray:
+        from .features import shot_features, transform_actions
+
+        if self.features:
+            obs = np.concatenate([obs, shot_features(self.env, self.aim_scale)], axis=1)
+        if self.vecnormalize is not None:
+            obs = self.vecnormalize.normalize_obs(obs)
+        action, _ = self.model.predict(obs, deterministic=True)
+        return transform_actions(self.env, np.clip(action, -1.0, 1.0), self.action_mode, self.aim_scale)
+
+    @classmethod
+    def load(cls, path, env=None, name: str | None = None) -> "SB3Policy":
+        """Load ``<run>/model.zip`` (or a path to a .zip) and the VecNormalize
+        statistics saved beside it (``vecnormalize.pkl``), if any."""
+        import pickle
+        from pathlib import Path
+
+        from stable_baselines3 import PPO, SAC
+
+        path = Path(path)
+        zip_path = path / "model.zip" if path.is_dir() else path
+        run_dir = zip_path.parent
+        algo, meta = None, {}
+        cfg = run_dir / "config.yaml"
+        if cfg.exists():
+            import yaml
+            meta = yaml.safe_load(cfg.read_text()) or {}
+            algo = meta.get("algo")
+        cls_ = {"ppo": PPO, "sac": SAC}.get(algo)
+        if cls_ is None:  # guess from the zip
+            try:
+                model = PPO.load(zip_path, device="cpu")
+            except Exception:
+                model = SAC.load(zip_path, device="cpu")
+        else:
+            model = cls_.load(zip_path, device="cpu")
+        vn = None
+        stem = zip_path.stem
+        for cand in (run_dir / f"{stem}_vecnormalize.pkl", run_dir / "vecnormalize.pkl"):
+            if cand.exists():
+                with open(cand, "rb") as f:
+                    vn = pickle.load(f)
+                vn.training = False
+                vn.norm_reward = False
+                break
+        return cls(model, vn, name=name or (algo or "model"), features=bool(meta.get("features", False)),
+                   aim_scale=float(meta.get("aim_scale", 1.0)), env=env,
+                   action_mode=meta.get("action_mode", "direct"))
+
+
+def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
+    """A baseline by name: ``random``, ``ghost``, ``search`` (``search<K>``
+    sets K, e.g. ``search64``), or a path to a saved model / run directory."""
+    if name == "random":
+        return RandomPolicy(env, seed=seed)
+    if name == "ghost":
+        return GhostBallPolicy(env)
+    if name.startswith("search"):
+        kk = int(name[6:]) if name[6:] else k
+        return SearchPolicy(env, k=kk, seed=seed)
+    return SB3Policy.load(name, env=env)

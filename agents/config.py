@@ -1,0 +1,222 @@
+"""Typed training configuration: RL-Zoo style YAML keyed by env id, loaded
+into frozen dataclasses, with dotted command-line overrides.
+
+``configs/ppo.yaml`` / ``configs/sac.yaml`` map an env id to a block::
+
+    Billiards-PotOne-v0:
+      algo: ppo
+      n_envs: 128
+      ppo: {learning_rate: 3.0e-4, n_steps: 4, ...}   # SB3 constructor kwargs
+      policy: {net_arch: [256, 256], log_std_init: -0.7, ...}
+      normalize: {obs: true, reward: false, ...}
+      train: {total_timesteps: ..., eval_episodes: ..., ...}
+
+Overrides: ``--set ppo.learning_rate=1e-4 --set n_envs=64`` (values parsed
+as YAML, so ``1e-4``, ``true``, ``[64, 64]`` work). Every key must exist in
+the dataclass (or be an SB3 constructor argument for the ``ppo``/``sac``
+block), so a typo is an error, not a silently ignored setting.
+"""
+from __future__ import annotations
+
+import dataclasses
+import inspect
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+CONFIG_VERSION = 1
+ROOT = Path(__file__).resolve().parents[1]
+CONFIG_DIR = ROOT / "configs"
+
+
+@dataclasses.dataclass(frozen=True)
+class PolicyConfig:
+    net_arch: tuple = (256, 256)
+    activation: str = "tanh"          # tanh | relu
+    log_std_init: float = -0.7        # PPO initial action noise (std = exp(log_std_init))
+    ortho_init: bool = True
+    squash_output: bool = False
+
+    def policy_kwargs(self, algo: str) -> dict:
+        import torch.nn as nn
+
+        act = {"tanh": nn.Tanh, "relu": nn.ReLU}[self.activation]
+        kw: dict[str, Any] = dict(net_arch=list(self.net_arch), activation_fn=act)
+        if algo == "ppo":
+            kw.update(log_std_init=self.log_std_init, ortho_init=self.ortho_init)
+        elif algo == "sac":
+            kw.update(log_std_init=self.log_std_init)
+        return kw
+
+
+@dataclasses.dataclass(frozen=True)
+class NormalizeConfig:
+    obs: bool = True
+    reward: bool = False
+    clip_obs: float = 10.0
+    clip_reward: float = 10.0
+    gamma: float = 0.99
+
+
+@dataclasses.dataclass(frozen=True)
+class TrainSettings:
+    total_timesteps: int = 1_000_000
+    seed: int = 0
+    checkpoint_every: int = 250_000   # env steps between checkpoints (0: none)
+    eval_episodes: int = 1000         # final evaluation episodes (0: skip)
+    eval_seed: int = 12345
+    eval_baselines: tuple = ("random", "ghost", "search")
+    search_k: int = 256
+    eval_noise: tuple = ("none", "tournament")
+    torch_threads: int = 1           # 1: PPO minibatches are small; a 2nd thread fights numba on 2 cores
+    numba_threads: int = 2
+    device: str = "cpu"
+    progress_bar: bool = True
+    tensorboard: bool = True
+
+
+@dataclasses.dataclass(frozen=True)
+class TrainConfig:
+    env_id: str
+    algo: str = "ppo"
+    version: int = CONFIG_VERSION
+    n_envs: int = 128
+    env_kwargs: dict = dataclasses.field(default_factory=dict)
+    features: bool = True     # agent-side ghost-ball features (agents.features)
+    aim_scale: float = 1.0    # policy a0 -> env a0 = aim_scale * a0
+    action_mode: str = "direct"  # direct | residual (corrections to the ghost-ball shot)
+    ppo: dict = dataclasses.field(default_factory=dict)   # SB3 PPO kwargs
+    sac: dict = dataclasses.field(default_factory=dict)   # SB3 SAC kwargs
+    policy: PolicyConfig = dataclasses.field(default_factory=PolicyConfig)
+    normalize: NormalizeConfig = dataclasses.field(default_factory=NormalizeConfig)
+    train: TrainSettings = dataclasses.field(default_factory=TrainSettings)
+
+    def __post_init__(self):
+        if self.algo not in ("ppo", "sac"):
+            raise ValueError(f"algo must be 'ppo' or 'sac', got {self.algo!r}")
+        if self.version != CONFIG_VERSION:
+            raise ValueError(f"config version {self.version} is not supported (expected {CONFIG_VERSION})")
+        if not isinstance(self.n_envs, int) or self.n_envs < 1:
+            raise ValueError(f"n_envs must be a positive integer, got {self.n_envs!r}")
+        for name in ("ppo", "sac"):
+            _check_algo_kwargs(name, getattr(self, name))
+
+    @property
+    def algo_kwargs(self) -> dict:
+        return dict(getattr(self, self.algo))
+
+    def to_dict(self) -> dict:
+        def conv(v):
+            if dataclasses.is_dataclass(v):
+                return {f.name: conv(getattr(v, f.name)) for f in dataclasses.fields(v)}
+            if isinstance(v, tuple):
+                return [conv(x) for x in v]
+            if isinstance(v, dict):
+                return {k: conv(x) for k, x in v.items()}
+            return v
+        return conv(self)
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "TrainConfig":
+        d = dict(d)
+        _check_keys(cls, d, "training config")
+        nested = {"policy": PolicyConfig, "normalize": NormalizeConfig, "train": TrainSettings}
+        for k, sub in nested.items():
+            if k in d and not dataclasses.is_dataclass(d[k]):
+                v = dict(d[k] or {})
+                _check_keys(sub, v, f"{k} config")
+                for f in dataclasses.fields(sub):
+                    if f.name in v and isinstance(v[f.name], list):
+                        v[f.name] = tuple(v[f.name])
+                d[k] = sub(**v)
+        for k in ("ppo", "sac", "env_kwargs"):
+            if k in d:
+                d[k] = dict(d[k] or {})
+        return cls(**d)
+
+
+def _check_keys(cls, d: dict, where: str) -> None:
+    if not isinstance(d, dict):
+        raise ValueError(f"{where} must be a mapping, got {type(d).__name__}")
+    names = {f.name for f in dataclasses.fields(cls)}
+    unknown = set(d) - names
+    if unknown:
+        raise ValueError(f"unknown key(s) {sorted(unknown)} in {where}; known: {sorted(names)}")
+
+
+def _check_algo_kwargs(algo: str, kw: dict) -> None:
+    if not kw:
+        return
+    from stable_baselines3 import PPO, SAC
+
+    cls = {"ppo": PPO, "sac": SAC}[algo]
+    allowed = set(inspect.signature(cls.__init__).parameters) - {"self", "policy", "env", "policy_kwargs",
+                                                                   "tensorboard_log", "seed", "device", "verbose"}
+    unknown = set(kw) - allowed
+    if unknown:
+        raise ValueError(f"unknown {algo.upper()} argument(s) {sorted(unknown)}; known: {sorted(allowed)}")
+
+
+def parse_override(item: str) -> tuple[list[str], Any]:
+    """``"ppo.learning_rate=1e-4"`` -> (["ppo", "learning_rate"], 1e-4)."""
+    if "=" not in item:
+        raise ValueError(f"override {item!r} must look like key.sub=value")
+    key, raw = item.split("=", 1)
+    value = yaml.safe_load(raw)
+    if isinstance(value, str):  # YAML reads 1e-4 as a string; numbers as floats where possible
+        try:
+            value = float(value)
+        except ValueError:
+            pass
+    return key.strip().split("."), value
+
+
+def apply_overrides(d: dict, overrides: list[str]) -> dict:
+    d = yaml.safe_load(yaml.safe_dump(d))  # deep copy of plain data
+    for item in overrides or []:
+        path, value = parse_override(item)
+        node = d
+        for k in path[:-1]:
+            if k not in node or node[k] is None:
+                node[k] = {}
+            if not isinstance(node[k], dict):
+                raise ValueError(f"override {item!r}: {k!r} is not a mapping")
+            node = node[k]
+        node[path[-1]] = value
+    return d
+
+
+def load_config(path=None, env_id: str | None = None, overrides: list[str] | None = None,
+                algo: str | None = None) -> TrainConfig:
+    """The block of ``env_id`` (default: the file's ``default_env``) from the
+    YAML file ``path`` (default ``configs/<algo>.yaml``), with overrides."""
+    if path is None:
+        path = CONFIG_DIR / f"{algo or 'ppo'}.yaml"
+    with open(path) as f:
+        doc = yaml.safe_load(f) or {}
+    env_id = env_id or doc.get("default_env")
+    if env_id is None:
+        raise ValueError(f"{path}: no env id given and no default_env in the file")
+    if env_id not in doc:
+        raise ValueError(f"{path}: no block for env id {env_id!r}; available: "
+                         f"{sorted(k for k in doc if k != 'default_env')}")
+    block = dict(doc[env_id])
+    block["env_id"] = env_id
+    block = apply_overrides(block, overrides or [])
+    # RL-Zoo style: total_timesteps may sit in the algorithm block
+    # (``--set ppo.total_timesteps=512``); it belongs to the run settings.
+    for algo_key in ("ppo", "sac"):
+        sub = block.get(algo_key)
+        if isinstance(sub, dict) and "total_timesteps" in sub:
+            block.setdefault("train", {})
+            block["train"] = dict(block["train"] or {}, total_timesteps=int(sub.pop("total_timesteps")))
+    try:
+        return TrainConfig.from_dict(block)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{path} [{env_id}]: {exc}") from exc
+
+
+def save_config(cfg: TrainConfig, path) -> None:
+    with open(path, "w") as f:
+        yaml.safe_dump(cfg.to_dict(), f, sort_keys=False)

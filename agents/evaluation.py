@@ -1,0 +1,204 @@
+"""Seeded evaluation of policies on the billiards tasks, and the Wilson interval.
+
+``evaluate(policy_fn, env_id, n_episodes, seed, noise)`` plays the *first*
+episode of each of ``n_episodes`` tables (in batches of at most
+``batch_size`` tables; batch j is reset with seed ``seed + j``), so every
+policy sees exactly the same initial tables for the same seed, whatever the
+episode lengths. Metrics per episode: success, return, scratch (any shot
+scratched), foul (any foul), balls pocketed, shots.
+"""
+from __future__ import annotations
+
+import json
+import math
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from .sb3_vec_env import NativeVecEnv, make_sb3_vec_env
+
+Z95 = 1.959963984540054  # standard normal 97.5% quantile
+
+
+def wilson_interval(successes: int, n: int, z: float = Z95) -> tuple[float, float]:
+    """Wilson score interval for a binomial proportion (Wilson 1927):
+
+    centre = (p + z^2 / 2n) / (1 + z^2 / n),
+    half   = z / (1 + z^2 / n) * sqrt(p (1 - p) / n + z^2 / 4n^2),  p = k / n.
+    """
+    if n <= 0:
+        return (0.0, 1.0)
+    if not 0 <= successes <= n:
+        raise ValueError(f"successes must lie in [0, n], got {successes} of {n}")
+    p = successes / n
+    denom = 1.0 + z * z / n
+    centre = (p + z * z / (2 * n)) / denom
+    half = z / denom * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+    return (max(0.0, centre - half), min(1.0, centre + half))
+
+
+@dataclass
+class EvalResult:
+    policy: str
+    env_id: str
+    noise: str
+    n_episodes: int
+    seed: int
+    success_rate: float
+    success_ci95: tuple
+    mean_reward: float
+    std_reward: float
+    scratch_rate: float
+    foul_rate: float
+    balls_per_episode: float
+    shots_per_episode: float
+    wall_time_s: float
+    per_episode: dict = field(default_factory=dict, repr=False)
+
+    def to_dict(self, with_episodes: bool = False) -> dict:
+        d = asdict(self)
+        d["success_ci95"] = list(self.success_ci95)
+        if not with_episodes:
+            d.pop("per_episode")
+        return d
+
+
+def _flag(info: dict, *names) -> bool:
+    for n in names:
+        if n in info:
+            return bool(info[n])
+    return False
+
+
+def _count(info: dict, *names) -> int:
+    for n in names:
+        if n in info:
+            v = info[n]
+            return int(np.sum(v)) if np.ndim(v) else int(v)
+    return 0
+
+
+def evaluate(policy_fn: Callable, env_id: str, n_episodes: int = 1000, seed: int = 0, noise: str = "none",
+             batch_size: int = 1000, max_steps: int = 10_000, env_kwargs: dict | None = None,
+             name: str | None = None, numba_threads: int | None = None) -> EvalResult:
+    """Evaluate ``policy_fn(env) -> policy`` (a policy built on the SB3
+    adapter ``env``; it may read the native env through it)."""
+    t0 = time.perf_counter()
+    kw = dict(env_kwargs or {})
+    if noise and noise != "none":
+        kw["noise"] = noise
+    succ, ret, scratch, foul, balls, shots = ([] for _ in range(6))
+    done_total = 0
+    batch_idx = 0
+    pname = name
+    while done_total < n_episodes:
+        n = min(batch_size, n_episodes - done_total)
+        env: NativeVecEnv = make_sb3_vec_env(env_id, n, **kw)
+        env.seed(seed + batch_idx)
+        policy = policy_fn(env)
+        pname = pname or getattr(policy, "name", "policy")
+        obs = env.reset()
+        finished = np.zeros(n, dtype=bool)
+        ep_ret = np.zeros(n)
+        ep_scratch = np.zeros(n, dtype=bool)
+        ep_foul = np.zeros(n, dtype=bool)
+        ep_balls = np.zeros(n, dtype=np.int64)
+        ep_shots = np.zeros(n, dtype=np.int64)
+        ep_succ = np.zeros(n, dtype=bool)
+        steps = 0
+        while not finished.all():
+            steps += 1
+            if steps > max_steps:
+                raise RuntimeError(f"evaluation of {pname} on {env_id}: episodes did not end in {max_steps} steps")
+            actions = policy.act(obs)
+            obs, rewards, dones, infos = env.step(actions)
+            live = ~finished
+            ep_ret[live] += rewards[live]
+            ep_shots[live] += 1
+            for i in np.flatnonzero(live):
+                info = infos[i]
+                ep_scratch[i] |= _flag(info, "scratch")
+                ep_foul[i] |= _flag(info, "foul")
+                ep_balls[i] += _count(info, "n_pocketed", "balls_pocketed", "legal_pocketed")
+                if dones[i]:
+                    ep_succ[i] = _flag(info, "success", "is_success")
+            finished |= dones
+        env.close()
+        succ.append(ep_succ); ret.append(ep_ret); scratch.append(ep_scratch); foul.append(ep_foul)
+        balls.append(ep_balls); shots.append(ep_shots)
+        done_total += n
+        batch_idx += 1
+    succ, ret, scratch, foul, balls, shots = map(np.concatenate, (succ, ret, scratch, foul, balls, shots))
+    k = int(succ.sum())
+    return EvalResult(
+        policy=pname, env_id=env_id, noise=noise or "none", n_episodes=int(n_episodes), seed=int(seed),
+        success_rate=k / n_episodes, success_ci95=wilson_interval(k, n_episodes),
+        mean_reward=float(ret.mean()), std_reward=float(ret.std()),
+        scratch_rate=float(scratch.mean()), foul_rate=float(foul.mean()),
+        balls_per_episode=float(balls.mean()), shots_per_episode=float(shots.mean()),
+        wall_time_s=time.perf_counter() - t0,
+        per_episode=dict(success=succ.tolist(), reward=ret.tolist()))
+
+
+def format_table(results: list[EvalResult]) -> str:
+    """A Markdown table of results."""
+    multi = any(r.env_id not in ("Billiards-PotOne-v0",) for r in results)
+    head = ["policy", "task", "noise", "episodes", "success", "95% CI", "mean reward", "scratch", "foul"]
+    if multi:
+        head += ["balls/episode"]
+    lines = ["| " + " | ".join(head) + " |", "|" + "|".join("---" for _ in head) + "|"]
+    for r in results:
+        row = [r.policy, r.env_id, r.noise, str(r.n_episodes), f"{r.success_rate:.3f}",
+               f"[{r.success_ci95[0]:.3f}, {r.success_ci95[1]:.3f}]", f"{r.mean_reward:.3f}",
+               f"{r.scratch_rate:.3f}", f"{r.foul_rate:.3f}"]
+        if multi:
+            row.append(f"{r.balls_per_episode:.2f}")
+        lines.append("| " + " | ".join(row) + " |")
+    return "\n".join(lines)
+
+
+def save_results(results: list[EvalResult], json_path, png_path=None, title: str = "") -> None:
+    json_path = Path(json_path)
+    json_path.parent.mkdir(parents=True, exist_ok=True)
+    json_path.write_text(json.dumps([r.to_dict() for r in results], indent=2))
+    if png_path is not None:
+        bar_chart(results, png_path, title)
+
+
+def bar_chart(results: list[EvalResult], png_path, title: str = "") -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    noises = sorted({r.noise for r in results}, key=lambda s: (s != "none", s))
+    policies = list(dict.fromkeys(r.policy for r in results))
+    width = 0.8 / max(len(noises), 1)
+    fig, ax = plt.subplots(figsize=(max(5, 1.3 * len(policies) + 2), 4))
+    for j, nz in enumerate(noises):
+        xs, ys, lo, hi = [], [], [], []
+        for i, p in enumerate(policies):
+            r = next((r for r in results if r.policy == p and r.noise == nz), None)
+            if r is None:
+                continue
+            xs.append(i + (j - (len(noises) - 1) / 2) * width)
+            ys.append(r.success_rate)
+            lo.append(r.success_rate - r.success_ci95[0])
+            hi.append(r.success_ci95[1] - r.success_rate)
+        bars = ax.bar(xs, ys, width, yerr=[lo, hi], capsize=3, label=f"noise: {nz}")
+        for x, y in zip(xs, ys):
+            ax.text(x, y + 0.02, f"{y:.2f}", ha="center", fontsize=8)
+    ax.set_xticks(range(len(policies)))
+    ax.set_xticklabels(policies)
+    ax.set_ylim(0, 1.1)
+    ax.set_ylabel("success rate (95% Wilson CI)")
+    env_ids = sorted({r.env_id for r in results})
+    ax.set_title(title or f"{', '.join(env_ids)}: {results[0].n_episodes} seeded episodes")
+    ax.legend(loc="lower right", fontsize=8)
+    fig.tight_layout()
+    Path(png_path).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(png_path, dpi=120)
+    plt.close(fig)

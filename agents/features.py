@@ -1,0 +1,141 @@
+"""Agent-side observation features and action scaling (optional, per config).
+
+The env observation is raw ball positions; turning them into a precise aim
+(the pocket acceptance at 1 m is about +-1.5 deg of object-ball direction)
+is a hard function for an MLP to learn in a few minutes. With
+``features: true`` the agent appends, for each of the 6 pockets, the
+ghost-ball construction's numbers (``agents.geometry``):
+
+- the ghost-ball aim relative to the env's aim origin, in (scaled) action units,
+- cut angle / (pi/2), cue->ghost and object->pocket distances / diagonal,
+- the ghost-ball speed model's cue draw in action units,
+- 1 if the shot is geometrically open (cut < 88 deg, no ball in the way), else 0.
+
+The policy must still choose the pocket, correct the aim for throw, and pick
+speed and spin. ``aim_scale`` (< 1) maps the policy's a0 to ``aim_scale * a0``
+of the env's aim range (+-pi * aim_scale around the cue -> target line), so
+the policy's action noise and resolution are spent where shots are.
+
+``action_mode: residual`` (residual RL, Johannink et al. 2019): the policy's
+action is a *correction* to the ghost-ball baseline's shot (aim offset of up
+to +-pi * aim_scale, speed factor exp(0.5 a1), side/height spin), so it
+starts at the baseline and learns what the geometry leaves out (throw,
+speed, spin against scratches).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from gymnasium import spaces
+from stable_baselines3.common.vec_env.base_vec_env import VecEnvWrapper
+
+from . import geometry as G
+
+N_FEAT_PER_POCKET = 6
+
+
+def n_features(native) -> int:
+    return N_FEAT_PER_POCKET * len(native.table.pockets)
+
+
+def shot_features(native, aim_scale: float = 1.0) -> np.ndarray:
+    """Features [N, 6 * P] of the native vector env's current tables."""
+    st = native.state
+    table, params = native.table, native.params
+    tgt = np.asarray(native.legal_target(), dtype=np.int64)
+    has = tgt > 0
+    tgt_c = np.where(has, tgt, 1 if st.n_balls > 1 else 0)
+    sh = G.ghost_shots(st.pos, st.on_table, tgt_c, table, params, 0.0)
+    E, P = sh["phi"].shape
+    diag = math.hypot(table.width, table.length)
+    # aim origin of the env (relative aim: the cue -> target direction)
+    cfg = getattr(native, "config", None)
+    if cfg is None or getattr(cfg, "aim", "relative") == "relative":
+        d = st.pos[np.arange(E), tgt_c] - st.pos[:, 0]
+        base = np.where(has, np.arctan2(d[:, 1], d[:, 0]), 0.0)
+    else:
+        base = np.zeros(E)
+    rel = (sh["phi"] - base[:, None]) / math.pi
+    rel = (rel + 1.0) % 2.0 - 1.0
+    rel = np.clip(rel / aim_scale, -1.5, 1.5)
+    speed = G.required_speed(sh["d_cg"], sh["d_op"], sh["cut"], params)
+    draw = G.speed_to_draw(speed, params)
+    lo = getattr(cfg, "min_draw", 0.0) if cfg is not None else 0.0
+    draw_act = 2.0 * (draw - lo) / (params.max_draw - lo) - 1.0
+    open_ = (sh["valid"] & ~sh["blocked"]).astype(np.float64)
+    f = np.stack([rel, sh["cut"] / (math.pi / 2), sh["d_cg"] / diag, sh["d_op"] / diag, draw_act, open_], axis=2)
+    f[~has] = 0.0
+    return f.reshape(E, P * N_FEAT_PER_POCKET).astype(np.float32)
+
+
+def scale_actions(actions: np.ndarray, aim_scale: float) -> np.ndarray:
+    a = np.array(actions, dtype=np.float32, copy=True)
+    a[:, 0] = np.clip(a[:, 0], -1.0, 1.0) * aim_scale
+    return a
+
+
+def residual_actions(native, actions: np.ndarray, aim_scale: float, speed_scale: float = 0.5,
+                     spin_scale: float = 1.0) -> np.ndarray:
+    """Residual mode: the policy's action corrects the ghost-ball shot
+    (``GhostBallPolicy``: easiest open pocket, model speed, centre hit).
+    env a0 = ghost a0 + aim_scale * a0 (aim offset up to +-pi * aim_scale rad);
+    cue draw = ghost draw * exp(speed_scale * a1); side/height = spin_scale *
+    (a2, a3) of the miscue limit."""
+    from .baselines import GhostBallPolicy, to_action
+
+    a = np.clip(np.asarray(actions, dtype=np.float64), -1.0, 1.0)
+    ghost = GhostBallPolicy(native)
+    tgt = np.asarray(native.legal_target(), dtype=np.int64)
+    has = tgt > 0
+    phi, speed, sa, sb = ghost.shots(native.state, np.where(has, tgt, 1))
+    speed = speed * np.exp(speed_scale * a[:, 1])
+    sa = spin_scale * a[:, 2] * native.params.miscue_limit
+    sb = spin_scale * a[:, 3] * native.params.miscue_limit
+    out = to_action(native, phi, np.minimum(speed, native.params.max_speed), sa, sb).astype(np.float64)
+    out[:, 0] = out[:, 0] + aim_scale * a[:, 0]
+    out[~has] = a[~has]  # no target (cannot happen on PotOne): pass the action through
+    return np.clip(out, -1.0, 1.0).astype(np.float32)
+
+
+def transform_actions(native, actions, mode: str, aim_scale: float) -> np.ndarray:
+    if mode == "residual":
+        return residual_actions(native, actions, aim_scale)
+    return scale_actions(actions, aim_scale)
+
+
+class ShotFeatures(VecEnvWrapper):
+    """Appends ``shot_features`` to observations and scales a0 by ``aim_scale``.
+    Terminal observations get zero features (the table has already been reset
+    when they are reported; one-shot episodes never bootstrap from them)."""
+
+    def __init__(self, venv, native, features: bool = True, aim_scale: float = 1.0, action_mode: str = "direct"):
+        if action_mode not in ("direct", "residual"):
+            raise ValueError(f"action_mode must be 'direct' or 'residual', got {action_mode!r}")
+        self.native, self.features, self.aim_scale = native, features, float(aim_scale)
+        self.action_mode = action_mode
+        base = venv.observation_space
+        k = n_features(native) if features else 0
+        obs_space = spaces.Box(-np.inf, np.inf, shape=(base.shape[0] + k,), dtype=np.float32) if k else base
+        super().__init__(venv, observation_space=obs_space)
+
+    def _aug(self, obs):
+        if not self.features:
+            return obs
+        return np.concatenate([obs, shot_features(self.native, self.aim_scale)], axis=1)
+
+    def reset(self):
+        return self._aug(self.venv.reset())
+
+    def step_async(self, actions):
+        self.venv.step_async(transform_actions(self.native, actions, self.action_mode, self.aim_scale))
+
+    def step_wait(self):
+        obs, rew, dones, infos = self.venv.step_wait()
+        if self.features:
+            k = n_features(self.native)
+            for i in np.flatnonzero(dones):
+                t = infos[i].get("terminal_observation")
+                if t is not None:
+                    infos[i]["terminal_observation"] = np.concatenate([t, np.zeros(k, dtype=np.float32)])
+        return self._aug(obs), rew, dones, infos

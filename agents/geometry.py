@@ -1,0 +1,159 @@
+"""Ghost-ball geometry on batched states (numpy, vectorised over tables).
+
+The ghost-ball construction (Alciatore, "The Illustrated Principles of Pool
+and Billiards", TP 3.1): to send the object ball at O towards an aim point P,
+the cue ball must arrive at the *ghost ball* G = O - 2R * unit(P - O), so the
+cue aims at G. The cut angle theta is the angle between the cue's path
+(C -> G) and the object ball's path (O -> P); the object ball leaves with
+about v_c * cos(theta) * (1 + e_b) / 2 of the cue ball's speed v_c.
+
+Speed model (used to pick a stroke speed from distances): a ball rolling a
+distance d with rolling resistance mu_r loses v^2 by 2 mu_r g d; an object
+ball leaves the collision sliding without spin and reaches rolling at 5/7 of
+its launch speed; a cue ball struck with height offset b ends its slide at
+5/7 (1 + b) of its strike speed (conservation of angular momentum about the
+contact point, Alciatore TP 4.1).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from billiards_env.physics import PhysicsParams, Table
+
+
+def pocket_aim_points(table: Table, inset: float = 0.02) -> np.ndarray:
+    """Aim points [P, 2], one per pocket, in the order of ``table.pockets``:
+    the centre of each pocket's mouth pushed ``inset`` metres into the pocket
+    (corner pockets along the diagonal, side pockets across the rail)."""
+    w, l = table.width, table.length
+    pts = []
+    for cx, cy, _ in table.pockets:
+        if abs(cy - l / 2) < 1e-9:  # side pocket: the mouth centre is on the rail line
+            x = 0.0 if cx < w / 2 else w
+            pts.append((x + (-inset if x == 0.0 else inset), l / 2))
+        else:  # corner pocket: on the diagonal, `inset` in from the corner point
+            sx = 1.0 if cx < w / 2 else -1.0
+            sy = 1.0 if cy < l / 2 else -1.0
+            d = inset / math.sqrt(2.0)
+            pts.append((cx + sx * d, cy + sy * d))
+    return np.array(pts, dtype=np.float64)
+
+
+def pocket_axes(table: Table) -> np.ndarray:
+    """Unit vectors [P, 2] pointing from each pocket into the table (the
+    direction a ball must come from to enter the pocket head-on)."""
+    w, l = table.width, table.length
+    out = []
+    for cx, cy, _ in table.pockets:
+        if abs(cy - l / 2) < 1e-9:
+            out.append((1.0, 0.0) if cx < w / 2 else (-1.0, 0.0))
+        else:
+            v = np.array([1.0 if cx < w / 2 else -1.0, 1.0 if cy < l / 2 else -1.0]) / math.sqrt(2.0)
+            out.append(tuple(v))
+    return np.array(out, dtype=np.float64)
+
+
+def _seg_point_dist(a: np.ndarray, b: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """Distance from points p [..., 2] to segments a-b [..., 2] (broadcast)."""
+    d = b - a
+    L2 = np.maximum(np.sum(d * d, axis=-1), 1e-18)
+    lam = np.clip(np.sum((p - a) * d, axis=-1) / L2, 0.0, 1.0)
+    near = a + lam[..., None] * d
+    return np.linalg.norm(p - near, axis=-1)
+
+
+def ghost_shots(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, table: Table,
+                params: PhysicsParams, inset: float = 0.02):
+    """Every pocket's ghost-ball shot for each table.
+
+    ``pos [E, B, 2]``, ``on_table [E, B]``, ``target [E]`` (object ball index).
+    Returns a dict of arrays [E, P]: ``phi`` (cue aim angle), ``cut`` (cut
+    angle, rad), ``d_cg`` (cue to ghost), ``d_op`` (object to pocket),
+    ``approach`` (angle between the object ball's path and the pocket axis),
+    ``blocked`` (another ball lies on either path) and ``valid``.
+    """
+    E, B, _ = pos.shape
+    R = params.R
+    ar = np.arange(E)
+    cue = pos[:, 0]                       # [E, 2]
+    obj = pos[ar, target]                 # [E, 2]
+    P = pocket_aim_points(table, inset)   # [P, 2]
+    axes = pocket_axes(table)
+    op = P[None] - obj[:, None]           # [E, P, 2]
+    d_op = np.linalg.norm(op, axis=-1)
+    u_op = op / np.maximum(d_op, 1e-12)[..., None]
+    ghost = obj[:, None] - 2 * R * u_op   # [E, P, 2]
+    cg = ghost - cue[:, None]
+    d_cg = np.linalg.norm(cg, axis=-1)
+    u_cg = cg / np.maximum(d_cg, 1e-12)[..., None]
+    cos_cut = np.clip(np.sum(u_cg * u_op, axis=-1), -1.0, 1.0)
+    cut = np.arccos(cos_cut)
+    phi = np.arctan2(cg[..., 1], cg[..., 0])
+    approach = np.arccos(np.clip(np.sum(-u_op * axes[None], axis=-1), -1.0, 1.0))
+    # Blocking: any other ball on the table within 2R of the cue->ghost path
+    # or of the object->pocket path.
+    blocked = np.zeros((E, len(P)), dtype=bool)
+    for j in range(B):
+        other = on_table[:, j] & (j != 0) & (j != target)
+        if not other.any():
+            continue
+        pj = pos[:, j][:, None]  # [E, 1, 2]
+        d1 = _seg_point_dist(cue[:, None], ghost, pj)
+        d2 = _seg_point_dist(obj[:, None], P[None], pj)
+        blocked |= other[:, None] & ((d1 < 2 * R) | (d2 < 2 * R))
+    # The cue ball must not have to pass through the object ball itself: the
+    # ghost must be reachable (cut < 90 deg).
+    valid = (cut < math.radians(88.0)) & (d_cg > 1e-9)
+    return dict(phi=phi, cut=cut, d_cg=d_cg, d_op=d_op, approach=approach, blocked=blocked,
+                valid=valid, ghost=ghost)
+
+
+def required_speed(d_cg, d_op, cut, params: PhysicsParams, b: float = 0.0, margin: float = 1.25,
+                   v_arrive: float = 0.35) -> np.ndarray:
+    """Cue-ball strike speed (m/s) that carries the object ball ``d_op`` metres
+    to the pocket and still arriving at ``v_arrive`` m/s, times ``margin``.
+
+    Object ball: launch speed v_o slides to 5/7 v_o, then rolls with
+    deceleration mu_r g: v_o = 7/5 sqrt(v_arrive^2 + 2 mu_r g d_op). Cut
+    transfer: v_c = v_o / (cos(cut) (1 + e_b) / 2). Cue ball to the ghost:
+    strike speed v0 = sqrt(v_c^2 + 2 mu_r g d_cg) / f where f = 5/7 (1 + b)
+    (capped to [5/7, 1]) is the slide loss of a centre/draw hit.
+    """
+    g, mu_r = params.g, params.mu_r
+    v_o = 1.4 * np.sqrt(v_arrive ** 2 + 2 * mu_r * g * d_op)
+    v_c = v_o / (np.maximum(np.cos(cut), 0.15) * (1 + params.e_b) / 2)
+    f = min(max(5.0 / 7.0 * (1 + b), 5.0 / 7.0), 1.0)
+    v0 = np.sqrt(v_c ** 2 + 2 * mu_r * g * d_cg) / f
+    return np.minimum(margin * v0, params.max_speed)
+
+
+def speed_to_draw(speed, params: PhysicsParams) -> np.ndarray:
+    """Cue draw distance (m) giving the cue-ball speed: v = k dt x / m."""
+    return np.clip(np.asarray(speed) * params.m / (params.k * params.contact_time), 0.0, params.max_draw)
+
+
+def choose_pocket(shots: dict, cut_weight: float = 1.0, dist_weight: float = 0.35,
+                  approach_limit_corner: float = math.radians(60), approach_limit_side: float = math.radians(50),
+                  side_mask: np.ndarray | None = None) -> np.ndarray:
+    """Index [E] of the easiest pocket: smallest cut angle (rad) plus
+    ``dist_weight`` x total distance (m), skipping blocked lines and pockets
+    approached too steeply; if every pocket is excluded, the smallest cut."""
+    cost = cut_weight * shots["cut"] + dist_weight * (shots["d_cg"] + shots["d_op"])
+    bad = ~shots["valid"] | shots["blocked"]
+    if side_mask is not None:
+        lim = np.where(side_mask[None], approach_limit_side, approach_limit_corner)
+        bad |= shots["approach"] > lim
+    cost_ok = np.where(bad, np.inf, cost)
+    best = np.argmin(cost_ok, axis=1)
+    none = ~np.isfinite(cost_ok.min(axis=1))
+    if none.any():
+        fallback = np.argmin(np.where(shots["valid"], shots["cut"], np.inf), axis=1)
+        best = np.where(none, fallback, best)
+    return best
+
+
+def side_pocket_mask(table: Table) -> np.ndarray:
+    l = table.length
+    return np.array([abs(cy - l / 2) < 1e-9 for _, cy, _ in table.pockets])

@@ -1,0 +1,265 @@
+"""A stable-baselines3 ``VecEnv`` over a native Gymnasium ``VectorEnv``.
+
+The native billiards vector env steps every table in one batched simulator
+call; this adapter keeps that (no DummyVecEnv of single envs on the hot path)
+and translates Gymnasium 1.x vector conventions into SB3's:
+
+- ``step`` returns ``(obs, rewards, dones, infos)`` with ``dones =
+  terminated | truncated`` and ``infos`` a list of per-env dicts;
+- for a done env the returned observation is already the *reset*
+  observation, and the last observation of the finished episode is in
+  ``infos[i]["terminal_observation"]``; ``infos[i]["TimeLimit.truncated"]``
+  is True when the episode was cut by a time limit rather than terminated;
+- the native env's autoreset mode (``metadata["autoreset_mode"]``) is
+  honoured: ``SAME_STEP`` (reset obs returned, final obs in
+  ``infos["final_obs"]``), ``DISABLED`` (the adapter resets finished envs
+  itself with ``reset(options={"reset_mask": done})``) and ``NEXT_STEP``
+  (when every env finished, the adapter takes the env's own autoreset step
+  at once, which ignores the actions and simulates nothing; when only some
+  finished, a masked reset, which the env must support);
+- ``seed(seed)`` seeds the next ``reset()`` (env i gets ``seed + i``).
+
+``get_attr``/``set_attr``/``env_method`` act on the one native env (the
+attributes of a batch are shared); ``get_attr`` returns one entry per env.
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+from gymnasium.vector import AutoresetMode
+from stable_baselines3.common.vec_env.base_vec_env import VecEnv, VecEnvIndices
+
+
+def _autoreset_mode(env) -> AutoresetMode:
+    mode = (getattr(env, "metadata", None) or {}).get("autoreset_mode", AutoresetMode.NEXT_STEP)
+    if isinstance(mode, str):
+        mode = AutoresetMode(mode)
+    return mode
+
+
+def split_infos(infos: dict, n: int) -> list[dict]:
+    """Gymnasium vector infos (a dict of arrays, each with a ``_key`` mask,
+    possibly nested) -> a list of ``n`` per-env dicts."""
+    out: list[dict] = [{} for _ in range(n)]
+    for key, value in infos.items():
+        if key.startswith("_"):
+            continue
+        mask = infos.get("_" + key)
+        if isinstance(value, dict):
+            sub = split_infos(value, n)
+            for i in range(n):
+                if mask is None or mask[i]:
+                    out[i][key] = sub[i]
+            continue
+        if isinstance(value, np.ndarray) and value.ndim >= 1 and len(value) == n:
+            vals = value.tolist()  # python scalars / lists in one call
+        else:
+            vals = [value] * n
+        for i in range(n):
+            if mask is not None and not mask[i]:
+                continue
+            out[i][key] = vals[i]
+    return out
+
+
+class NativeVecEnv(VecEnv):
+    """SB3 ``VecEnv`` over a native ``gymnasium.vector.VectorEnv``."""
+
+    def __init__(self, venv: gym.vector.VectorEnv, fast_reset: bool = False, seed: int | None = None):
+        self.venv = venv
+        self.fast_reset = bool(fast_reset) and _supports_fast_reset(venv)
+        self._fast_rng = np.random.default_rng(seed)
+        self.autoreset_mode = _autoreset_mode(venv)
+        self._actions: np.ndarray | None = None
+        self._obs: np.ndarray | None = None
+        super().__init__(venv.num_envs, venv.single_observation_space, venv.single_action_space)
+
+    # -- attribute access ------------------------------------------------
+    @property
+    def unwrapped(self):
+        return self.venv.unwrapped if hasattr(self.venv, "unwrapped") else self.venv
+
+    def _indices(self, indices: VecEnvIndices) -> list[int]:
+        if indices is None:
+            return list(range(self.num_envs))
+        if isinstance(indices, int):
+            return [indices]
+        return list(indices)
+
+    def get_attr(self, attr_name: str, indices: VecEnvIndices = None) -> list[Any]:
+        target = self.venv
+        if not hasattr(target, attr_name) and hasattr(self.unwrapped, attr_name):
+            target = self.unwrapped
+        value = getattr(target, attr_name)
+        return [value for _ in self._indices(indices)]
+
+    def set_attr(self, attr_name: str, value: Any, indices: VecEnvIndices = None) -> None:
+        setattr(self.unwrapped, attr_name, value)
+
+    def env_method(self, method_name: str, *method_args, indices: VecEnvIndices = None, **method_kwargs) -> list[Any]:
+        target = self.venv if hasattr(self.venv, method_name) else self.unwrapped
+        result = getattr(target, method_name)(*method_args, **method_kwargs)
+        return [result for _ in self._indices(indices)]
+
+    def env_is_wrapped(self, wrapper_class, indices: VecEnvIndices = None) -> list[bool]:
+        return [False for _ in self._indices(indices)]
+
+    def has_attr(self, attr_name: str) -> bool:
+        return hasattr(self.venv, attr_name) or hasattr(self.unwrapped, attr_name)
+
+    # -- core API --------------------------------------------------------
+    def reset(self) -> np.ndarray:
+        seed = self._seeds[0]
+        if seed is not None and any(s is not None and s != seed + i for i, s in enumerate(self._seeds)):
+            seed = [s for s in self._seeds]  # non-consecutive seeds: pass the list
+        options = self._options[0] if self._options and self._options[0] else None
+        obs, _ = self.venv.reset(seed=seed, options=options)
+        self._reset_seeds()
+        self._reset_options()
+        self._obs = obs
+        return obs
+
+    def step_async(self, actions: np.ndarray) -> None:
+        self._actions = np.asarray(actions)
+
+    def _masked_reset(self, done: np.ndarray):
+        obs, info = self.venv.reset(options={"reset_mask": done})
+        return obs, info
+
+    def step_wait(self):
+        obs, rewards, terminated, truncated, infos = self.venv.step(self._actions)
+        terminated = np.asarray(terminated, dtype=bool)
+        truncated = np.asarray(truncated, dtype=bool)
+        dones = terminated | truncated
+        n = self.num_envs
+        info_list = split_infos(infos, n)
+        if dones.any():
+            idx = np.flatnonzero(dones)
+            if self.autoreset_mode == AutoresetMode.SAME_STEP:
+                final_obs = infos["final_obs"]
+                final_info = split_infos(infos["final_info"], n) if "final_info" in infos else None
+                for i in idx:
+                    if final_info is not None:
+                        # the per-step info of a finished env is its final info
+                        info_list[i] = {**final_info[i]}
+                    info_list[i]["terminal_observation"] = final_obs[i]
+            else:
+                final_obs = np.array(obs, copy=True)
+                for i in idx:
+                    info_list[i]["terminal_observation"] = final_obs[i]
+                obs = self._reset_done(obs, dones)
+            for i in idx:
+                info_list[i]["TimeLimit.truncated"] = bool(truncated[i] and not terminated[i])
+        self._obs = obs
+        return obs, np.asarray(rewards, dtype=np.float32), dones, info_list
+
+    def _reset_done(self, obs: np.ndarray, dones: np.ndarray) -> np.ndarray:
+        obs = np.array(obs, copy=True)
+        if self.fast_reset:
+            return self._fast_reset_tables(np.flatnonzero(dones))
+        if self.autoreset_mode == AutoresetMode.DISABLED:
+            new_obs, _ = self._masked_reset(dones)
+            obs[dones] = new_obs[dones]
+            return obs
+        # NEXT_STEP. Every env finished (one-shot tasks): the env's own
+        # autoreset step resets them all, ignores the actions and simulates
+        # nothing.
+        if dones.all():
+            new_obs, *_ = self.venv.step(self._actions)
+            return np.array(new_obs, copy=True)
+        native = self.unwrapped
+        core = getattr(native, "_core", None)
+        if core is not None and hasattr(native, "_autoreset_envs") and getattr(native, "_table_rngs", None):
+            # Workaround for the billiards vector env (NEXT_STEP, and its
+            # reset() has no reset_mask): do now exactly what its next step
+            # would do for the finished tables -- reset them from their own
+            # RNGs -- and clear their pending autoreset.
+            idx = np.flatnonzero(dones)
+            core.reset_tables(idx, [native._table_rngs[k] for k in idx])
+            native._autoreset_envs[idx] = False
+            return np.array(core.observe(), copy=True)
+        new_obs, _ = self._masked_reset(dones)
+        obs[dones] = new_obs[dones]
+        return obs
+
+    def _fast_reset_tables(self, idx: np.ndarray) -> np.ndarray:
+        """Training-only workaround: the env's reset places balls with
+        ``random_placement``, one ``Table.contains`` call per ball per table
+        (~2 ms a table, 90% of a PotOne step). For tasks with random
+        placements this draws the same distribution (uniform, sequential,
+        non-overlapping, ``margin`` clear of cushions and balls) vectorised
+        over tables, from the adapter's own RNG; evaluation keeps the env's
+        own seeded resets."""
+        native = self.unwrapped
+        core = native._core
+        cfg = core.cfg
+        pos = fast_random_placement(core.table, core.params, core.n_balls, len(idx), cfg.margin, self._fast_rng)
+        st = core.state
+        st.pos[idx] = pos
+        st.vel[idx] = 0.0
+        st.omega[idx] = 0.0
+        st.pocket[idx] = -1
+        core.shots[idx] = 0
+        for k in idx:
+            core.last_start[k] = None
+            core.last_events[k] = None
+        native._autoreset_envs[idx] = False
+        return np.array(core.observe(), copy=True)
+
+    def close(self) -> None:
+        self.venv.close()
+
+    def get_images(self) -> Sequence[np.ndarray | None]:
+        return [None for _ in range(self.num_envs)]
+
+    def render(self, mode: str | None = None):
+        return self.venv.render()
+
+
+def _supports_fast_reset(venv) -> bool:
+    native = venv.unwrapped if hasattr(venv, "unwrapped") else venv
+    core = getattr(native, "_core", None)
+    return (core is not None and hasattr(native, "_autoreset_envs")
+            and getattr(core.cfg, "task", None) in ("pot_one", "run_out"))
+
+
+def fast_random_placement(table, params, n_balls: int, n_envs: int, margin: float, rng) -> np.ndarray:
+    """Positions [n_envs, n_balls, 2]: as ``billiards_env.physics.random_placement``
+    (balls placed one after another, uniform on the legal area, at least
+    ``margin`` clear of the cushions and 2R + margin from earlier balls) but
+    vectorised over tables: one ``Table.contains`` call per ball and round."""
+    R = params.R
+    lo = np.array([R + margin, R + margin])
+    hi = np.array([table.width - R - margin, table.length - R - margin])
+    pos = np.zeros((n_envs, n_balls, 2))
+    for j in range(n_balls):
+        need = np.arange(n_envs)
+        for _ in range(1000):
+            if len(need) == 0:
+                break
+            cand = rng.uniform(lo, hi, size=(len(need), 2))
+            ok = table.contains(cand, R + margin, 0.0)
+            for i in range(j):
+                ok &= np.hypot(*(cand - pos[need, i]).T) >= 2 * R + margin
+            pos[need[ok], j] = cand[ok]
+            need = need[~ok]
+        if len(need):
+            raise ValueError(f"could not place {n_balls} balls without overlap on {table.name}")
+    return pos
+
+
+def make_sb3_vec_env(env_id: str, n_envs: int, seed: int | None = None, fast_reset: bool = False,
+                     **kwargs) -> NativeVecEnv:
+    """``gymnasium.make_vec(env_id, num_envs=n_envs, vectorization_mode="vector_entry_point")``
+    wrapped for SB3 (``kwargs`` go to the env, e.g. ``noise="tournament"``).
+    ``fast_reset=True``: vectorised re-placement of finished tables (training)."""
+    import billiards_env  # noqa: F401  (registers the ids)
+
+    venv = gym.make_vec(env_id, num_envs=n_envs, vectorization_mode="vector_entry_point", **kwargs)
+    env = NativeVecEnv(venv, fast_reset=fast_reset, seed=seed)
+    if seed is not None:
+        env.seed(seed)
+    return env

@@ -1,0 +1,1 @@
+"""Reusable, seeded scene builders for studies of the physics (accuracy, cost)."""

@@ -1,0 +1,103 @@
+"""Seeded shot sets for accuracy/cost studies of the physics solvers.
+
+Each builder returns a struck ``BallState`` batch (one shot per table) ready
+for ``simulate``. All randomness comes from the given seed, so a scene is the
+same set of shots on every run.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from billiards_env.physics import BallState, PhysicsParams, Table, rack, random_placement, simulate, strike_velocity
+
+MAX_OFFSET = 0.45  # |(a, b)| of random spin offsets, inside the 0.5 R miscue limit
+
+
+def _offsets(rng, n):
+    r = MAX_OFFSET * np.sqrt(rng.uniform(0.0, 1.0, n))
+    th = rng.uniform(0.0, 2 * np.pi, n)
+    return r * np.cos(th), r * np.sin(th)
+
+
+def two_ball(table: Table, params: PhysicsParams, n: int, seed: int = 0, margin: float = 0.01,
+             aim_noise_deg: float = 3.0, speed=(0.5, 4.0), spin: bool = True) -> BallState:
+    """Cue ball + one object ball at random positions; cue aimed at the object
+    ball +- ``aim_noise_deg`` at a uniform speed, with random spin offsets."""
+    rng = np.random.default_rng(seed)
+    s = random_placement(table, params, 2, n, seed=rng, margin=margin)
+    d = s.pos[:, 1] - s.pos[:, 0]
+    phi = np.arctan2(d[:, 1], d[:, 0]) + np.radians(rng.uniform(-aim_noise_deg, aim_noise_deg, n))
+    v = rng.uniform(speed[0], speed[1], n)
+    a, b = _offsets(rng, n) if spin else (np.zeros(n), np.zeros(n))
+    return strike_velocity(s, phi, v, a, b, params)
+
+
+def breaks(table: Table, params: PhysicsParams, n: int, seed: int = 1, speed: float = 8.0,
+           speed_noise: float = 0.3, offset: float = 0.01, spin: float = 0.1) -> BallState:
+    """9-ball breaks: frozen diamond rack, cue ball at the head spot +- ``offset``
+    (m) across the table, aimed at the apex ball at ``speed`` +- noise (m/s),
+    small random spin offsets (|a|, |b| <= ``spin``)."""
+    rng = np.random.default_rng(seed)
+    s = rack(table, params, "nine", n, seed=rng)
+    s.pos[:, 0, 0] += rng.uniform(-offset, offset, n)
+    d = s.pos[:, 1] - s.pos[:, 0]
+    phi = np.arctan2(d[:, 1], d[:, 0]) + np.radians(rng.uniform(-0.2, 0.2, n))
+    v = speed + rng.uniform(-speed_noise, speed_noise, n)
+    a = rng.uniform(-spin, spin, n)
+    b = rng.uniform(-spin, spin, n)
+    return strike_velocity(s, phi, v, a, b, params)
+
+
+def respot_cue(state: BallState, table: Table, params: PhysicsParams) -> BallState:
+    """Put a pocketed cue ball back on the table: on the head spot if free,
+    else the nearest free point found along the head string (then further up
+    the table). Returns a new state at rest."""
+    out = BallState(state.pos.copy(), np.zeros_like(state.vel), np.zeros_like(state.omega), state.pocket.copy())
+    R = params.R
+    w, l = table.width, table.length
+    cands = [(w / 2, l / 4)]
+    for k in range(1, 200):
+        for sgn in (1, -1):
+            cands.append((w / 2 + sgn * k * 0.01, l / 4))
+    for k in range(1, 200):
+        cands.append((w / 2, l / 4 - k * 0.005))
+    for e in np.nonzero(out.pocket[:, 0] >= 0)[0]:
+        on = (out.pocket[e] < 0)
+        on[0] = False
+        others = out.pos[e, on]
+        for c in cands:
+            c = np.array(c)
+            if not table.contains(c[None], R + 1e-6, 0.0)[0]:
+                continue
+            if len(others) == 0 or np.min(np.hypot(*(others - c).T)) > 2 * R + 1e-6:
+                out.pos[e, 0] = c
+                out.pocket[e, 0] = -1
+                break
+        else:
+            raise RuntimeError(f"no free spot for the cue ball in env {e}")
+    return out
+
+
+def post_break(table: Table, params: PhysicsParams, n: int, seed: int = 2, speed=(0.5, 5.0),
+               break_seed: int | None = None) -> BallState:
+    """Random shots on the resting tables left by ``n`` 9-ball breaks (event
+    solver): pocketed balls stay off the table, a pocketed cue ball is
+    respotted; uniform random aim, uniform speed, random spin offsets."""
+    rng = np.random.default_rng(seed)
+    br = breaks(table, params, n, seed=seed + 1000 if break_seed is None else break_seed)
+    res = simulate(br, table, params, solver="event")
+    s = respot_cue(res.state, table, params)
+    phi = rng.uniform(0.0, 2 * np.pi, n)
+    v = rng.uniform(speed[0], speed[1], n)
+    a, b = _offsets(rng, n)
+    return strike_velocity(s, phi, v, a, b, params)
+
+
+SCENES = {"two_ball": two_ball, "break": breaks, "post_break": post_break}
+
+
+def build(name: str, table: Table, params: PhysicsParams, n: int, seed: int = 0) -> BallState:
+    """Scene ``name`` (``two_ball``, ``break``, ``post_break``) with ``n`` shots."""
+    if name not in SCENES:
+        raise ValueError(f"unknown scene {name!r}; choose one of {sorted(SCENES)}")
+    return SCENES[name](table, params, n, seed=seed)

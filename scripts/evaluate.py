@@ -1,0 +1,68 @@
+#!/usr/bin/env python
+"""Evaluate saved models and/or baselines on a task over N seeded episodes.
+
+    python scripts/evaluate.py --policy ghost --policy search --policy runs/<run> \
+        --env Billiards-PotOne-v0 --episodes 1000 --seed 12345 --noise none --noise tournament \
+        --out results/agents/potone
+
+``--policy``: ``random``, ``ghost``, ``search`` (K from ``--search-k``, or
+``search64``), or a run directory / model .zip (its config.yaml and
+vecnormalize.pkl are read). Every policy plays the first episode of the same
+seeded tables. Prints a Markdown table (success rate with its 95% Wilson
+interval, mean reward, scratch and foul rates, balls per episode) and writes
+<out>.json and <out>.png.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--policy", action="append", required=True, help="baseline name or model path (repeatable)")
+    ap.add_argument("--name", action="append", default=None, help="display name per --policy (optional)")
+    ap.add_argument("--env", default="Billiards-PotOne-v0")
+    ap.add_argument("--episodes", type=int, default=1000)
+    ap.add_argument("--seed", type=int, default=12345)
+    ap.add_argument("--noise", action="append", default=None, help="none | tournament (repeatable; default none)")
+    ap.add_argument("--search-k", type=int, default=256)
+    ap.add_argument("--batch-size", type=int, default=1000, help="tables simulated together")
+    ap.add_argument("--out", default=None, help="output prefix for .json and .png (default results/agents/eval)")
+    a = ap.parse_args(argv)
+
+    from agents.baselines import SB3Policy, make_policy
+    from agents.evaluation import evaluate, format_table, save_results
+
+    noises = a.noise or ["none"]
+    results = []
+    for j, spec in enumerate(a.policy):
+        display = a.name[j] if a.name and j < len(a.name) else None
+        if spec in ("random", "ghost") or spec.startswith("search"):
+            if spec == "search":
+                spec = f"search{a.search_k}"
+            fn = lambda env, s=spec: make_policy(s, env, seed=a.seed)  # noqa: E731
+            display = display or spec
+        else:
+            loaded = SB3Policy.load(spec)
+            fn = lambda env, p=loaded: p.bind(env)  # noqa: E731
+            display = display or f"{loaded.name}:{Path(spec).name}"
+        for nz in noises:
+            r = evaluate(fn, a.env, a.episodes, a.seed, nz, batch_size=a.batch_size, name=display)
+            print(f"{display:>20s} noise={nz:<10s} success {r.success_rate:.3f} "
+                  f"[{r.success_ci95[0]:.3f}, {r.success_ci95[1]:.3f}]  ({r.wall_time_s:.1f} s)", flush=True)
+            results.append(r)
+    print()
+    print(format_table(results))
+    out = Path(a.out) if a.out else ROOT / "results" / "agents" / "eval"
+    save_results(results, out.with_suffix(".json"), out.with_suffix(".png"))
+    print(f"\nwrote {out.with_suffix('.json')} and {out.with_suffix('.png')}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
