@@ -68,10 +68,8 @@ def split_infos(infos: dict, n: int) -> list[dict]:
 class NativeVecEnv(VecEnv):
     """SB3 ``VecEnv`` over a native ``gymnasium.vector.VectorEnv``."""
 
-    def __init__(self, venv: gym.vector.VectorEnv, fast_reset: bool = False, seed: int | None = None):
+    def __init__(self, venv: gym.vector.VectorEnv):
         self.venv = venv
-        self.fast_reset = bool(fast_reset) and _supports_fast_reset(venv)
-        self._fast_rng = np.random.default_rng(seed)
         self.autoreset_mode = _autoreset_mode(venv)
         self._actions: np.ndarray | None = None
         self._obs: np.ndarray | None = None
@@ -158,56 +156,16 @@ class NativeVecEnv(VecEnv):
 
     def _reset_done(self, obs: np.ndarray, dones: np.ndarray) -> np.ndarray:
         obs = np.array(obs, copy=True)
-        if self.fast_reset:
-            return self._fast_reset_tables(np.flatnonzero(dones))
-        if self.autoreset_mode == AutoresetMode.DISABLED:
-            new_obs, _ = self._masked_reset(dones)
-            obs[dones] = new_obs[dones]
-            return obs
-        # NEXT_STEP. Every env finished (one-shot tasks): the env's own
-        # autoreset step resets them all, ignores the actions and simulates
-        # nothing.
-        if dones.all():
+        if self.autoreset_mode == AutoresetMode.NEXT_STEP and dones.all():
+            # every env finished (one-shot tasks): the env's own autoreset
+            # step resets them all, ignores the actions and simulates nothing
             new_obs, *_ = self.venv.step(self._actions)
             return np.array(new_obs, copy=True)
-        native = self.unwrapped
-        core = getattr(native, "_core", None)
-        if core is not None and hasattr(native, "_autoreset_envs") and getattr(native, "_table_rngs", None):
-            # Workaround for the billiards vector env (NEXT_STEP, and its
-            # reset() has no reset_mask): do now exactly what its next step
-            # would do for the finished tables -- reset them from their own
-            # RNGs -- and clear their pending autoreset.
-            idx = np.flatnonzero(dones)
-            core.reset_tables(idx, [native._table_rngs[k] for k in idx])
-            native._autoreset_envs[idx] = False
-            return np.array(core.observe(), copy=True)
+        # DISABLED, or NEXT_STEP with some envs still playing: reset the
+        # finished ones now (the env then has no pending autoreset for them)
         new_obs, _ = self._masked_reset(dones)
         obs[dones] = new_obs[dones]
         return obs
-
-    def _fast_reset_tables(self, idx: np.ndarray) -> np.ndarray:
-        """Training-only workaround: the env's reset places balls with
-        ``random_placement``, one ``Table.contains`` call per ball per table
-        (~2 ms a table, 90% of a PotOne step). For tasks with random
-        placements this draws the same distribution (uniform, sequential,
-        non-overlapping, ``margin`` clear of cushions and balls) vectorised
-        over tables, from the adapter's own RNG; evaluation keeps the env's
-        own seeded resets."""
-        native = self.unwrapped
-        core = native._core
-        cfg = core.cfg
-        pos = fast_random_placement(core.table, core.params, core.n_balls, len(idx), cfg.margin, self._fast_rng)
-        st = core.state
-        st.pos[idx] = pos
-        st.vel[idx] = 0.0
-        st.omega[idx] = 0.0
-        st.pocket[idx] = -1
-        core.shots[idx] = 0
-        for k in idx:
-            core.last_start[k] = None
-            core.last_events[k] = None
-        native._autoreset_envs[idx] = False
-        return np.array(core.observe(), copy=True)
 
     def close(self) -> None:
         self.venv.close()
@@ -219,47 +177,17 @@ class NativeVecEnv(VecEnv):
         return self.venv.render()
 
 
-def _supports_fast_reset(venv) -> bool:
-    native = venv.unwrapped if hasattr(venv, "unwrapped") else venv
-    core = getattr(native, "_core", None)
-    return (core is not None and hasattr(native, "_autoreset_envs")
-            and getattr(core.cfg, "task", None) in ("pot_one", "run_out"))
-
-
-def fast_random_placement(table, params, n_balls: int, n_envs: int, margin: float, rng) -> np.ndarray:
-    """Positions [n_envs, n_balls, 2]: as ``billiards_env.physics.random_placement``
-    (balls placed one after another, uniform on the legal area, at least
-    ``margin`` clear of the cushions and 2R + margin from earlier balls) but
-    vectorised over tables: one ``Table.contains`` call per ball and round."""
-    R = params.R
-    lo = np.array([R + margin, R + margin])
-    hi = np.array([table.width - R - margin, table.length - R - margin])
-    pos = np.zeros((n_envs, n_balls, 2))
-    for j in range(n_balls):
-        need = np.arange(n_envs)
-        for _ in range(1000):
-            if len(need) == 0:
-                break
-            cand = rng.uniform(lo, hi, size=(len(need), 2))
-            ok = table.contains(cand, R + margin, 0.0)
-            for i in range(j):
-                ok &= np.hypot(*(cand - pos[need, i]).T) >= 2 * R + margin
-            pos[need[ok], j] = cand[ok]
-            need = need[~ok]
-        if len(need):
-            raise ValueError(f"could not place {n_balls} balls without overlap on {table.name}")
-    return pos
-
-
-def make_sb3_vec_env(env_id: str, n_envs: int, seed: int | None = None, fast_reset: bool = False,
+def make_sb3_vec_env(env_id: str, n_envs: int, seed: int | None = None, autoreset_mode: str = "same_step",
                      **kwargs) -> NativeVecEnv:
     """``gymnasium.make_vec(env_id, num_envs=n_envs, vectorization_mode="vector_entry_point")``
     wrapped for SB3 (``kwargs`` go to the env, e.g. ``noise="tournament"``).
-    ``fast_reset=True``: vectorised re-placement of finished tables (training)."""
+    The native env resets finished tables within the step (``same_step``),
+    so no call is spent on resets."""
     import billiards_env  # noqa: F401  (registers the ids)
 
-    venv = gym.make_vec(env_id, num_envs=n_envs, vectorization_mode="vector_entry_point", **kwargs)
-    env = NativeVecEnv(venv, fast_reset=fast_reset, seed=seed)
+    venv = gym.make_vec(env_id, num_envs=n_envs, vectorization_mode="vector_entry_point",
+                        autoreset_mode=autoreset_mode, **kwargs)
+    env = NativeVecEnv(venv)
     if seed is not None:
         env.seed(seed)
     return env

@@ -133,7 +133,7 @@ def build_env(cfg: TrainConfig, seed: int):
 
     from .features import ShotFeatures
 
-    env = make_sb3_vec_env(cfg.env_id, cfg.n_envs, seed=seed, fast_reset=True, **cfg.env_kwargs)
+    env = make_sb3_vec_env(cfg.env_id, cfg.n_envs, seed=seed, **cfg.env_kwargs)
     if cfg.features or cfg.aim_scale != 1.0 or cfg.action_mode != "direct":
         env = ShotFeatures(env, env.unwrapped, cfg.features, cfg.aim_scale, cfg.action_mode)
     vecnorm = None

@@ -120,7 +120,7 @@ def test_adapter_with_gymnasium_same_step_and_disabled_modes():
 
 def test_sb3_env_checks_with_vec_check_nan():
     from stable_baselines3.common.vec_env import VecCheckNan
-    env = VecCheckNan(make_sb3_vec_env(POT, 8, seed=0, fast_reset=True), raise_exception=True)
+    env = VecCheckNan(make_sb3_vec_env(POT, 8, seed=0), raise_exception=True)
     env.reset()
     for _ in range(3):
         env.step(np.random.uniform(-1, 1, (8, 4)).astype(np.float32))

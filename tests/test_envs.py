@@ -246,3 +246,49 @@ def test_random_policy_1000_vector_steps(env_id):
         episodes += int(np.sum(te | tr))
     assert episodes > 100
     v.close()
+
+
+# ------------------------------------------------ autoreset modes and masks --
+@pytest.mark.parametrize("mode", ["same_step", "disabled"])
+def test_autoreset_modes_other_than_next_step(mode):
+    import gymnasium as gym
+    from gymnasium.vector import AutoresetMode
+    env = gym.make_vec("Billiards-PotOne-v0", num_envs=4, vectorization_mode="vector_entry_point",
+                       autoreset_mode=mode)
+    assert env.metadata["autoreset_mode"] == {"same_step": AutoresetMode.SAME_STEP,
+                                              "disabled": AutoresetMode.DISABLED}[mode]
+    obs0, _ = env.reset(seed=3)
+    act = np.zeros((4, 4), dtype=np.float32)
+    obs, rew, term, trunc, info = env.step(act)
+    assert term.all()  # PotOne: one shot per episode
+    if mode == "same_step":
+        assert info["_final_obs"].all()
+        assert not np.array_equal(info["final_obs"], obs)  # new episodes already started
+        obs2, *_ = env.step(act)  # no step is spent on resets
+        assert obs2.shape == obs.shape
+    else:
+        with pytest.raises(RuntimeError, match="reset_mask"):
+            env.step(act)
+        mask = np.array([True, False, True, False])
+        obs3, _ = env.reset(options={"reset_mask": mask})
+        assert np.array_equal(obs3[~mask], obs[~mask])
+        assert not np.array_equal(obs3[mask], obs[mask])
+        with pytest.raises(RuntimeError):
+            env.step(act)  # tables 1 and 3 are still finished
+
+
+def test_same_step_matches_next_step_episodes():
+    """The two autoreset modes give the same episodes, only arranged in time differently."""
+    import gymnasium as gym
+    envs = {m: gym.make_vec("Billiards-PotOne-v0", num_envs=3, vectorization_mode="vector_entry_point",
+                            autoreset_mode=m) for m in ("next_step", "same_step")}
+    for e in envs.values():
+        e.reset(seed=11)
+    act = np.random.default_rng(0).uniform(-1, 1, (3, 4)).astype(np.float32)
+    _, r_same, *_ = envs["same_step"].step(act)
+    _, r_next, *_ = envs["next_step"].step(act)
+    np.testing.assert_array_equal(r_same, r_next)
+    _, r2_same, *_ = envs["same_step"].step(act)
+    envs["next_step"].step(act)  # the autoreset step
+    _, r2_next, *_ = envs["next_step"].step(act)
+    np.testing.assert_array_equal(r2_same, r2_next)

@@ -220,25 +220,51 @@ class BilliardsEnv(gym.Env):
         self._renderer.close()
 
 
+def _autoreset_mode(mode) -> AutoresetMode:
+    """An AutoresetMode from itself, its value ("SameStep") or its name in
+    any case ("same_step")."""
+    if isinstance(mode, AutoresetMode):
+        return mode
+    for m in AutoresetMode:
+        if str(mode) in (m.value, m.name, m.name.lower()):
+            return m
+    raise ValueError(f"autoreset_mode must be one of {[m.name.lower() for m in AutoresetMode]}, got {mode!r}")
+
+
 class BilliardsVectorEnv(VectorEnv):
     """Vector of pool tables shot with one batched simulator call per step
     (base class; use a task subclass).
 
     Seeding: ``reset(seed=s)`` seeds table k like a single env seeded with
     ``s + k`` (or pass a list of N seeds), so table k reproduces that single
-    env's transitions. Autoreset: ``AutoresetMode.NEXT_STEP`` -- the step
-    after a table's episode ends resets that table (its action is ignored)
-    and returns its first observation with reward 0, terminated = truncated
-    = False and zeroed info entries; ``info["reset"]`` marks those tables.
+    env's transitions. ``reset(options={"reset_mask": mask})`` resets only
+    the masked tables.
+
+    Autoreset (``autoreset_mode=``, declared in ``metadata["autoreset_mode"]``):
+
+    - ``"next_step"`` (default, Gymnasium's default): the step after a
+      table's episode ends resets that table (its action is ignored) and
+      returns its first observation with reward 0, terminated = truncated =
+      False and zeroed info entries; ``info["reset"]`` marks those tables.
+    - ``"same_step"``: a table whose episode ends is reset within the same
+      step; the returned observation is the new episode's first one, the
+      final observation is in ``info["final_obs"]`` (rows marked by
+      ``info["_final_obs"]``). No step is spent on resets: for one-shot tasks
+      such as PotOne this halves the calls per episode.
+    - ``"disabled"``: finished tables stay finished until
+      ``reset(options={"reset_mask": mask})``; stepping them raises.
     """
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": 4, "autoreset_mode": AutoresetMode.NEXT_STEP}
     task: str = ""
 
     def __init__(self, num_envs: int = 1, render_mode: str | None = None, config=None, render_ppm: int = 200,
-                 render_paths: bool = True, **overrides: Any):
+                 render_paths: bool = True, autoreset_mode: str | AutoresetMode = AutoresetMode.NEXT_STEP,
+                 **overrides: Any):
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode must be one of {self.metadata['render_modes']} or None, got {render_mode!r}")
+        mode = _autoreset_mode(autoreset_mode)
+        self.metadata = {**type(self).metadata, "autoreset_mode": mode}
         self.config = _make_config(self.task, config, overrides)
         self.num_envs = int(num_envs)
         self.render_mode = render_mode
@@ -291,8 +317,17 @@ class BilliardsVectorEnv(VectorEnv):
             self._table_rngs = [seeding.np_random(int(s))[0] for s in seeds]
         elif self._table_rngs is None:
             self._table_rngs = [np.random.default_rng(int(self.np_random.integers(2 ** 63))) for _ in range(N)]
-        self._core.reset_tables(np.arange(N), self._table_rngs)
-        self._autoreset_envs = np.zeros(N, dtype=bool)
+        mask = (options or {}).get("reset_mask")
+        if mask is None:
+            idx = np.arange(N)
+        else:
+            mask = np.asarray(mask)
+            if mask.shape != (N,) or mask.dtype != np.bool_:
+                raise ValueError(f"options['reset_mask'] must be a bool array of shape ({N},), got "
+                                 f"{mask.dtype} {mask.shape}")
+            idx = np.nonzero(mask)[0]
+        self._core.reset_tables(idx, [self._table_rngs[k] for k in idx])
+        self._autoreset_envs[idx] = False
         return self._core.observe(), {"legal_target": self.legal_target()}
 
     def step(self, actions):
@@ -300,9 +335,13 @@ class BilliardsVectorEnv(VectorEnv):
             raise RuntimeError("call reset() before step()")
         N, B = self.num_envs, self._core.n_balls
         a = self._core.validate_actions(actions, N)
+        mode = self.metadata["autoreset_mode"]
         done_prev = self._autoreset_envs
+        if mode == AutoresetMode.DISABLED and done_prev.any():
+            raise RuntimeError(f"tables {np.nonzero(done_prev)[0].tolist()} have finished their episodes: "
+                               "reset them with reset(options={'reset_mask': mask}) (autoreset_mode='disabled')")
         act = np.nonzero(~done_prev)[0]
-        rst = np.nonzero(done_prev)[0]
+        rst = np.nonzero(done_prev)[0] if mode == AutoresetMode.NEXT_STEP else np.zeros(0, dtype=np.int64)
         reward = np.zeros(N)
         terminated = np.zeros(N, dtype=bool)
         truncated = np.zeros(N, dtype=bool)
@@ -326,9 +365,18 @@ class BilliardsVectorEnv(VectorEnv):
         if len(rst):
             self._core.reset_tables(rst, [self._table_rngs[k] for k in rst])
         info["reward_terms"] = terms
-        info["reset"] = done_prev.copy()
-        self._autoreset_envs = terminated | truncated
-        return self._core.observe(), reward, terminated, truncated, info
+        info["reset"] = done_prev.copy() if mode == AutoresetMode.NEXT_STEP else np.zeros(N, dtype=bool)
+        done = terminated | truncated
+        obs = self._core.observe()
+        if mode == AutoresetMode.SAME_STEP and done.any():
+            fin = np.nonzero(done)[0]
+            info["final_obs"] = obs.copy()
+            info["_final_obs"] = done.copy()
+            self._core.reset_tables(fin, [self._table_rngs[k] for k in fin])
+            obs = self._core.observe()
+            done = np.zeros(N, dtype=bool)
+        self._autoreset_envs = done
+        return obs, reward, terminated, truncated, info
 
     def render(self):
         if self.render_mode is None:

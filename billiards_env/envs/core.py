@@ -212,29 +212,40 @@ class BilliardsCore:
     def _place(self, rngs, chunk: int = 64) -> np.ndarray:
         """Uniform random non-overlapping positions [n, B, 2], at least ``margin``
         clear of each other and of the cushions. Each table draws candidates
-        in chunks from its own RNG and accepts them greedily, so the result
-        does not depend on which other tables are placed in the same call;
-        legality is checked with one ``Table.contains`` call per round."""
+        in chunks from its own RNG and accepts them greedily in order (a
+        candidate is taken if it is legal and clear of the balls already
+        taken), so the result does not depend on which other tables are
+        placed in the same call. The greedy pass is vectorised over tables,
+        one ball slot at a time."""
         R, m, B, t = self.params.R, self.cfg.margin, self.n_balls, self.table
         lo = np.array([R + m, R + m])
         hi = np.array([t.width - R - m, t.length - R - m])
-        out = np.zeros((len(rngs), B, 2))
-        count = np.zeros(len(rngs), dtype=np.int64)
+        n = len(rngs)
+        out = np.zeros((n, B, 2))
+        count = np.zeros(n, dtype=np.int64)
         for _ in range(200):
             todo = np.nonzero(count < B)[0]
             if len(todo) == 0:
                 return out
-            cand = np.stack([rngs[e].uniform(lo, hi, size=(chunk, 2)) for e in todo])
+            cand = lo + (hi - lo) * np.stack([rngs[e].random((chunk, 2)) for e in todo])
             ok = t.contains(cand.reshape(-1, 2), R + m, 0.0, self.effects.pockets).reshape(len(todo), chunk)
-            for j, e in enumerate(todo):
-                for p in cand[j][ok[j]]:
-                    n = count[e]
-                    if n and np.min(np.hypot(*(out[e, :n] - p).T)) < 2 * R + m:
-                        continue
-                    out[e, n] = p
-                    count[e] += 1
-                    if count[e] == B:
-                        break
+            nxt = np.zeros(len(todo), dtype=np.int64)  # first candidate not yet considered
+            for _slot in range(B):
+                live = np.nonzero(count[todo] < B)[0]
+                if len(live) == 0:
+                    break
+                placed = out[todo[live]]  # [k, B, 2]; slots >= count are ignored below
+                d = np.linalg.norm(cand[live][:, :, None, :] - placed[:, None, :, :], axis=-1)
+                taken = np.arange(B)[None, None, :] < count[todo[live]][:, None, None]
+                clear = ~np.any(taken & (d < 2 * R + m), axis=2)
+                valid = ok[live] & clear & (np.arange(chunk)[None, :] >= nxt[live][:, None])
+                has = valid.any(axis=1)
+                first = np.argmax(valid, axis=1)
+                sel = live[has]
+                out[todo[sel], count[todo[sel]]] = cand[sel, first[has]]
+                count[todo[sel]] += 1
+                nxt[sel] = first[has] + 1
+                nxt[live[~has]] = chunk
         raise ValueError(f"could not place {B} balls without overlap on {t.name}")
 
     def _break(self, rngs) -> BallState:

@@ -139,8 +139,17 @@ class Table:
         inside the outline, at least R - tol from every cushion nose and jaw
         tip, and outside every pocket's capture circle."""
         pos = np.asarray(pos, dtype=np.float64).reshape(-1, 2)
-        poly = self.outline(pockets)
         x, y = pos[:, 0], pos[:, 1]
+        # Fast path: every cushion nose and jaw lies on or outside the playing
+        # rectangle, so a centre at least R inside it is clear of all of them;
+        # only the pocket capture circles remain to check.
+        inner = (x >= R) & (x <= self.width - R) & (y >= R) & (y <= self.length - R)
+        if inner.all():
+            ok = np.ones(len(pos), dtype=bool)
+            for cx, cy, r in self.geometry(pockets)[3]:
+                ok &= (x - cx) ** 2 + (y - cy) ** 2 > r * r
+            return ok
+        poly = self.outline(pockets)
         inside = np.zeros(len(pos), dtype=bool)
         for k in range(len(poly)):  # even-odd ray casting
             (x0, y0), (x1, y1) = poly[k - 1], poly[k]
