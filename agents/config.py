@@ -25,6 +25,8 @@ from typing import Any
 
 import yaml
 
+from billiards_env.envs.config import check_keys
+
 CONFIG_VERSION = 1
 ROOT = Path(__file__).resolve().parents[1]
 CONFIG_DIR = ROOT / "configs"
@@ -120,12 +122,12 @@ class TrainConfig:
     @classmethod
     def from_dict(cls, d: dict) -> "TrainConfig":
         d = dict(d)
-        _check_keys(cls, d, "training config")
+        check_keys(cls, d, "training config")
         nested = {"policy": PolicyConfig, "normalize": NormalizeConfig, "train": TrainSettings}
         for k, sub in nested.items():
             if k in d and not dataclasses.is_dataclass(d[k]):
                 v = dict(d[k] or {})
-                _check_keys(sub, v, f"{k} config")
+                check_keys(sub, v, f"{k} config")
                 for f in dataclasses.fields(sub):
                     if f.name in v and isinstance(v[f.name], list):
                         v[f.name] = tuple(v[f.name])
@@ -134,15 +136,6 @@ class TrainConfig:
             if k in d:
                 d[k] = dict(d[k] or {})
         return cls(**d)
-
-
-def _check_keys(cls, d: dict, where: str) -> None:
-    if not isinstance(d, dict):
-        raise ValueError(f"{where} must be a mapping, got {type(d).__name__}")
-    names = {f.name for f in dataclasses.fields(cls)}
-    unknown = set(d) - names
-    if unknown:
-        raise ValueError(f"unknown key(s) {sorted(unknown)} in {where}; known: {sorted(names)}")
 
 
 def _check_algo_kwargs(algo: str, kw: dict) -> None:

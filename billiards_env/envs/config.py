@@ -21,7 +21,9 @@ TASKS = ("pot_one", "run_out", "nine_ball")
 CONFIG_DIR = Path(__file__).resolve().parents[2] / "configs" / "tasks"
 
 
-def _check_keys(cls, d: dict, where: str) -> None:
+def check_keys(cls, d: dict, where: str) -> None:
+    """Raise a ValueError naming any key of ``d`` that is not a field of the
+    dataclass ``cls`` (configs reject typos instead of ignoring them)."""
     if not isinstance(d, dict):
         raise ValueError(f"{where} must be a mapping, got {type(d).__name__}")
     names = {f.name for f in dataclasses.fields(cls)}
@@ -69,7 +71,7 @@ class RewardConfig:
     @classmethod
     def from_dict(cls, d: dict | None) -> "RewardConfig":
         d = dict(d or {})
-        _check_keys(cls, d, "reward config")
+        check_keys(cls, d, "reward config")
         return cls(**d)
 
     def to_dict(self) -> dict:
@@ -120,7 +122,7 @@ class NoiseConfig:
         if isinstance(v, dict):
             d = dict(v)
             base = cls.preset(d.pop("preset")).to_dict() if "preset" in d else {}
-            _check_keys(cls, d, "noise config")
+            check_keys(cls, d, "noise config")
             return cls(**{**base, **d})
         raise ValueError(f"noise must be a preset name, a mapping or a NoiseConfig, got {type(v).__name__}")
 
@@ -202,7 +204,7 @@ class TaskConfig:
     @classmethod
     def from_dict(cls, d: dict, **overrides) -> "TaskConfig":
         d = {**dict(d), **overrides}
-        _check_keys(cls, d, "task config")
+        check_keys(cls, d, "task config")
         if "task" not in d:
             raise ValueError("task config needs a 'task' key")
         if "effects" in d and not isinstance(d["effects"], Effects):

@@ -256,6 +256,38 @@ def _after_impact_set(pos, vel, om, st, e, sim_i, sim_j, sim_w, ns, balls, nb, p
         _after_impact(vel, om, st, e, balls[q], p, spin_on, slide_on, zspin_on)
 
 
+@numba.njit(**JIT)
+def _resolve_impact_set(pos, vel, om, st, e, t, sim_i, sim_j, sim_w, ns, balls, buf, buf2, p,
+                        friction_on, spin_on, slide_on, zspin_on, diag_on, diag, out_first,
+                        rec_on, rec_n, rec_t, rec_kind, rec_ij, rec_state):
+    """Everything a set of simultaneous ball-ball impacts does, for both
+    solvers: impulses, diagnostics of that impulse set (energy, momentum),
+    resting contacts and new motion states, first contact, event log.
+    Returns the number of balls involved (listed in ``balls``)."""
+    nb = _balls_of(sim_i, sim_j, ns, balls)
+    e0 = 0.0; px0 = 0.0; py0 = 0.0
+    if diag_on:
+        for q in range(nb):
+            e0 += energy(vel, om, st, e, balls[q], p)
+            px0 += vel[e, balls[q], 0]; py0 += vel[e, balls[q], 1]
+    _impact_set(pos, vel, om, st, e, sim_i, sim_j, sim_w, ns, balls, nb, buf, buf2, p, friction_on, spin_on)
+    if diag_on:
+        e1 = 0.0; px1 = 0.0; py1 = 0.0
+        for q in range(nb):
+            e1 += energy(vel, om, st, e, balls[q], p)
+            px1 += vel[e, balls[q], 0]; py1 += vel[e, balls[q], 1]
+        diag[e, 0] = max(diag[e, 0], e1 - e0)
+        diag[e, 1] = max(diag[e, 1], math.hypot(px1 - px0, py1 - py0) * p[C.P_M])
+    _after_impact_set(pos, vel, om, st, e, sim_i, sim_j, sim_w, ns, balls, nb, p, spin_on, slide_on, zspin_on)
+    for s in range(ns):
+        i, j = sim_i[s], sim_j[s]
+        if out_first[e] == -1 and (i == 0 or j == 0):
+            out_first[e] = j if i == 0 else i
+        if rec_on:
+            _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, t, C.EV_BALL_BALL, i, j)
+    return nb
+
+
 # ---------------------------------------------------------- event solver --
 def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIAG):
     TAG = SOURCE_TAG
@@ -322,27 +354,9 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                         for j in range(i + 1, B):
                             if tpair[e, i, j] <= tmin + SIMULTANEOUS_TIME and ns < MAX_SIMULTANEOUS:
                                 sim_i[ns] = i; sim_j[ns] = j; ns += 1
-                    nb = _balls_of(sim_i, sim_j, ns, balls)
-                    if DIAG:
-                        e0 = 0.0; px0 = 0.0; py0 = 0.0
-                        for q in range(nb):
-                            e0 += energy(vel, om, st, e, balls[q], p)
-                            px0 += vel[e, balls[q], 0]; py0 += vel[e, balls[q], 1]
-                    _impact_set(pos, vel, om, st, e, sim_i, sim_j, sim_w, ns, balls, nb, buf, buf2, p, BALL_FRICTION, SPIN)
-                    if DIAG:
-                        e1 = 0.0; px1 = 0.0; py1 = 0.0
-                        for q in range(nb):
-                            e1 += energy(vel, om, st, e, balls[q], p)
-                            px1 += vel[e, balls[q], 0]; py1 += vel[e, balls[q], 1]
-                        diag[e, 0] = max(diag[e, 0], e1 - e0)
-                        diag[e, 1] = max(diag[e, 1], math.hypot(px1 - px0, py1 - py0) * p[C.P_M])
-                    _after_impact_set(pos, vel, om, st, e, sim_i, sim_j, sim_w, ns, balls, nb, p, SPIN, SLIDE, ZSPIN)
-                    for s in range(ns):
-                        i, j = sim_i[s], sim_j[s]
-                        if out_first[e] == -1 and (i == 0 or j == 0):
-                            out_first[e] = j if i == 0 else i
-                        if rec_on:
-                            _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, t, C.EV_BALL_BALL, i, j)
+                    nb = _resolve_impact_set(pos, vel, om, st, e, t, sim_i, sim_j, sim_w, ns, balls, buf, buf2, p,
+                                             BALL_FRICTION, SPIN, SLIDE, ZSPIN, DIAG, diag, out_first,
+                                             rec_on, rec_n, rec_t, rec_kind, rec_ij, rec_state)
                     for q in range(nb):
                         _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, balls[q], t, p, segs, norms, tips, pk)
                 else:
@@ -453,28 +467,9 @@ def _make_step(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIA
                                     sim_i[ns] = i; sim_j[ns] = j; ns += 1
                         if ns == 0:  # rounding moved the pair off contact: resolve it alone
                             sim_i[0] = a; sim_j[0] = b; ns = 1
-                        nb = _balls_of(sim_i, sim_j, ns, balls)
-                        if DIAG:
-                            e0 = 0.0; px0 = 0.0; py0 = 0.0
-                            for q in range(nb):
-                                e0 += energy(vel, om, st, e, balls[q], p)
-                                px0 += vel[e, balls[q], 0]; py0 += vel[e, balls[q], 1]
-                        _impact_set(pos, vel, om, st, e, sim_i, sim_j, sim_w, ns, balls, nb, buf, buf2, p, BALL_FRICTION, SPIN)
-                        if DIAG:
-                            e1 = 0.0; px1 = 0.0; py1 = 0.0
-                            for q in range(nb):
-                                e1 += energy(vel, om, st, e, balls[q], p)
-                                px1 += vel[e, balls[q], 0]; py1 += vel[e, balls[q], 1]
-                            diag[e, 0] = max(diag[e, 0], e1 - e0)
-                            diag[e, 1] = max(diag[e, 1], math.hypot(px1 - px0, py1 - py0) * p[C.P_M])
-                        _after_impact_set(pos, vel, om, st, e, sim_i, sim_j, sim_w, ns, balls, nb, p, SPIN, SLIDE, ZSPIN)
-                        for s in range(ns):
-                            i, j = sim_i[s], sim_j[s]
-                            if out_first[e] == -1 and (i == 0 or j == 0):
-                                out_first[e] = j if i == 0 else i
-                            if rec_on:
-                                _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, tev,
-                                        C.EV_BALL_BALL, i, j)
+                        _resolve_impact_set(pos, vel, om, st, e, tev, sim_i, sim_j, sim_w, ns, balls, buf, buf2, p,
+                                            BALL_FRICTION, SPIN, SLIDE, ZSPIN, DIAG, diag, out_first,
+                                            rec_on, rec_n, rec_t, rec_kind, rec_ij, rec_state)
                     elif kind == C.EV_POCKET:
                         _pocket_ball(vel, om, st, pocket, e, a, b)
                     else:
