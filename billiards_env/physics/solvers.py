@@ -178,6 +178,26 @@ def _load(vel, om, st, e, i, buf, k):
     st[e, i] = np.int64(buf[k, 5])
 
 
+@numba.njit(**JIT)
+def _resolve_boundary(pos, vel, om, st, pocket, e, kind, a, b, p, norms, tips,
+                      friction_on, spin_on, slide_on, zspin_on, diag_on, diag, out_cush):
+    """Ball a meets boundary b (both solvers): drops into pocket b, or
+    rebounds from cushion segment b or jaw tip b."""
+    if kind == C.EV_POCKET:
+        _pocket_ball(vel, om, st, pocket, e, a, b)
+        return
+    if kind == C.EV_CUSHION:
+        nx, ny = norms[b, 0], norms[b, 1]
+    else:  # the detector's own normal: ball centre minus jaw tip
+        nx = pos[e, a, 0] - tips[b, 0]; ny = pos[e, a, 1] - tips[b, 1]
+    e0 = energy(vel, om, st, e, a, p) if diag_on else 0.0
+    resolve_cushion(vel, om, st, e, a, nx, ny, p, friction_on, spin_on)
+    _after_impact(vel, om, st, e, a, p, spin_on, slide_on, zspin_on)
+    if diag_on:
+        diag[e, 0] = max(diag[e, 0], energy(vel, om, st, e, a, p) - e0)
+    out_cush[e, a] += 1
+
+
 MAX_SIMULTANEOUS = 4  # ball-ball impacts resolved as one simultaneous set
 
 
@@ -363,20 +383,9 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                     if kind == -2:
                         kind = apply_transition(vel, om, st, e, a, p)
                         b = -1
-                    elif kind == C.EV_POCKET:
-                        _pocket_ball(vel, om, st, pocket, e, a, b)
                     else:
-                        if kind == C.EV_CUSHION:
-                            nx, ny = norms[b, 0], norms[b, 1]
-                        else:
-                            nx = pos[e, a, 0] - tips[b, 0]; ny = pos[e, a, 1] - tips[b, 1]
-                        if DIAG:
-                            e0 = energy(vel, om, st, e, a, p)
-                        resolve_cushion(vel, om, st, e, a, nx, ny, p, CUSHION_FRICTION, SPIN)
-                        _after_impact(vel, om, st, e, a, p, SPIN, SLIDE, ZSPIN)
-                        if DIAG:
-                            diag[e, 0] = max(diag[e, 0], energy(vel, om, st, e, a, p) - e0)
-                        out_cush[e, a] += 1
+                        _resolve_boundary(pos, vel, om, st, pocket, e, kind, a, b, p, norms, tips,
+                                          CUSHION_FRICTION, SPIN, SLIDE, ZSPIN, DIAG, diag, out_cush)
                     if rec_on:
                         _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, t, kind, a, b)
                     _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, a, t, p, segs, norms, tips, pk)
@@ -470,20 +479,9 @@ def _make_step(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIA
                         _resolve_impact_set(pos, vel, om, st, e, tev, sim_i, sim_j, sim_w, ns, balls, buf, buf2, p,
                                             BALL_FRICTION, SPIN, SLIDE, ZSPIN, DIAG, diag, out_first,
                                             rec_on, rec_n, rec_t, rec_kind, rec_ij, rec_state)
-                    elif kind == C.EV_POCKET:
-                        _pocket_ball(vel, om, st, pocket, e, a, b)
                     else:
-                        if kind == C.EV_CUSHION:
-                            nx, ny = norms[b, 0], norms[b, 1]
-                        else:
-                            nx = pos[e, a, 0] - tips[b, 0]; ny = pos[e, a, 1] - tips[b, 1]
-                        if DIAG:
-                            e0 = energy(vel, om, st, e, a, p)
-                        resolve_cushion(vel, om, st, e, a, nx, ny, p, CUSHION_FRICTION, SPIN)
-                        _after_impact(vel, om, st, e, a, p, SPIN, SLIDE, ZSPIN)
-                        if DIAG:
-                            diag[e, 0] = max(diag[e, 0], energy(vel, om, st, e, a, p) - e0)
-                        out_cush[e, a] += 1
+                        _resolve_boundary(pos, vel, om, st, pocket, e, kind, a, b, p, norms, tips,
+                                          CUSHION_FRICTION, SPIN, SLIDE, ZSPIN, DIAG, diag, out_cush)
                     if DIAG:
                         en = _total_energy(vel, om, st, e, p)
                         diag[e, 0] = max(diag[e, 0], en - en_prev)
