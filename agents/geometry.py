@@ -1,7 +1,7 @@
 """Ghost-ball geometry on batched states (numpy, vectorised over tables).
 
 The ghost-ball construction (Alciatore, "The Illustrated Principles of Pool
-and Billiards", TP 3.1): to send the object ball at O towards an aim point P,
+and Billiards", ghost-ball aiming): to send the object ball at O towards an aim point P,
 the cue ball must arrive at the *ghost ball* G = O - 2R * unit(P - O), so the
 cue aims at G. The cut angle theta is the angle between the cue's path
 (C -> G) and the object ball's path (O -> P); the object ball leaves with
@@ -12,7 +12,7 @@ distance d with rolling resistance mu_r loses v^2 by 2 mu_r g d; an object
 ball leaves the collision sliding without spin and reaches rolling at 5/7 of
 its launch speed; a cue ball struck with height offset b ends its slide at
 5/7 (1 + b) of its strike speed (conservation of angular momentum about the
-contact point, Alciatore TP 4.1).
+contact point, Alciatore's technical proofs on stun and roll).
 """
 from __future__ import annotations
 

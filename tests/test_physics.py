@@ -1,7 +1,7 @@
 """Simulator checks against closed-form answers and conservation laws
 (issue 3; the slide/roll/spin closed forms and the step solver's convergence
-are in test_accuracy.py). Closed forms follow Alciatore, TP 4.1 (slide and roll) and
-TP A.5 / A.14 (impacts)."""
+are in test_accuracy.py). Closed forms follow Alciatore's technical proofs (slide and roll,
+the 90-degree rule, throw)."""
 import dataclasses
 import math
 
@@ -48,7 +48,7 @@ def test_miscue_raises(params):
 
 def test_stun_cut_shot_splits_at_90_degrees(big_box):
     """e_b = 1, no ball-ball friction, stun cue ball (no spin at impact):
-    the two balls leave at right angles (Alciatore TP A.5)."""
+    the two balls leave at right angles (the 90-degree rule, Alciatore)."""
     p = dataclasses.replace(PhysicsParams.standard(), e_b=1.0, mu_b=0.0, mu_s=0.0)
     R = p.R
     cut = math.radians(30)

@@ -1,6 +1,6 @@
 """Ball-ball impact response (numba kernels).
 
-Instantaneous impulse model for equal balls (Alciatore TP A.14, the model of
+Instantaneous impulse model for equal balls (Alciatore's technical proofs on throw, the model of
 pooltool's "frictional inelastic" resolver; the write-up's stage 4 with its
 signs made consistent): the normal impulse exchanges velocity along the line
 of centres with restitution e_b; Coulomb friction mu_b acts against the slip

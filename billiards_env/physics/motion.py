@@ -1,7 +1,7 @@
 """Ball motion on the felt between events (numba kernels).
 
-Model (Alciatore, "The Illustrated Principles of Pool and Billiards", TP 4.1
-and 4.2; the same equations as pooltool's evolve module, Kiefl 2024):
+Model (Alciatore, "The Illustrated Principles of Pool and Billiards",
+technical proofs on sliding and rolling; the same equations as pooltool's evolve module, Kiefl 2024):
 - sliding: the contact-point velocity u = v + omega x (-R z) keeps its
   direction; v' = -mu_s g u_hat, omega_xy' = 5 mu_s g / (2R) (z x u_hat), so
   |u| falls at 7/2 mu_s g and sliding lasts 2|u0| / (7 mu_s g);

@@ -6,8 +6,8 @@ Presets:
   e = 1). They give cue-ball speeds of a few cm/s.
 - ``standard``: regulation pool. Ball mass and radius from the WPA
   specification; felt friction from Alciatore ("The Illustrated Principles of
-  Pool and Billiards", TP 4.1); ball-ball restitution 0.95 and friction 0.06
-  from Alciatore TP A.14 / Marlow; cushion restitution 0.85, friction 0.2 and
+  Pool and Billiards", technical proofs); ball-ball restitution 0.95 and friction 0.06
+  from Alciatore's throw analysis and Marlow; cushion restitution 0.85, friction 0.2 and
   nose height 7R/5 from Han (2005), "Dynamics in carom and three cushion
   billiards"; spinning friction 0.0127 as used by pooltool (Kiefl).
 """

@@ -5,7 +5,7 @@ impulse J = k x dt (dt the contact time), so v = k dt x / m along the aim.
 The impulse acts at the contact point r = R(-sqrt(1 - a^2 - b^2) d + a s + b z)
 (d the aim direction, s = d x z to the right, a side and b height offsets in
 units of R), so omega = (r x J) / I with I = 2/5 m R^2, which reduces to
-omega = 5 v / (2R) (a z + b (z x d)) (Alciatore TP A.30, level cue, no
+omega = 5 v / (2R) (a z + b (z x d)) (Alciatore's technical proofs on tip offset; level cue, no
 squirt). b = 2/5 gives natural roll; b < 0 draw; a > 0 right english.
 """
 from __future__ import annotations
