@@ -29,14 +29,20 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--regressions", type=pathlib.Path, default=ROOT / "tests" / "regressions")
     ap.add_argument("--summary", type=pathlib.Path, default=None, help="write a JSON summary here")
+    ap.add_argument("--max-minutes", type=float, default=None,
+                    help="stop after this much wall time (the summary says how many shots ran)")
     args = ap.parse_args(argv)
 
     rng = np.random.default_rng(args.seed)
     done = failures = events = 0
     kinds = {}
     t0 = time.perf_counter()
+    stopped_early = False
     with tqdm(total=args.shots, unit="shot", desc=f"fuzz {args.solver}") as bar:
         while done < args.shots:
+            if args.max_minutes is not None and time.perf_counter() - t0 > 60 * args.max_minutes:
+                stopped_early = True
+                break
             n = min(args.batch, args.shots - done)
             layout = LAYOUTS[int(rng.integers(len(LAYOUTS)))]
             preset = "seed" if rng.random() < 0.2 else "standard"
@@ -55,6 +61,7 @@ def main(argv=None):
             bar.set_postfix(violations=failures)
     wall = time.perf_counter() - t0
     summary = dict(solver=args.solver, dt=args.dt if args.solver == "step" else None, shots=done,
+                   shots_requested=args.shots, stopped_by_time_budget=stopped_early,
                    shots_with_violations=failures, violation_kinds=kinds, events=events,
                    wall_s=round(wall, 1), shots_per_s=round(done / wall, 1), seed=args.seed)
     print(json.dumps(summary, indent=1))
