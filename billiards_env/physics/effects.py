@@ -1,9 +1,11 @@
 """Which physical effects a scene simulates.
 
-Each combination compiles its own kernel (the flags are compile-time
-constants of a numba closure), so an effect that is off is not executed at
-all, not branch-tested per ball. A new combination compiles once and is cached
-on disk.
+Each combination compiles its own kernel: the flags are compile-time
+constants of a numba closure. Branches on them in the kernel are pruned when
+it compiles; the helpers it calls get them as constant arguments, which LLVM
+folds where it inlines a helper. An effect that is off is never executed; at
+most a branch on a constant remains. A new combination compiles once and is
+cached on disk.
 """
 from __future__ import annotations
 

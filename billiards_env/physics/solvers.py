@@ -3,8 +3,9 @@
 ``make_solver(kind, effects_key, diagnostics)`` returns one compiled kernel
 that simulates a batch of tables to rest, in parallel over tables (prange).
 The effect flags are free variables of the closure, which numba freezes as
-compile-time constants, so a disabled effect's code is removed at compile
-time. Each variant is cached on disk (numba keys the cache on the closure's
+compile-time constants: the kernel's branches on them are pruned when it
+compiles, and helpers receive them as constant arguments (folded where LLVM
+inlines the helper), so a disabled effect's code never runs. Each variant is cached on disk (numba keys the cache on the closure's
 values) and memoised in-process.
 
 Event solver: exact event-driven simulation (Leckie & Greenspan 2006; the
