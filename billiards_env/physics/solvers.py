@@ -224,6 +224,15 @@ def _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, i, t, p, segs, nor
 
 
 @numba.njit(**JIT)
+def _impact_buffers():
+    """Per-table scratch of a simultaneous impact set: pair ids, approach
+    speeds, ball ids and two state copies (for the two resolution orders)."""
+    return (np.empty(MAX_SIMULTANEOUS, dtype=np.int64), np.empty(MAX_SIMULTANEOUS, dtype=np.int64),
+            np.empty(MAX_SIMULTANEOUS), np.empty(2 * MAX_SIMULTANEOUS, dtype=np.int64),
+            np.empty((2 * MAX_SIMULTANEOUS, 6)), np.empty((2 * MAX_SIMULTANEOUS, 6)))
+
+
+@numba.njit(**JIT)
 def _balls_of(sim_i, sim_j, ns, balls):
     """Distinct balls of the impact set, into ``balls``; returns how many."""
     nb = 0
@@ -336,12 +345,7 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                 en_prev = _total_energy(vel, om, st, e, p)
             out_first[e] = -1
             nev = 0
-            sim_i = np.empty(MAX_SIMULTANEOUS, dtype=np.int64)
-            sim_j = np.empty(MAX_SIMULTANEOUS, dtype=np.int64)
-            sim_w = np.empty(MAX_SIMULTANEOUS)
-            buf = np.empty((2 * MAX_SIMULTANEOUS, 6))
-            buf2 = np.empty((2 * MAX_SIMULTANEOUS, 6))
-            balls = np.empty(2 * MAX_SIMULTANEOUS, dtype=np.int64)
+            sim_i, sim_j, sim_w, balls, buf, buf2 = _impact_buffers()
             while True:
                 # earliest event; ties go to the first found (pairs, then
                 # boundaries, then transitions), a fixed deterministic order
@@ -427,12 +431,7 @@ def _make_step(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIA
             t = 0.0
             nev = 0
             steps = 0
-            sim_i = np.empty(MAX_SIMULTANEOUS, dtype=np.int64)
-            sim_j = np.empty(MAX_SIMULTANEOUS, dtype=np.int64)
-            sim_w = np.empty(MAX_SIMULTANEOUS)
-            buf = np.empty((2 * MAX_SIMULTANEOUS, 6))
-            buf2 = np.empty((2 * MAX_SIMULTANEOUS, 6))
-            balls = np.empty(2 * MAX_SIMULTANEOUS, dtype=np.int64)
+            sim_i, sim_j, sim_w, balls, buf, buf2 = _impact_buffers()
             while True:
                 moving = False
                 for i in range(B):
