@@ -19,6 +19,7 @@ import math
 
 from ._jit import njit
 from . import constants as C
+from .vec import norm
 from .motion import end_slide
 
 
@@ -35,7 +36,7 @@ def _approach(pos, vel, e, i, j):
 @njit
 def _rolling_accel(vel, e, i, mu_r_g):
     vx, vy = vel[e, i, 0], vel[e, i, 1]
-    n = math.hypot(vx, vy)
+    n = norm(vx, vy)
     if n <= C.SPEED_EPS:
         return 0.0, 0.0
     return -mu_r_g * vx / n, -mu_r_g * vy / n
@@ -90,7 +91,7 @@ def resolve_ball_ball(pos, vel, om, st, e, i, j, p, friction_on, spin_on):
     R, m = p[C.P_R], p[C.P_M]
     nx = pos[e, j, 0] - pos[e, i, 0]
     ny = pos[e, j, 1] - pos[e, i, 1]
-    d = math.hypot(nx, ny)
+    d = norm(nx, ny)
     nx /= d; ny /= d
     # approach speed along the line of centres (> 0 when closing)
     w = _approach(pos, vel, e, i, j) / d
@@ -111,7 +112,7 @@ def rest_contact(pos, vel, om, st, e, i, j, p, spin_on):
     the impulse so that the impulse alone can be checked for momentum."""
     nx = pos[e, j, 0] - pos[e, i, 0]
     ny = pos[e, j, 1] - pos[e, i, 1]
-    d = math.hypot(nx, ny)
+    d = norm(nx, ny)
     _rest(pos, vel, om, st, e, i, j, nx / d, ny / d, d, p, spin_on)
 
 

@@ -19,6 +19,7 @@ import math
 
 from ._jit import njit
 from . import constants as C
+from .vec import norm
 from .motion import end_slide
 
 
@@ -30,7 +31,7 @@ def resolve_cushion(vel, om, st, e, i, rx, ry, p, friction_on, spin_on):
     test below uses the detector's own expression, so the two never disagree
     by rounding about whether the ball is closing. Returns the approach speed
     before the impact."""
-    d = math.hypot(rx, ry)
+    d = norm(rx, ry)
     nx, ny = rx / d, ry / d
     w = -(vel[e, i, 0] * rx + vel[e, i, 1] * ry) / d
     vn = -w
@@ -65,7 +66,7 @@ def resolve_cushion(vel, om, st, e, i, rx, ry, p, friction_on, spin_on):
         A = 3.5 / m
         B = 1.0 / m
         pz = -(1.0 + e_c) * c / B           # eq. 17
-        s_abs = math.hypot(sx, sy)
+        s_abs = norm(sx, sy)
         if s_abs / A <= p[C.P_F_C] * pz:    # eqs. 18, 20: sticking
             px = sx / A
             py = sy / A

@@ -13,6 +13,7 @@ import math
 
 from ._jit import njit
 from . import constants as C
+from .vec import norm
 from .motion import acceleration
 from .roots import first_entry, first_entry_quadratic
 
@@ -85,8 +86,8 @@ def pair_time(pos, vel, om, st, e, i, j, H, p):
 def _circle_time(px, py, vx, vy, ax, ay, cx, cy, r, H, f_tol, f_floor):
     """Time until a point moving as p + v t + a t^2/2 enters the circle (c, r)."""
     dx, dy = px - cx, py - cy
-    gap = math.hypot(dx, dy) - r
-    if gap > math.hypot(vx, vy) * H + 0.5 * math.hypot(ax, ay) * H * H + f_tol:
+    gap = norm(dx, dy) - r
+    if gap > norm(vx, vy) * H + 0.5 * norm(ax, ay) * H * H + f_tol:
         return math.inf
     c4 = 0.25 * (ax * ax + ay * ay)
     c3 = vx * ax + vy * ay
@@ -182,6 +183,6 @@ def pair_time_linear(pos, vel, st, e, i, j, H, p):
     if c1 >= 0.0:
         return math.inf
     c0 = dx * dx + dy * dy - R2 * R2
-    if c0 > 0.0 and math.sqrt(c0 + R2 * R2) - R2 > math.hypot(dvx, dvy) * H:
+    if c0 > 0.0 and math.sqrt(c0 + R2 * R2) - R2 > norm(dvx, dvy) * H:
         return math.inf
     return first_entry_quadratic(dvx * dvx + dvy * dvy, c1, c0, H, 2.0 * R2 * C.CONTACT_TOL, -math.inf)

@@ -19,6 +19,7 @@ import math
 
 from ._jit import njit
 from . import constants as C
+from .vec import norm
 
 
 @njit
@@ -32,7 +33,7 @@ def classify(vel, om, st, e, i, R, spin_on):
     """Set the motion state of ball i from its velocities; snaps near-rolling
     spins to exact rolling so no spurious slide events follow."""
     vx, vy = vel[e, i, 0], vel[e, i, 1]
-    speed = math.hypot(vx, vy)
+    speed = norm(vx, vy)
     if not spin_on:
         om[e, i, 0] = 0.0; om[e, i, 1] = 0.0; om[e, i, 2] = 0.0
         if speed <= C.SPEED_EPS:
@@ -42,7 +43,7 @@ def classify(vel, om, st, e, i, R, spin_on):
             st[e, i] = C.ROLLING
         return
     ux, uy = slip(vx, vy, om[e, i, 0], om[e, i, 1], R)
-    if math.hypot(ux, uy) > C.SPEED_EPS:
+    if norm(ux, uy) > C.SPEED_EPS:
         st[e, i] = C.SLIDING
     elif speed > C.SPEED_EPS:
         om[e, i, 0] = -vy / R
@@ -75,14 +76,14 @@ def acceleration(vel, om, st, e, i, p):
     s = st[e, i]
     if s == C.SLIDING:
         ux, uy = slip(vel[e, i, 0], vel[e, i, 1], om[e, i, 0], om[e, i, 1], R)
-        n = math.hypot(ux, uy)
+        n = norm(ux, uy)
         if n == 0.0:  # reached its slide end by rounding, a hair early
             return 0.0, 0.0
         a = p[C.P_MU_S] * g / n
         return -a * ux, -a * uy
     if s == C.ROLLING:
         vx, vy = vel[e, i, 0], vel[e, i, 1]
-        n = math.hypot(vx, vy)
+        n = norm(vx, vy)
         if n == 0.0:  # reached its stop by rounding, a hair early
             return 0.0, 0.0
         a = p[C.P_MU_R] * g / n
@@ -97,9 +98,9 @@ def transition_time(vel, om, st, e, i, p):
     s = st[e, i]
     if s == C.SLIDING:
         ux, uy = slip(vel[e, i, 0], vel[e, i, 1], om[e, i, 0], om[e, i, 1], R)
-        return 2.0 * math.hypot(ux, uy) / (7.0 * p[C.P_MU_S] * g)
+        return 2.0 * norm(ux, uy) / (7.0 * p[C.P_MU_S] * g)
     if s == C.ROLLING:
-        return math.hypot(vel[e, i, 0], vel[e, i, 1]) / (p[C.P_MU_R] * g)
+        return norm(vel[e, i, 0], vel[e, i, 1]) / (p[C.P_MU_R] * g)
     if s == C.SPINNING:
         rate = 2.5 * p[C.P_MU_SP] * g / R
         if rate <= 0.0:
@@ -132,7 +133,7 @@ def evolve(pos, vel, om, st, e, i, dt, p, zspin_on, spin_on):
         pos[e, i, 1] += vel[e, i, 1] * dt + 0.5 * ay * dt * dt
         if s == C.SLIDING:
             ux, uy = slip(vel[e, i, 0], vel[e, i, 1], om[e, i, 0], om[e, i, 1], R)
-            n = math.hypot(ux, uy)
+            n = norm(ux, uy)
             k = 2.5 * p[C.P_MU_S] * g / R * dt / n if n > 0.0 else 0.0
             om[e, i, 0] -= k * uy
             om[e, i, 1] += k * ux
@@ -158,7 +159,7 @@ def apply_transition(vel, om, st, e, i, p):
         # u = 0 exactly: lock the spin to the velocity
         om[e, i, 0] = -vel[e, i, 1] / R
         om[e, i, 1] = vel[e, i, 0] / R
-        if math.hypot(vel[e, i, 0], vel[e, i, 1]) > C.SPEED_EPS:
+        if norm(vel[e, i, 0], vel[e, i, 1]) > C.SPEED_EPS:
             st[e, i] = C.ROLLING
         else:
             vel[e, i, 0] = 0.0; vel[e, i, 1] = 0.0; om[e, i, 0] = 0.0; om[e, i, 1] = 0.0
@@ -186,7 +187,7 @@ def friction_step(vel, om, st, e, i, dt, p, zspin_on, spin_on):
     changed = False
     if s == C.SLIDING:
         ux, uy = slip(vel[e, i, 0], vel[e, i, 1], om[e, i, 0], om[e, i, 1], R)
-        n = math.hypot(ux, uy)
+        n = norm(ux, uy)
         if n <= 3.5 * p[C.P_MU_S] * g * dt:
             end_slide(vel, om, e, i, R)
             classify(vel, om, st, e, i, R, True)
@@ -198,7 +199,7 @@ def friction_step(vel, om, st, e, i, dt, p, zspin_on, spin_on):
             om[e, i, 0] -= k * uy; om[e, i, 1] += k * ux
     elif s == C.ROLLING:
         vx, vy = vel[e, i, 0], vel[e, i, 1]
-        n = math.hypot(vx, vy)
+        n = norm(vx, vy)
         dv = p[C.P_MU_R] * g * dt
         if n <= dv:
             vel[e, i, 0] = 0.0; vel[e, i, 1] = 0.0; om[e, i, 0] = 0.0; om[e, i, 1] = 0.0

@@ -215,10 +215,14 @@ def _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, i, t, p, segs, nor
     h = tt[e, i] - t
     tb_rel, k, idx = boundary_time(pos, vel, om, st, e, i, h, p, segs, norms, tips, pockets, False)
     tb[e, i] = t + tb_rel; bkind[e, i] = k; bidx[e, i] = idx
+    # A pair needs looking at only until the first known event of either
+    # ball (transition or boundary): that event refreshes the ball and so
+    # recomputes the pair. Short horizons keep the broad phase tight.
+    next_i = min(tt[e, i], tb[e, i])
     for j in range(B):
         if j == i:
             continue
-        hj = min(tt[e, i], tt[e, j]) - t
+        hj = min(next_i, tt[e, j], tb[e, j]) - t
         tij = t + pair_time(pos, vel, om, st, e, i, j, hj, p)
         tpair[e, i, j] = tij; tpair[e, j, i] = tij
 
