@@ -51,29 +51,40 @@ def _apart(lo1, hi1, lo2, hi2, gap):
 
 
 @njit
-def pair_time(pos, vel, om, st, e, i, j, H, p):
-    """Time from now until balls i and j meet (inf if not within H)."""
+def sweep_path(pos, vel, om, st, e, i, H, p, paths):
+    """Store ball i's acceleration and the box its path sweeps over
+    [now, now + H] in paths[e, i] = (ax, ay, x_lo, x_hi, y_lo, y_hi)."""
+    x, y = pos[e, i, 0], pos[e, i, 1]
+    ax, ay = acceleration(vel, om, st, e, i, p)
+    paths[e, i, 0] = ax; paths[e, i, 1] = ay
+    if not _moving(st[e, i]):
+        paths[e, i, 2] = x; paths[e, i, 3] = x; paths[e, i, 4] = y; paths[e, i, 5] = y
+    elif H < math.inf:
+        paths[e, i, 2], paths[e, i, 3] = _extent(x, vel[e, i, 0], ax, H)
+        paths[e, i, 4], paths[e, i, 5] = _extent(y, vel[e, i, 1], ay, H)
+    else:
+        paths[e, i, 2] = -math.inf; paths[e, i, 3] = math.inf
+        paths[e, i, 4] = -math.inf; paths[e, i, 5] = math.inf
+
+
+@njit
+def pair_time(pos, vel, st, paths, e, i, j, H, p):
+    """Time from now until balls i and j meet (inf if not within H).
+    ``paths`` holds each ball's acceleration and swept box (``sweep_path``)."""
     si, sj = st[e, i], st[e, j]
     if si == C.POCKETED or sj == C.POCKETED or not (_moving(si) or _moving(sj)):
         return math.inf
     R2 = 2.0 * p[C.P_R]
+    # broad phase: the boxes swept by the two paths stay 2R apart
+    if (_apart(paths[e, i, 2], paths[e, i, 3], paths[e, j, 2], paths[e, j, 3], R2 + BOX_SLACK)
+            or _apart(paths[e, i, 4], paths[e, i, 5], paths[e, j, 4], paths[e, j, 5], R2 + BOX_SLACK)):
+        return math.inf
     dx = pos[e, i, 0] - pos[e, j, 0]
     dy = pos[e, i, 1] - pos[e, j, 1]
     dvx = vel[e, i, 0] - vel[e, j, 0]
     dvy = vel[e, i, 1] - vel[e, j, 1]
-    aix, aiy = acceleration(vel, om, st, e, i, p)
-    ajx, ajy = acceleration(vel, om, st, e, j, p)
-    dax, day = aix - ajx, aiy - ajy
-    # broad phase: the boxes swept by the two paths within H stay 2R apart
-    if H < math.inf:
-        xi0, xi1 = _extent(pos[e, i, 0], vel[e, i, 0], aix, H)
-        xj0, xj1 = _extent(pos[e, j, 0], vel[e, j, 0], ajx, H)
-        if _apart(xi0, xi1, xj0, xj1, R2 + BOX_SLACK):
-            return math.inf
-        yi0, yi1 = _extent(pos[e, i, 1], vel[e, i, 1], aiy, H)
-        yj0, yj1 = _extent(pos[e, j, 1], vel[e, j, 1], ajy, H)
-        if _apart(yi0, yi1, yj0, yj1, R2 + BOX_SLACK):
-            return math.inf
+    dax = paths[e, i, 0] - paths[e, j, 0]
+    day = paths[e, i, 1] - paths[e, j, 1]
     c4 = 0.25 * (dax * dax + day * day)
     c3 = dvx * dax + dvy * day
     c2 = dvx * dvx + dvy * dvy + dx * dax + dy * day

@@ -118,7 +118,8 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
             tt = np.zeros((E, B)); tb = np.zeros((E, B))
             bkind = np.zeros((E, B), dtype=np.int64); bidx = np.zeros((E, B), dtype=np.int64)
             tpair = np.zeros((E, B, B))
-            kernel(*common_in, tt, tb, bkind, bidx, tpair, *outs)
+            paths = np.zeros((E, B, 6))
+            kernel(*common_in, tt, tb, bkind, bidx, tpair, paths, *outs)
         else:
             kernel(*common_in, float(dt), int(C.MAX_STEPS), *outs)
     finally:

@@ -35,7 +35,7 @@ from . import constants as C
 from ._jit import JIT, KERNEL_JIT
 from .ball_ball import resolve_ball_ball, rest_contact
 from .ball_cushion import resolve_cushion
-from .detection import boundary_time, pair_time, pair_time_linear
+from .detection import boundary_time, pair_time, pair_time_linear, sweep_path
 from .motion import apply_transition, classify, end_slide, energy, evolve, friction_step, transition_time
 
 # Ball-ball events closer in time than this are one simultaneous impact:
@@ -203,8 +203,12 @@ MAX_SIMULTANEOUS = 4  # ball-ball impacts resolved as one simultaneous set
 
 
 @numba.njit(**JIT)
-def _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, i, t, p, segs, norms, tips, pockets):
-    """Recompute every event time that involves ball i (absolute times)."""
+def _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, i, t, p, segs, norms, tips, pockets):
+    """Recompute every event time that involves ball i (absolute times),
+    and ball i's entry in ``paths``: its acceleration and the box its path
+    sweeps until its next transition or boundary event. Both hold until
+    that event refreshes the ball again, so pair checks read them instead
+    of recomputing them for the other ball of every pair."""
     B = pos.shape[1]
     if st[e, i] == C.POCKETED:
         tt[e, i] = math.inf; tb[e, i] = math.inf
@@ -219,11 +223,12 @@ def _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, i, t, p, segs, nor
     # ball (transition or boundary): that event refreshes the ball and so
     # recomputes the pair. Short horizons keep the broad phase tight.
     next_i = min(tt[e, i], tb[e, i])
+    sweep_path(pos, vel, om, st, e, i, next_i - t, p, paths)
     for j in range(B):
         if j == i:
             continue
         hj = min(next_i, tt[e, j], tb[e, j]) - t
-        tij = t + pair_time(pos, vel, om, st, e, i, j, hj, p)
+        tij = t + pair_time(pos, vel, st, paths, e, i, j, hj, p)
         tpair[e, i, j] = tij; tpair[e, j, i] = tij
 
 
@@ -327,7 +332,7 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
     TAG = SOURCE_TAG
     @numba.njit(**KERNEL_JIT, parallel=True)
     def run(pos, vel, om, pocket, p, segs, norms, tips, pockets, width, length,
-            max_events, st, tt, tb, bkind, bidx, tpair,
+            max_events, st, tt, tb, bkind, bidx, tpair, paths,
             out_time, out_nev, out_first, out_cush, out_trunc,
             rec_on, rec_n, rec_t, rec_kind, rec_ij, rec_state, diag):
         E, B = pos.shape[0], pos.shape[1]
@@ -341,7 +346,7 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                     _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, 0.0, C.EV_START, i, -1)
             for i in range(B):
                 tpair[e, i, i] = math.inf
-                _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, i, 0.0, p, segs, norms, tips, pk)
+                _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, i, 0.0, p, segs, norms, tips, pk)
             en_prev = 0.0
             if DIAG:
                 diag[e, 0] = 0.0; diag[e, 1] = 0.0; diag[e, 2] = math.inf; diag[e, 3] = 0.0
@@ -387,7 +392,7 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                                              BALL_FRICTION, SPIN, SLIDE, ZSPIN, DIAG, diag, out_first,
                                              rec_on, rec_n, rec_t, rec_kind, rec_ij, rec_state)
                     for q in range(nb):
-                        _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, balls[q], t, p, segs, norms, tips, pk)
+                        _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, balls[q], t, p, segs, norms, tips, pk)
                 else:
                     if kind == -2:
                         kind = apply_transition(vel, om, st, e, a, p)
@@ -397,7 +402,7 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                                           CUSHION_FRICTION, SPIN, SLIDE, ZSPIN, DIAG, diag, out_cush)
                     if rec_on:
                         _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, t, kind, a, b)
-                    _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, e, a, t, p, segs, norms, tips, pk)
+                    _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, a, t, p, segs, norms, tips, pk)
                 if DIAG:
                     _check_geometry(pos, st, e, p, width, length, pockets, diag)
                     # total energy may never rise from one event to the next
