@@ -130,39 +130,49 @@ def effects_rows(args, P, T):
 
 
 def env_rows(args):
+    """Env steps/s through gymnasium.make_vec with random actions. The env's
+    own simulator calls (shots and NineBall's break simulations in resets)
+    are timed in the same run, so the overhead is the time the env spends
+    outside the simulator, over the time inside it."""
     import gymnasium as gym
     import billiards_env  # noqa: F401  (registers the tasks)
     rows = []
-    P, T = None, None
+    cases = [(n, "same_step") for n in (1, 64, 1024)] + [(1024, "next_step")]
     for env_id in ("Billiards-PotOne-v0", "Billiards-NineBall-v0"):
-        for n in (1, 64, 1024):
-            env = gym.make_vec(env_id, num_envs=n, vectorization_mode="vector_entry_point")
+        for n, mode in cases:
+            env = gym.make_vec(env_id, num_envs=n, vectorization_mode="vector_entry_point", autoreset_mode=mode)
+            core = env.unwrapped._core
+            inner_sim = core._simulate
+            sim_time = [0.0]
+
+            def timed(state, _inner=inner_sim, _acc=sim_time):
+                t0 = time.perf_counter()
+                out = _inner(state)
+                _acc[0] += time.perf_counter() - t0
+                return out
+
+            core._simulate = timed  # instance attribute: times this env's simulator calls only
             env.reset(seed=0)
             rng = np.random.default_rng(0)
             acts = rng.uniform(-1, 1, size=(32, n, 4)).astype(np.float32)
             env.step(acts[0])
             steps = max(4, min(64, 20_000 // n)) if not args.quick else 4
-            t0 = time.perf_counter()
-            for k in range(steps):
-                env.step(acts[k % 32])
-            dt = time.perf_counter() - t0
-            row = dict(section="env", scene=env_id, solver="event", effects="task", batch=n,
-                       env_steps_per_s=n * steps / dt)
-            if n == 1024:
-                # the bare simulator on the same kind of tables and shots
-                inner = env.unwrapped if hasattr(env, "unwrapped") else env
-                env.reset(seed=1)
-                state = inner.state
-                phi, draw, a, b = inner.action_to_shot(acts[0])
-                from billiards_env.physics import strike
-                struck = strike(state, phi, draw, a, b, inner.params)
-                sim = lambda: simulate(struck, inner.table, inner.params, effects=inner.effects)
-                t_sim = timeit(sim, 3)
-                row["bare_sim_steps_per_s"] = n / t_sim
-                row["env_overhead_pct"] = 100.0 * ((dt / steps) / t_sim - 1.0)
-            rows.append(row)
+            runs = []
+            for _ in range(args.repeats):
+                sim_time[0] = 0.0
+                t0 = time.perf_counter()
+                for k in range(steps):
+                    env.step(acts[k % 32])
+                runs.append((time.perf_counter() - t0, sim_time[0]))
+            dt = statistics.median(r[0] for r in runs)
+            rows.append(dict(section="env", scene=env_id, solver="event", effects="task", batch=n, autoreset=mode,
+                             env_steps_per_s=n * steps / dt,
+                             sim_share=statistics.median(ts / d for d, ts in runs),
+                             env_overhead_pct=statistics.median(100.0 * (d - ts) / ts for d, ts in runs)))
             env.close()
-            print(f"  {env_id:24s} {n:5d} tables {row['env_steps_per_s']:10.0f} steps/s", flush=True)
+            r = rows[-1]
+            print(f"  {env_id:24s} {n:5d} tables {mode:9s} {r['env_steps_per_s']:10.0f} steps/s, "
+                  f"overhead {r['env_overhead_pct']:5.1f}%", flush=True)
     return rows
 
 
@@ -181,6 +191,9 @@ def cold_start_rows():
                              effects="all", batch=1, seconds=float(out.stdout.strip().splitlines()[-1]), note=label))
             print(f"  {label}: {rows[-1]['seconds']:.2f} s", flush=True)
     return rows
+
+
+SECTION_NAMES = {"solver": "solver", "effects": "effects", "env": "env", "cold": "cold start"}
 
 
 def markdown(rows):
@@ -204,11 +217,11 @@ def markdown(rows):
         lines.append("")
     env = [r for r in rows if r["section"] == "env"]
     if env:
-        lines += ["| task | tables | env steps/s | bare simulator steps/s | env overhead |", "|---|---:|---:|---:|---:|"]
+        lines += ["| task | tables | autoreset | env steps/s | time in simulator | env overhead |",
+                  "|---|---:|---|---:|---:|---:|"]
         for r in env:
-            bare = f"{r['bare_sim_steps_per_s']:,.0f}" if "bare_sim_steps_per_s" in r else ""
-            ovh = f"{r['env_overhead_pct']:.0f}%" if "env_overhead_pct" in r else ""
-            lines.append(f"| {r['scene']} | {r['batch']} | {r['env_steps_per_s']:,.0f} | {bare} | {ovh} |")
+            lines.append(f"| {r['scene']} | {r['batch']} | {r['autoreset']} | {r['env_steps_per_s']:,.0f} | "
+                         f"{100 * r['sim_share']:.0f}% | {r['env_overhead_pct']:.0f}% |")
         lines.append("")
     cold = [r for r in rows if r["section"] == "cold start"]
     if cold:
@@ -243,8 +256,14 @@ def main(argv=None):
     md = markdown(rows)
     print()
     print(md)
+    # one Markdown file per section, so a partial run (--only) replaces only
+    # its own sections; benchmark.md joins the latest of every section
     args.out.mkdir(parents=True, exist_ok=True)
-    (args.out / "benchmark.md").write_text(md + "\n")
+    for section in args.only:
+        part = markdown([r for r in rows if r["section"] == SECTION_NAMES[section]])
+        (args.out / f"{section}.md").write_text(part.rstrip("\n") + "\n")
+    parts = [(args.out / f"{k}.md").read_text() for k in SECTION_NAMES if (args.out / f"{k}.md").exists()]
+    (args.out / "benchmark.md").write_text("\n".join(parts))
     stamp = datetime.datetime.now().isoformat(timespec="seconds")
     csv_path = args.out / "benchmark.csv"
     keys = sorted({k for r in rows for k in r} | {"timestamp"})

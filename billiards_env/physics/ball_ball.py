@@ -73,7 +73,7 @@ def _rest(pos, vel, om, st, e, i, j, nx, ny, d, p, spin_on):
     dvy = vel[e, i, 1] - vel[e, j, 1]
     # gap'' / 2 for |r_i - r_j|^2 with r_i - r_j = -d n
     c2 = dvx * dvx + dvy * dvy - d * ((aix - ajx) * nx + (aiy - ajy) * ny)
-    if c2 < 0.0:
+    if c2 < -2.0 * d * C.ACCEL_EPS:  # the detector's threshold (roots.first_entry)
         mx = 0.5 * (vel[e, i, 0] + vel[e, j, 0])
         my = 0.5 * (vel[e, i, 1] + vel[e, j, 1])
         for b in (i, j):

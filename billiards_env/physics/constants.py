@@ -15,6 +15,10 @@ CONTACT_TOL = 1e-12
 # one picometre in a second, far below anything a trajectory can resolve.
 SPEED_EPS = 1e-12
 SPIN_EPS = 1e-10
+# Relative accelerations (m/s^2) below ACCEL_EPS are rounding: the felt's
+# accelerations are 0.1 - 2 m/s^2, so two balls of one merged chain differ
+# by ~1e-16 m/s^2, which must not count as pressing them together.
+ACCEL_EPS = 1e-12
 # Impacts slower than ZENO_SPEED (m/s) are treated as resting contacts
 # (restitution 0, sliding ended at once). Without this a ball pushed by its own
 # felt friction into a neighbour or a cushion bounces ever faster and smaller,
@@ -23,6 +27,14 @@ ZENO_SPEED = 1e-5
 # Simulated events per table before the solver gives up and flags the table
 # as truncated (never silently): a 15-ball break takes a few hundred.
 MAX_EVENTS = 20_000
+# Inelastic collapse: a slow ball wedged between a ball and a cushion can be
+# struck back and forth at one instant forever (each impact pushes it into
+# the other contact). After ZENO_EVENTS events without time advancing, the
+# balls of those events slower than ZENO_FREEZE_SPEED (surface speed
+# |v| + R|w|, m/s) are stopped: the felt would stop such a ball within
+# (1e-3)^2 / (2 mu_r g) ~ 5 um, and stopping it only removes energy.
+ZENO_EVENTS = 100
+ZENO_FREEZE_SPEED = 1e-3
 # Fixed steps per table before the step solver flags truncation (600 s of
 # simulated time at dt = 1e-5 would be 6e7 steps: far beyond any shot).
 MAX_STEPS = 100_000_000

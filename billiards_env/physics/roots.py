@@ -121,12 +121,14 @@ def first_entry(c4, c3, c2, c1, c0, H, f_tol, f_floor):
         # closing means faster than SPEED_EPS: a rate below it is rounding
         # (an impulse that small cannot even change a velocity's last bit)
         c1_tol = f_tol * (C.SPEED_EPS / C.CONTACT_TOL)
-        if c1 < -c1_tol or (c1 <= 0.0 and c2 < 0.0):
+        # held closed: likewise only by more than rounding of accelerations
+        c2_tol = f_tol * (C.ACCEL_EPS / C.CONTACT_TOL)
+        if c1 < -c1_tol or (c1 <= 0.0 and c2 < -c2_tol):
             return 0.0
-        if H > 0.0 and c1 > 0.0:
-            # Touching and opening: the gap may open by less than rounding
-            # can resolve and close again (a pair pressed by the felt after a
-            # slow impact). Contact is then when f returns to its current
+        if H > 0.0 and c1 > 0.0 and c2 < -c2_tol:
+            # Touching, opening and pressed: the gap may open by less than
+            # rounding can resolve and close again (a pair pressed by the
+            # felt after a slow impact). Contact is then when f returns to its current
             # level: the first root of (f - c0) / t = c4 t^3 + c3 t^2 + c2 t + c1.
             t_back = _entry(0.0, c4, c3, c2, c1, H)
             return min(t_back, _entry(c4, c3, c2, c1, c0, H))

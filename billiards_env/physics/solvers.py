@@ -36,6 +36,7 @@ from ._jit import JIT, KERNEL_JIT
 from .ball_ball import resolve_ball_ball, rest_contact
 from .ball_cushion import resolve_cushion
 from .detection import boundary_time, pair_time, pair_time_linear, sweep_path
+from .vec import norm
 from .motion import apply_transition, classify, end_slide, energy, evolve, friction_step, transition_time
 
 # Ball-ball events closer in time than this are one simultaneous impact:
@@ -233,6 +234,26 @@ def _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, i, t, p, se
 
 
 @numba.njit(**JIT)
+def _break_collapse(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, t, p, segs, norms, tips, pockets,
+                    stuck):
+    """Stop the slow balls of an inelastic collapse (constants.ZENO_EVENTS)
+    and recompute their events."""
+    R = p[C.P_R]
+    for i in range(pos.shape[1]):
+        if not stuck[i] or st[e, i] == C.POCKETED:
+            continue
+        surface = norm(vel[e, i, 0], vel[e, i, 1]) + R * math.sqrt(
+            om[e, i, 0] ** 2 + om[e, i, 1] ** 2 + om[e, i, 2] ** 2)
+        if surface < C.ZENO_FREEZE_SPEED:
+            vel[e, i, 0] = 0.0; vel[e, i, 1] = 0.0
+            om[e, i, 0] = 0.0; om[e, i, 1] = 0.0; om[e, i, 2] = 0.0
+            st[e, i] = C.STATIONARY
+    for i in range(pos.shape[1]):
+        if stuck[i]:
+            _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, i, t, p, segs, norms, tips, pockets)
+
+
+@numba.njit(**JIT)
 def _impact_buffers():
     """Per-table scratch of a simultaneous impact set: pair ids, approach
     speeds, ball ids and two state copies (for the two resolution orders)."""
@@ -355,6 +376,8 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
             out_first[e] = -1
             nev = 0
             sim_i, sim_j, sim_w, balls, buf, buf2 = _impact_buffers()
+            stuck = np.zeros(B, dtype=np.bool_)  # balls of the events at the current instant
+            n_stuck = 0  # events since time last advanced
             while True:
                 # earliest event; ties go to the first found (pairs, then
                 # boundaries, then transitions), a fixed deterministic order
@@ -377,6 +400,10 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                 if tmin < t:
                     tmin = t
                 dt = tmin - t
+                if dt > SIMULTANEOUS_TIME:
+                    n_stuck = 0
+                    stuck[:] = False
+                n_stuck += 1
                 for i in range(B):
                     evolve(pos, vel, om, st, e, i, dt, p, ZSPIN, SPIN)
                 t = tmin
@@ -392,6 +419,7 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                                              BALL_FRICTION, SPIN, SLIDE, ZSPIN, DIAG, diag, out_first,
                                              rec_on, rec_n, rec_t, rec_kind, rec_ij, rec_state)
                     for q in range(nb):
+                        stuck[balls[q]] = True
                         _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, balls[q], t, p, segs, norms, tips, pk)
                 else:
                     if kind == -2:
@@ -402,7 +430,12 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                                           CUSHION_FRICTION, SPIN, SLIDE, ZSPIN, DIAG, diag, out_cush)
                     if rec_on:
                         _record(rec_n, rec_t, rec_kind, rec_ij, rec_state, pos, vel, om, st, e, t, kind, a, b)
+                    stuck[a] = True
                     _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, a, t, p, segs, norms, tips, pk)
+                if n_stuck > C.ZENO_EVENTS:
+                    _break_collapse(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, t, p, segs, norms, tips,
+                                    pk, stuck)
+                    n_stuck = 0
                 if DIAG:
                     _check_geometry(pos, st, e, p, width, length, pockets, diag)
                     # total energy may never rise from one event to the next
@@ -441,6 +474,8 @@ def _make_step(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIA
             nev = 0
             steps = 0
             sim_i, sim_j, sim_w, balls, buf, buf2 = _impact_buffers()
+            stuck = np.zeros(B, dtype=np.bool_)  # balls of the events at the current instant
+            n_stuck = 0  # events since time last advanced
             while True:
                 moving = False
                 for i in range(B):
