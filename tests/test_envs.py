@@ -292,3 +292,93 @@ def test_same_step_matches_next_step_episodes():
     envs["next_step"].step(act)  # the autoreset step
     _, r2_next, *_ = envs["next_step"].step(act)
     np.testing.assert_array_equal(r2_same, r2_next)
+
+
+# ------------------------------------- per-table streams, placement, break --
+def test_table_streams_independent_of_batching_and_seeded():
+    from billiards_env.envs.streams import TableStreams
+    seeds = [3, 4, 5, 6, 7, 8]
+    s, t = TableStreams(6), TableStreams(6)
+    s.seed(np.arange(6), seeds)
+    t.seed(np.arange(6), seeds)
+    u, z = s.uniform(np.arange(6), 5), s.normal(np.arange(6), 3)
+    # the same draws whichever tables draw together, and in whatever order
+    np.testing.assert_array_equal(t.uniform([2], 5)[0], u[2])
+    np.testing.assert_array_equal(t.uniform([5, 0, 1, 3, 4], 5), u[[5, 0, 1, 3, 4]])
+    np.testing.assert_array_equal(t.normal([4, 2], 3), z[[4, 2]])
+    np.testing.assert_array_equal(t.normal([0, 1, 3, 5], 3), z[[0, 1, 3, 5]])
+    t.seed([2], [5])  # reseeding restarts the stream
+    np.testing.assert_array_equal(t.uniform([2], 5)[0], u[2])
+    assert len({tuple(r) for r in u}) == 6  # different seeds, different draws
+    t.seed([0, 1], [2**64 + 3, 3])  # seeds are taken modulo 2**64
+    np.testing.assert_array_equal(t.uniform([0, 1], 5), u[[0, 0]])
+
+
+def test_table_streams_statistics():
+    from billiards_env.envs.streams import TableStreams
+    s = TableStreams(5)
+    s.seed(np.arange(5), np.arange(5))
+    u = s.uniform(np.arange(5), 20_000)
+    n = u.size
+    assert u.min() >= 0.0 and u.max() < 1.0
+    assert abs(u.mean() - 0.5) < 5 * math.sqrt(1 / 12 / n)
+    assert abs(u.var() - 1 / 12) < 5 * math.sqrt((1 / 80 - 1 / 144) / n)
+    assert abs(np.corrcoef(u[0], u[1])[0, 1]) < 5 / math.sqrt(u.shape[1])  # consecutive seeds: unrelated
+    z = s.normal(np.arange(5), 20_001)  # odd count: the last pair's second normal is dropped
+    assert abs(z.mean()) < 5 / math.sqrt(z.size)
+    assert abs(z.std() - 1.0) < 5 / math.sqrt(2 * z.size)
+    assert abs(np.mean(z ** 4) - 3.0) < 5 * math.sqrt(96 / z.size)  # Gaussian kurtosis
+
+
+def test_random_placement_is_legal():
+    from billiards_env.envs.core import BilliardsCore
+    cfg = TaskConfig.default("run_out", n_balls=9)
+    core = BilliardsCore(cfg, 300)
+    core.streams.seed(np.arange(300), np.arange(300))
+    pos = core._place(np.arange(300))
+    R, m, t = core.params.R, cfg.margin, core.table
+    assert pos.shape == (300, 10, 2)
+    assert np.all(pos >= R + m) and np.all(pos[..., 0] <= t.width - R - m) and np.all(pos[..., 1] <= t.length - R - m)
+    pk = t.pockets
+    d2 = ((pos[:, :, None, :] - pk[None, None, :, :2]) ** 2).sum(-1)
+    assert np.all(d2 > pk[:, 2] ** 2)
+    d = np.linalg.norm(pos[:, :, None] - pos[:, None], axis=-1) + np.eye(10) * 1e9
+    assert d.min() >= 2 * R + m
+    assert t.contains(pos.reshape(-1, 2), R, 0.0).all()
+    with pytest.raises(ValueError, match="could not place 10 balls without overlap"):
+        core._place(np.arange(3), max_tries=9)
+
+
+def test_free_spot_search_order():
+    from billiards_env.envs.streams import free_spot
+    env = NineBallEnv()
+    t, R = env.table, env.params.R
+    foot = (t.width / 2, 0.75 * t.length)
+    pos = np.array([[foot[0], foot[1]], [0.3, 0.3]])
+    on = np.array([False, True])
+    args = (t.width, t.length, R, t.pockets)
+    assert free_spot(pos, on, *foot, 0.0, 1.0, *args) == (foot[0], foot[1], True)
+    on[0] = True  # the spot is taken: one step along the search direction
+    x, y, found = free_spot(pos, on, *foot, 0.0, 1.0, *args)
+    assert found and x == foot[0] and y == pytest.approx(foot[1] + 2 * R + 1e-3)
+    x, y, found = free_spot(pos, on, *foot, 0.0, -1.0, *args)
+    assert found and y == pytest.approx(foot[1] - 2 * R - 1e-3)
+
+
+def test_nine_ball_breaks_leave_cue_and_nine_on_a_legal_table(monkeypatch):
+    import billiards_env.envs.core as core_mod
+    calls = []
+    spot = core_mod.free_spot
+    monkeypatch.setattr(core_mod, "free_spot", lambda *a: calls.append(1) or spot(*a))
+    v = make_vec("Billiards-NineBall-v0", 128).unwrapped
+    R, t = v.params.R, v.table
+    for seed in (0, 1000):
+        v.reset(seed=seed)
+        s = v.state
+        assert np.all(s.pocket[:, [0, 9]] == -1)
+        on = s.pocket < 0
+        assert t.contains(s.pos[on], R, 1e-9).all()
+        d = np.linalg.norm(s.pos[:, :, None] - s.pos[:, None], axis=-1)
+        both = on[:, :, None] & on[:, None, :] & ~np.eye(10, dtype=bool)
+        assert d[both].min() >= 2 * R - 1e-9
+    assert calls  # some breaks pocketed the 9 or the cue ball and were respotted

@@ -112,11 +112,10 @@ def test_measured_noise_std_matches_config():
 
 
 def test_noise_respects_limits():
-    env = PotOneEnv(noise={"aim_deg": 1.0, "speed": 5.0, "side_mm": 50.0, "height_mm": 50.0})
-    env.reset(seed=0)
-    core, p = env._core, env.params
-    rngs = [np.random.default_rng(i) for i in range(200)]
+    v = PotOneVectorEnv(num_envs=200, noise={"aim_deg": 1.0, "speed": 5.0, "side_mm": 50.0, "height_mm": 50.0})
+    v.reset(seed=0)
+    core, p = v._core, v.params
     phi, speed, a, b = core.apply_noise(np.zeros(200), np.full(200, p.max_speed), np.full(200, 0.49),
-                                        np.zeros(200), rngs)
+                                        np.zeros(200), np.arange(200))
     assert np.all((speed >= 0) & (speed <= p.max_speed)) and np.any(speed < p.max_speed)
     assert np.all(np.hypot(a, b) <= p.miscue_limit)

@@ -56,7 +56,7 @@ _COMMON_DOC = """
 
     **Shot noise** (``noise=``: ``"none"`` default, ``"tournament"`` = std
     0.125 deg aim, 0.075 m/s speed, 0.5 mm per offset, or a mapping) is drawn
-    from the env's own RNG, so seeding reproduces it.
+    from the table's own random stream, so seeding reproduces it.
 
     **Reward**: sum of ``info["reward_terms"]``: ``pocket`` (per legal ball
     pocketed), ``scratch``, ``foul``, ``contact`` (legal target hit first),
@@ -151,6 +151,7 @@ class BilliardsEnv(gym.Env):
         self.observation_space = spaces.Box(0.0, 1.0, shape=(d,), dtype=np.float32)
         self.action_space = spaces.Box(-1.0, 1.0, shape=(4,), dtype=np.float32)
         self._done = True
+        self._seeded = False
 
     # public views used by baselines
     table = property(lambda self: self._core.table)
@@ -183,7 +184,12 @@ class BilliardsEnv(gym.Env):
 
     def reset(self, *, seed: int | None = None, options: dict | None = None):
         super().reset(seed=seed)
-        self._core.reset_tables([0], [self.np_random])
+        if seed is not None:
+            self._core.streams.seed([0], [seed])
+        elif not self._seeded:  # first, unseeded reset: key the table's stream from np_random
+            self._core.streams.seed([0], [int(self.np_random.integers(2 ** 63))])
+        self._seeded = True  # later unseeded resets continue the stream
+        self._core.reset_tables([0])
         self._done = False
         if self.render_mode == "human":
             self.render()
@@ -195,7 +201,7 @@ class BilliardsEnv(gym.Env):
         if np.shape(action) != (4,):
             raise ValueError(f"action must have shape (4,), got {np.shape(action)}")
         a = self._core.validate_actions(np.asarray(action, dtype=np.float64).reshape(1, 4), 1)
-        out = self._core.step(a, [0], [self.np_random])
+        out = self._core.step(a, [0])
         info = {k: (v[0] if k == "pocketed" else v[0].item()) for k, v in out["info"].items()}
         info["reward_terms"] = {k: float(v[0]) for k, v in out["terms"].items()}
         terminated, truncated = bool(out["terminated"][0]), bool(out["truncated"][0])
@@ -275,7 +281,7 @@ class BilliardsVectorEnv(VectorEnv):
         self.single_action_space = spaces.Box(-1.0, 1.0, shape=(4,), dtype=np.float32)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
-        self._table_rngs: list[np.random.Generator] | None = None
+        self._seeded = False
         self._autoreset_envs = np.zeros(self.num_envs, dtype=bool)
 
     table = property(lambda self: self._core.table)
@@ -301,7 +307,7 @@ class BilliardsVectorEnv(VectorEnv):
         """Start new episodes on every table from ``state`` (a ``BallState``
         of N tables, or positions [N, B, 2]), balls at rest; clears pending
         autoresets; returns the observations. Call ``reset`` first (seeding)."""
-        if self._table_rngs is None:
+        if not self._seeded:
             raise RuntimeError("call reset() before set_state()")
         self._core.set_state(state, np.arange(self.num_envs))
         self._autoreset_envs = np.zeros(self.num_envs, dtype=bool)
@@ -313,10 +319,16 @@ class BilliardsVectorEnv(VectorEnv):
             seeds = list(seed) if isinstance(seed, (list, tuple, np.ndarray)) else [int(seed) + k for k in range(N)]
             if len(seeds) != N:
                 raise ValueError(f"seed must be an int or a list of {N} ints, got {len(seeds)}")
+            seeds = [int(s) for s in seeds]
+            for s in seeds:
+                if s < 0:
+                    raise gym.error.Error(f"Seed must be greater or equal to zero, actual value: {s}")
             self._np_random, self._np_random_seed = seeding.np_random(seeds[0])
-            self._table_rngs = [seeding.np_random(int(s))[0] for s in seeds]
-        elif self._table_rngs is None:
-            self._table_rngs = [np.random.default_rng(int(self.np_random.integers(2 ** 63))) for _ in range(N)]
+            self._core.streams.seed(np.arange(N), seeds)
+            self._seeded = True
+        elif not self._seeded:  # first, unseeded reset: key the tables' streams from np_random
+            self._core.streams.seed(np.arange(N), self.np_random.integers(2 ** 63, size=N))
+            self._seeded = True
         mask = (options or {}).get("reset_mask")
         if mask is None:
             idx = np.arange(N)
@@ -326,12 +338,12 @@ class BilliardsVectorEnv(VectorEnv):
                 raise ValueError(f"options['reset_mask'] must be a bool array of shape ({N},), got "
                                  f"{mask.dtype} {mask.shape}")
             idx = np.nonzero(mask)[0]
-        self._core.reset_tables(idx, [self._table_rngs[k] for k in idx])
+        self._core.reset_tables(idx)
         self._autoreset_envs[idx] = False
         return self._core.observe(), {"legal_target": self.legal_target()}
 
     def step(self, actions):
-        if self._table_rngs is None:
+        if not self._seeded:
             raise RuntimeError("call reset() before step()")
         N, B = self.num_envs, self._core.n_balls
         a = self._core.validate_actions(actions, N)
@@ -353,8 +365,13 @@ class BilliardsVectorEnv(VectorEnv):
             "action_clipped": np.zeros(N, dtype=bool), "shot": np.zeros(N, dtype=np.int64),
         }
         terms = {k: np.zeros(N) for k in ("pocket", "scratch", "foul", "contact", "success", "shaping")}
-        if len(act):
-            out = self._core.step(a[act], act, [self._table_rngs[k] for k in act])
+        if len(act) == N:  # every table shot: the core's arrays are already complete
+            out = self._core.step(a, act)
+            reward, terminated, truncated = out["reward"], out["terminated"], out["truncated"]
+            info = {k: np.asarray(v, dtype=info[k].dtype) for k, v in out["info"].items()}
+            terms = out["terms"]
+        elif len(act):
+            out = self._core.step(a[act], act)
             reward[act] = out["reward"]
             terminated[act] = out["terminated"]
             truncated[act] = out["truncated"]
@@ -363,7 +380,7 @@ class BilliardsVectorEnv(VectorEnv):
             for k, v in out["terms"].items():
                 terms[k][act] = v
         if len(rst):
-            self._core.reset_tables(rst, [self._table_rngs[k] for k in rst])
+            self._core.reset_tables(rst)
         info["reward_terms"] = terms
         info["reset"] = done_prev.copy() if mode == AutoresetMode.NEXT_STEP else np.zeros(N, dtype=bool)
         done = terminated | truncated
@@ -372,7 +389,7 @@ class BilliardsVectorEnv(VectorEnv):
             fin = np.nonzero(done)[0]
             info["final_obs"] = obs.copy()
             info["_final_obs"] = done.copy()
-            self._core.reset_tables(fin, [self._table_rngs[k] for k in fin])
+            self._core.reset_tables(fin)
             obs = self._core.observe()
             done = np.zeros(N, dtype=bool)
         self._autoreset_envs = done

@@ -2,18 +2,22 @@
 
 ``BilliardsCore`` holds ``n_envs`` tables and steps any subset of them with
 one batched ``strike_velocity`` + ``simulate`` call. Randomness (placement,
-break shot, shot noise) is drawn per table from a ``numpy.random.Generator``
-passed in by the caller, so table k of a vector env seeded with ``seed``
-behaves exactly like a single env seeded with ``seed + k``.
+break shot, shot noise) is drawn from per-table counter-based streams
+(``streams.TableStreams``, one stream per table, drawn for many tables in
+one numba call): a table's draws depend only on its own stream, so table k
+of a vector env seeded with ``seed`` behaves exactly like a single env
+seeded with ``seed + k``.
 """
 from __future__ import annotations
 
 import math
 
+import numba
 import numpy as np
 
-from ..physics import BallState, rack, simulate, strike_velocity
+from ..physics import BallState, simulate, strike_velocity
 from .config import TaskConfig
+from .streams import TableStreams, free_spot, place_balls
 
 OFFSET_SAFETY = 1.0 - 1e-9  # radial clip just inside the miscue limit (strict check in strike)
 
@@ -23,6 +27,78 @@ def legal_target(pocket: np.ndarray) -> np.ndarray:
     on = pocket[:, 1:] < 0
     tgt = np.argmax(on, axis=1) + 1
     return np.where(on.any(axis=1), tgt, -1).astype(np.int64)
+
+
+# Per-step bookkeeping over all tables, fused into single passes (numpy would
+# take one pass, and a temporary, per operation).
+_jit = numba.njit(cache=True, nogil=True)
+
+
+@_jit
+def _targets(pos, pocket, pockets, diag, tgt, phi, aim, ang):
+    """Per table: the legal target (lowest-numbered object ball on the table,
+    -1 if none) into ``tgt``, Phi = -(its distance to the nearest pocket
+    centre) / diag (0 without target or pockets) into ``phi`` and, if
+    ``aim``, the direction cue ball -> target (rad, 0 without target) into
+    ``ang``."""
+    for e in range(pos.shape[0]):
+        t = -1
+        for b in range(1, pos.shape[1]):
+            if pocket[e, b] < 0:
+                t = b
+                break
+        tgt[e] = t
+        phi[e] = 0.0
+        ang[e] = 0.0
+        if t < 0:
+            continue
+        if aim:
+            ang[e] = math.atan2(pos[e, t, 1] - pos[e, 0, 1], pos[e, t, 0] - pos[e, 0, 0])
+        if pockets.shape[0] == 0:
+            continue
+        d2 = math.inf
+        for p in range(pockets.shape[0]):
+            dx, dy = pos[e, t, 0] - pockets[p, 0], pos[e, t, 1] - pockets[p, 1]
+            d2 = min(d2, dx * dx + dy * dy)
+        phi[e] = -math.sqrt(d2) / diag
+
+
+@_jit
+def _action_to_shot(actions, base, lo, hi, limit, out):
+    """Actions [n, 4] -> rows (phi, draw, a, b) of ``out`` [4, n]: clipped to
+    [-1, 1]; phi = base + pi * a0 wrapped to [-pi, pi); (a, b) scaled
+    radially just inside the miscue limit (as ``clip_offsets``)."""
+    lim = limit * OFFSET_SAFETY
+    for e in range(actions.shape[0]):
+        a0 = min(max(actions[e, 0], -1.0), 1.0)
+        a1 = min(max(actions[e, 1], -1.0), 1.0)
+        a2 = min(max(actions[e, 2], -1.0), 1.0)
+        a3 = min(max(actions[e, 3], -1.0), 1.0)
+        out[0, e] = (base[e] + math.pi * a0 + math.pi) % (2 * math.pi) - math.pi
+        out[1, e] = lo + (a1 + 1.0) * 0.5 * (hi - lo)
+        sa, sb = a2 * limit, a3 * limit
+        r = math.hypot(sa, sb)
+        f = lim / max(r, 1e-300) if r > lim else 1.0
+        out[2, e] = sa * f
+        out[3, e] = sb * f
+
+
+@_jit
+def _observe(pos, pocket, shots, max_shots, width, length, obs):
+    """Fill the zeroed observations ``obs`` [N, 4B + 1] (layout: see billiards._COMMON_DOC)."""
+    B = pos.shape[1]
+    for e in range(pos.shape[0]):
+        t = -1
+        for b in range(B):
+            if pocket[e, b] < 0:
+                obs[e, 3 * b] = min(max(pos[e, b, 0] / width, 0.0), 1.0)
+                obs[e, 3 * b + 1] = min(max(pos[e, b, 1] / length, 0.0), 1.0)
+                obs[e, 3 * b + 2] = 1.0
+                if t < 0 and b > 0:
+                    t = b
+        if t >= 0:
+            obs[e, 3 * B + t] = 1.0
+        obs[e, 4 * B] = min(shots[e] / max_shots, 1.0)
 
 
 def clip_offsets(a: np.ndarray, b: np.ndarray, limit: float):
@@ -51,35 +127,42 @@ class BilliardsCore:
         self.last_start: list = [None] * self.n_envs   # BallState of one table before its last shot
         self.last_events: list = [None] * self.n_envs  # EventLog of its last shot (record=True)
         self.speed_per_draw = self.params.k * self.params.contact_time / self.params.m
+        self.streams = TableStreams(self.n_envs)  # seeded by the env's reset
+        self._every = np.arange(self.n_envs)
+        self._pockets = np.ascontiguousarray(self.table.geometry(self.effects.pockets)[3], dtype=np.float64)
+        if cfg.task == "nine_ball":
+            self._diamond = self._diamond_slots()
 
     # --- geometry helpers -------------------------------------------------
+    def _diamond_slots(self) -> np.ndarray:
+        """The 9 slots [9, 2] of a frozen 9-ball diamond on the foot spot,
+        laid out as ``physics.state.rack(layout="nine")`` does: slot 0 is the
+        apex (the 1-ball), slot 4 the centre (the 9-ball)."""
+        t, d = self.table, 2 * self.params.R
+        fx, fy = t.width / 2, 0.75 * t.length
+        return np.array([(fx + (k - (n - 1) / 2) * d, fy + r * d * math.sqrt(3) / 2)
+                         for r, n in enumerate((1, 2, 3, 2, 1)) for k in range(n)])
+
     def legal_target(self) -> np.ndarray:
         return legal_target(self.state.pocket)
 
+    def targets(self, pos: np.ndarray, pocket: np.ndarray, aim: bool = True):
+        """Of tables at ``pos`` [n, B, 2], ``pocket`` [n, B]: (legal target [n]
+        (-1 if none), potential Phi [n], aim origin [n] (rad, see
+        ``base_angle``; all 0 unless ``aim``))."""
+        n = len(pos)
+        tgt, phi, ang = np.empty(n, dtype=np.int64), np.empty(n), np.empty(n)
+        _targets(pos, pocket, self._pockets, self.diag, tgt, phi, aim and self.cfg.aim != "absolute", ang)
+        return tgt, phi, ang
+
     def potential(self, pos: np.ndarray, pocket: np.ndarray) -> np.ndarray:
         """Phi = -(distance of the legal target to its nearest pocket) / diagonal; 0 without target."""
-        tgt = legal_target(pocket)
-        pk = self.table.geometry(self.effects.pockets)[3]
-        if len(pk) == 0:
-            return np.zeros(len(pos))
-        p = pos[np.arange(len(pos)), np.maximum(tgt, 0)]
-        d = np.hypot(p[:, None, 0] - pk[None, :, 0], p[:, None, 1] - pk[None, :, 1]).min(axis=1)
-        return np.where(tgt >= 0, -d / self.diag, 0.0)
+        return self.targets(pos, pocket, aim=False)[1]
 
     def observe(self) -> np.ndarray:
         s = self.state
-        N, B = self.n_envs, self.n_balls
-        on = s.pocket < 0
-        obs = np.zeros((N, self.obs_dim), dtype=np.float32)
-        xy = np.clip(s.pos / np.array([self.table.width, self.table.length]), 0.0, 1.0)
-        xy[~on] = 0.0
-        per = obs[:, :3 * B].reshape(N, B, 3)
-        per[:, :, :2] = xy
-        per[:, :, 2] = on
-        tgt = legal_target(s.pocket)
-        rows = np.nonzero(tgt >= 0)[0]
-        obs[rows, 3 * B + tgt[rows]] = 1.0
-        obs[:, 4 * B] = np.minimum(self.shots / self.cfg.max_shots, 1.0)
+        obs = np.zeros((self.n_envs, self.obs_dim), dtype=np.float32)
+        _observe(s.pos, s.pocket, self.shots, float(self.cfg.max_shots), self.table.width, self.table.length, obs)
         return obs
 
     # --- actions ----------------------------------------------------------
@@ -95,23 +178,16 @@ class BilliardsCore:
 
     def base_angle(self, idx) -> np.ndarray:
         """Aim origin (rad): 0 for absolute aim, else the direction cue -> legal target."""
-        if self.cfg.aim == "absolute":
-            return np.zeros(len(idx))
-        pos = self.state.pos[idx]
-        tgt = legal_target(self.state.pocket[idx])
-        d = pos[np.arange(len(idx)), np.maximum(tgt, 0)] - pos[:, 0]
-        return np.where(tgt > 0, np.arctan2(d[:, 1], d[:, 0]), 0.0)
+        return self.targets(self.state.pos[idx], self.state.pocket[idx])[2]
 
-    def action_to_shot(self, actions: np.ndarray, idx):
-        """Clipped actions [n, 4] of tables ``idx`` -> (phi, draw, a, b)."""
-        a = np.clip(actions, -1.0, 1.0)
-        phi = self.base_angle(idx) + math.pi * a[:, 0]
-        phi = (phi + math.pi) % (2 * math.pi) - math.pi
-        lo, hi = self.cfg.min_draw, self.params.max_draw
-        draw = lo + (a[:, 1] + 1.0) * 0.5 * (hi - lo)
-        side, height = clip_offsets(a[:, 2] * self.params.miscue_limit, a[:, 3] * self.params.miscue_limit,
-                                    self.params.miscue_limit)
-        return phi, draw, side, height
+    def action_to_shot(self, actions: np.ndarray, idx, base: np.ndarray | None = None):
+        """Clipped actions [n, 4] of tables ``idx`` -> (phi, draw, a, b);
+        ``base``: their aim origins (``base_angle``), if already known."""
+        actions = np.ascontiguousarray(actions, dtype=np.float64)
+        out = np.empty((4, len(actions)))
+        _action_to_shot(actions, self.base_angle(idx) if base is None else base,
+                        self.cfg.min_draw, self.params.max_draw, self.params.miscue_limit, out)
+        return out[0], out[1], out[2], out[3]
 
     def shot_to_action(self, phi, draw, a, b, idx) -> np.ndarray:
         n = len(idx)
@@ -123,11 +199,12 @@ class BilliardsCore:
                         a / self.params.miscue_limit, b / self.params.miscue_limit], axis=1)
         return np.clip(out, -1.0, 1.0).astype(np.float32)
 
-    def apply_noise(self, phi, speed, a, b, rngs):
+    def apply_noise(self, phi, speed, a, b, idx):
+        """Shot noise for tables ``idx``, drawn from their streams (4 normals each)."""
         nz = self.cfg.noise
         if not nz.enabled:
             return phi, speed, a, b
-        z = np.stack([rng.standard_normal(4) for rng in rngs])
+        z = self.streams.normal(idx, 4)
         R = self.params.R
         phi = phi + z[:, 0] * math.radians(nz.aim_deg)
         speed = np.clip(speed + z[:, 1] * nz.speed, 0.0, self.params.max_speed)
@@ -146,31 +223,14 @@ class BilliardsCore:
     def _at_rest(s: BallState) -> BallState:
         return BallState(s.pos.copy(), np.zeros_like(s.vel), np.zeros_like(s.omega), s.pocket.copy())
 
-    def _set(self, idx, s: BallState) -> None:
-        for f in ("pos", "vel", "omega", "pocket"):
-            getattr(self.state, f)[idx] = getattr(s, f)
+    def _all(self, idx: np.ndarray) -> bool:
+        """Whether ``idx`` lists every table in order (then slices replace fancy indexing)."""
+        return len(idx) == self.n_envs and bool((idx == self._every).all())
 
-    def _free_spot(self, pos, on, preferred, step_dir) -> np.ndarray:
-        """``preferred`` if free, else the nearest free point along ``step_dir`` (both ways), then sideways."""
-        R = self.params.R
-        step = 2 * R + 1e-3
-        d = np.asarray(step_dir, float)
-        cand = [np.asarray(preferred, float)]
-        for k in range(1, 60):
-            cand += [preferred + k * step * d, preferred - k * step * d]
-        perp = np.array([-d[1], d[0]])
-        for j in range(1, 20):
-            for k in range(0, 30):
-                for s1 in (1, -1):
-                    cand.append(preferred + s1 * j * step * perp + k * step * d)
-        others = pos[on]
-        for p in cand:
-            if not self.table.contains(p[None], R + 1e-4, 0.0, self.effects.pockets)[0]:
-                continue
-            if len(others) and np.min(np.hypot(*(others - p).T)) < 2 * R + 1e-6:
-                continue
-            return p
-        raise RuntimeError("no free spot on the table to respot a ball")
+    def _set(self, idx, s: BallState) -> None:
+        sel = Ellipsis if self._all(idx) else idx
+        for f in ("pos", "vel", "omega", "pocket"):
+            getattr(self.state, f)[sel] = getattr(s, f)
 
     def set_state(self, state, idx) -> None:
         if not isinstance(state, BallState):
@@ -187,112 +247,102 @@ class BilliardsCore:
         check_placement(state, self.table, self.params, self.effects.pockets)
         self._set(idx, self._at_rest(state))
         self.shots[idx] = 0
-        for k in idx:
-            self.last_start[k] = None
-            self.last_events[k] = None
+        self._forget_last_shot(idx)
+
+    def _forget_last_shot(self, idx) -> None:
+        if self.record:  # otherwise never set: nothing to clear
+            for k in idx:
+                self.last_start[k] = None
+                self.last_events[k] = None
 
     # --- reset ------------------------------------------------------------
-    def reset_tables(self, idx, rngs) -> None:
+    def reset_tables(self, idx) -> None:
+        """New episodes on tables ``idx``, drawn from their streams."""
         idx = np.asarray(idx, dtype=np.int64)
-        c, B = self.cfg, self.n_balls
-        if c.task == "nine_ball":
-            states = self._break(rngs)
+        B = self.n_balls
+        if self.cfg.task == "nine_ball":
+            states = self._break(idx)
         else:
-            states = BallState.from_positions(self._place(rngs))
+            states = BallState.from_positions(self._place(idx))
         if self.state is None:
             E = self.n_envs
             self.state = BallState(np.zeros((E, B, 2)), np.zeros((E, B, 2)), np.zeros((E, B, 3)),
                                    np.full((E, B), -1, dtype=np.int64))
         self._set(idx, states)
         self.shots[idx] = 0
-        for k in idx:
-            self.last_start[k] = None
-            self.last_events[k] = None
+        self._forget_last_shot(idx)
 
-    def _place(self, rngs, chunk: int = 64) -> np.ndarray:
-        """Uniform random non-overlapping positions [n, B, 2], at least ``margin``
-        clear of each other and of the cushions. Each table draws candidates
-        in chunks from its own RNG and accepts them greedily in order (a
-        candidate is taken if it is legal and clear of the balls already
-        taken), so the result does not depend on which other tables are
-        placed in the same call. The greedy pass is vectorised over tables,
-        one ball slot at a time."""
+    def _place(self, idx, max_tries: int = 10_000) -> np.ndarray:
+        """Uniform random non-overlapping positions [n, B, 2] for tables
+        ``idx``, at least ``margin`` clear of each other and of the cushions,
+        outside every pocket's capture circle. Each table rejection-samples
+        its balls one after another from its own stream (numba kernel), so
+        the result does not depend on which other tables are placed in the
+        same call."""
         R, m, B, t = self.params.R, self.cfg.margin, self.n_balls, self.table
-        lo = np.array([R + m, R + m])
-        hi = np.array([t.width - R - m, t.length - R - m])
-        n = len(rngs)
-        out = np.zeros((n, B, 2))
-        count = np.zeros(n, dtype=np.int64)
-        for _ in range(200):
-            todo = np.nonzero(count < B)[0]
-            if len(todo) == 0:
-                return out
-            cand = lo + (hi - lo) * np.stack([rngs[e].random((chunk, 2)) for e in todo])
-            ok = t.contains(cand.reshape(-1, 2), R + m, 0.0, self.effects.pockets).reshape(len(todo), chunk)
-            nxt = np.zeros(len(todo), dtype=np.int64)  # first candidate not yet considered
-            for _slot in range(B):
-                live = np.nonzero(count[todo] < B)[0]
-                if len(live) == 0:
-                    break
-                placed = out[todo[live]]  # [k, B, 2]; slots >= count are ignored below
-                d = np.linalg.norm(cand[live][:, :, None, :] - placed[:, None, :, :], axis=-1)
-                taken = np.arange(B)[None, None, :] < count[todo[live]][:, None, None]
-                clear = ~np.any(taken & (d < 2 * R + m), axis=2)
-                valid = ok[live] & clear & (np.arange(chunk)[None, :] >= nxt[live][:, None])
-                has = valid.any(axis=1)
-                first = np.argmax(valid, axis=1)
-                sel = live[has]
-                out[todo[sel], count[todo[sel]]] = cand[sel, first[has]]
-                count[todo[sel]] += 1
-                nxt[sel] = first[has] + 1
-                nxt[live[~has]] = chunk
-        raise ValueError(f"could not place {B} balls without overlap on {t.name}")
+        out = np.empty((len(idx), B, 2))
+        ok = place_balls(self.streams.keys, self.streams.counters, np.ascontiguousarray(idx, dtype=np.int64),
+                         B, R + m, R + m, t.width - R - m, t.length - R - m, self._pockets,
+                         2 * R + m, max_tries, out)
+        if not ok.all():
+            raise ValueError(f"could not place {B} balls without overlap on {t.name}")
+        return out
 
-    def _break(self, rngs) -> BallState:
+    def _break(self, idx) -> BallState:
         """Seeded 9-ball rack and break: cue ball near the head spot, struck at
-        ~break_speed towards the 1-ball with small random variation."""
+        ~break_speed towards the 1-ball with small random variation; a 9 or
+        cue ball pocketed on the break is respotted (foot / head spot)."""
         t, p, c = self.table, self.params, self.cfg
-        racks, phi, speed, a, b = [], [], [], [], []
-        for rng in rngs:
-            s = rack(t, p, "nine", 1, seed=rng)
-            cue = np.array([t.width / 2 + rng.uniform(-0.15, 0.15), 0.25 * t.length + rng.uniform(-0.03, 0.03)])
-            s.pos[0, 0] = cue
-            d = s.pos[0, 1] - cue
-            phi.append(math.atan2(d[1], d[0]) + math.radians(rng.normal(0.0, 0.3)))
-            speed.append(c.break_speed * (1.0 + rng.uniform(-0.05, 0.05)))
-            a.append(rng.uniform(-0.05, 0.05)); b.append(rng.uniform(-0.1, 0.05))
-            racks.append(s)
-        start = BallState.stack(racks)
-        res = self._simulate(strike_velocity(start, np.array(phi), np.array(speed), np.array(a), np.array(b), p))
+        n = len(idx)
+        u = self.streams.uniform(idx, 12)  # 7 rack shuffle, 2 cue position, speed, 2 offsets
+        z = self.streams.normal(idx, 1)[:, 0]  # aim
+        pos = np.empty((n, 10, 2))
+        pos[:, 1] = self._diamond[0]  # apex: the 1-ball on the foot spot
+        pos[:, 9] = self._diamond[4]  # centre: the 9-ball
+        others = self._diamond[[1, 2, 3, 5, 6, 7, 8]]
+        pos[np.arange(n)[:, None], 2 + np.argsort(u[:, :7], axis=1)] = others  # balls 2..8 shuffled
+        pos[:, 0, 0] = t.width / 2 + (-0.15 + 0.3 * u[:, 7])
+        pos[:, 0, 1] = 0.25 * t.length + (-0.03 + 0.06 * u[:, 8])
+        d = pos[:, 1] - pos[:, 0]
+        phi = np.arctan2(d[:, 1], d[:, 0]) + np.radians(0.3 * z)
+        speed = c.break_speed * (1.0 + (-0.05 + 0.1 * u[:, 9]))
+        a = -0.05 + 0.1 * u[:, 10]
+        b = -0.1 + 0.15 * u[:, 11]
+        start = BallState.from_positions(pos)
+        res = self._simulate(strike_velocity(start, phi, speed, a, b, p))
         out = self._at_rest(res.state)
-        foot, head = np.array([t.width / 2, 0.75 * t.length]), np.array([t.width / 2, 0.25 * t.length])
-        for e in range(out.n_envs):
-            for ball, spot, d in ((9, foot, (0.0, 1.0)), (0, head, (0.0, -1.0))):
+        foot, head = (t.width / 2, 0.75 * t.length), (t.width / 2, 0.25 * t.length)
+        for e in np.nonzero((out.pocket[:, 9] >= 0) | (out.pocket[:, 0] >= 0))[0]:
+            for ball, spot, dy in ((9, foot, 1.0), (0, head, -1.0)):
                 if out.pocket[e, ball] >= 0:  # respot the 9 (foot spot) or the cue ball (head spot)
-                    on = out.pocket[e] < 0
-                    out.pos[e, ball] = self._free_spot(out.pos[e], on, spot, d)
+                    x, y, found = free_spot(out.pos[e], out.pocket[e] < 0, spot[0], spot[1], 0.0, dy,
+                                            t.width, t.length, p.R, self._pockets)
+                    if not found:
+                        raise RuntimeError("no free spot on the table to respot a ball")
+                    out.pos[e, ball] = (x, y)
                     out.pocket[e, ball] = -1
         return out
 
     # --- one shot ---------------------------------------------------------
-    def step(self, actions: np.ndarray, idx, rngs) -> dict:
+    def step(self, actions: np.ndarray, idx) -> dict:
         """Shoot tables ``idx`` with validated actions [n, 4]; update their
         state; return the outcome as arrays over ``idx``."""
         idx = np.asarray(idx, dtype=np.int64)
         c, w, p = self.cfg, self.cfg.reward, self.params
-        clipped = np.any(np.abs(actions) > 1.0, axis=1)
-        phi, draw, sa, sb = self.action_to_shot(actions, idx)
-        speed = p.k * p.contact_time * draw / p.m  # exactly as physics.strike computes it
-        phi, speed, sa, sb = self.apply_noise(phi, speed, sa, sb, rngs)
-        start = self.state.take(idx)
-        if np.any(start.pocket[:, 0] >= 0):
+        sel = Ellipsis if self._all(idx) else idx
+        clipped = (np.abs(actions) > 1.0).any(axis=1)
+        start = self.state.copy() if sel is Ellipsis else self.state.take(idx)
+        if (start.pocket[:, 0] >= 0).any():
             raise RuntimeError("the cue ball is pocketed: the episode has ended, call reset()")
+        tgt, phi0, base = self.targets(start.pos, start.pocket)
+        phi, draw, sa, sb = self.action_to_shot(actions, idx, base)
+        speed = p.k * p.contact_time * draw / p.m  # exactly as physics.strike computes it
+        phi, speed, sa, sb = self.apply_noise(phi, speed, sa, sb, idx)
         res = self._simulate(strike_velocity(start, phi, speed, sa, sb, p))
         end = self._at_rest(res.state)
 
         new = (end.pocket >= 0) & (start.pocket < 0)
         scratch = new[:, 0]
-        tgt = legal_target(start.pocket)
         fc = res.first_contact
         contact = (fc == tgt) & (tgt > 0)
         foul = ~contact if c.task == "nine_ball" else (fc < 1)
@@ -309,10 +359,10 @@ class BilliardsCore:
             nine = new[:, 9]
             success = legal & nine
             terminated = scratch | foul | nine
-        self.shots[idx] += 1
-        truncated = ~terminated & ((self.shots[idx] >= c.max_shots) | res.truncated)
+        self.shots[sel] += 1
+        shots = self.shots[sel].copy()
+        truncated = ~terminated & ((shots >= c.max_shots) | res.truncated)
 
-        phi0 = self.potential(start.pos, start.pocket)
         phi1 = np.where(terminated, 0.0, self.potential(end.pos, end.pocket))
         terms = {
             "pocket": w.pocket * n_obj * legal,
@@ -322,7 +372,7 @@ class BilliardsCore:
             "success": w.success * success,
             "shaping": w.shaping * (w.gamma * phi1 - phi0),
         }
-        terms = {k: v.astype(np.float64) + 0.0 for k, v in terms.items()}  # + 0.0: no negative zeros
+        terms = {k: v + 0.0 for k, v in terms.items()}  # float64 (weights are floats); + 0.0: no negative zeros
         reward = sum(terms.values())
 
         self._set(idx, end)
@@ -334,4 +384,4 @@ class BilliardsCore:
                     info=dict(pocketed=new, n_pocketed=n_obj, first_contact=fc, legal_target=tgt,
                               foul=foul, scratch=scratch, success=success, n_events=res.n_events,
                               sim_time=res.time, sim_truncated=res.truncated, action_clipped=clipped,
-                              shot=self.shots[idx].copy()))
+                              shot=shots))
