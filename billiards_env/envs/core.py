@@ -16,6 +16,7 @@ import numba
 import numpy as np
 
 from ..physics import BallState, simulate, strike_velocity
+from ..physics.state import diamond_slots
 from .config import TaskConfig
 from .streams import TableStreams, free_spot, place_balls
 
@@ -131,18 +132,9 @@ class BilliardsCore:
         self._every = np.arange(self.n_envs)
         self._pockets = np.ascontiguousarray(self.table.geometry(self.effects.pockets)[3], dtype=np.float64)
         if cfg.task == "nine_ball":
-            self._diamond = self._diamond_slots()
+            self._diamond = diamond_slots(self.table, self.params.R)  # slot 0 apex, 4 centre
 
     # --- geometry helpers -------------------------------------------------
-    def _diamond_slots(self) -> np.ndarray:
-        """The 9 slots [9, 2] of a frozen 9-ball diamond on the foot spot,
-        laid out as ``physics.state.rack(layout="nine")`` does: slot 0 is the
-        apex (the 1-ball), slot 4 the centre (the 9-ball)."""
-        t, d = self.table, 2 * self.params.R
-        fx, fy = t.width / 2, 0.75 * t.length
-        return np.array([(fx + (k - (n - 1) / 2) * d, fy + r * d * math.sqrt(3) / 2)
-                         for r, n in enumerate((1, 2, 3, 2, 1)) for k in range(n)])
-
     def legal_target(self) -> np.ndarray:
         return legal_target(self.state.pocket)
 

@@ -72,19 +72,23 @@ def _triangle(n_rows: int, apex, R: float, gap: float, order) -> np.ndarray:
     return np.array(pts)[order]
 
 
+def diamond_slots(table: Table, R: float, gap: float = 0.0) -> np.ndarray:
+    """The 9 centres [9, 2] of a 9-ball diamond on the foot spot, row by row
+    from the apex: slot 0 is the apex (the 1-ball), slot 4 the centre (the
+    9-ball). ``gap=0`` freezes neighbours (centres exactly 2R apart)."""
+    fx, fy = table.width / 2, 0.75 * table.length
+    d = 2 * R + gap
+    return np.array([(fx + (k - (n - 1) / 2) * d, fy + r * d * math.sqrt(3) / 2)
+                     for r, n in enumerate((1, 2, 3, 2, 1)) for k in range(n)])
+
+
 def _rack(table: Table, R: float, layout: str, gap: float, rng, jitter: float) -> np.ndarray:
     w, l = table.width, table.length
     foot_spot = (w / 2, 0.75 * l)
     head = (w / 2, 0.25 * l)
-    d = 2 * R + gap
     if layout == "nine":
         # diamond: 1 at the apex on the foot spot, 9 in the centre
-        rows = [1, 2, 3, 2, 1]
-        pts = []
-        for r, n in enumerate(rows):
-            for k in range(n):
-                pts.append((foot_spot[0] + (k - (n - 1) / 2) * d, foot_spot[1] + r * d * math.sqrt(3) / 2))
-        pts = np.array(pts)
+        pts = diamond_slots(table, R, gap)
         # ball numbers: apex = 1, centre (row 2, middle) = 9, others shuffled
         others = [i for i in range(9) if i not in (0, 4)]
         nums = [2, 3, 4, 5, 6, 7, 8]
