@@ -23,13 +23,6 @@ from .streams import TableStreams, free_spot, place_balls
 OFFSET_SAFETY = 1.0 - 1e-9  # radial clip just inside the miscue limit (strict check in strike)
 
 
-def legal_target(pocket: np.ndarray) -> np.ndarray:
-    """Lowest-numbered object ball still on the table, per table; -1 if none."""
-    on = pocket[:, 1:] < 0
-    tgt = np.argmax(on, axis=1) + 1
-    return np.where(on.any(axis=1), tgt, -1).astype(np.int64)
-
-
 # Per-step bookkeeping over all tables, fused into single passes (numpy would
 # take one pass, and a temporary, per operation).
 _jit = numba.njit(cache=True, nogil=True)
@@ -65,11 +58,25 @@ def _targets(pos, pocket, pockets, diag, tgt, phi, aim, ang):
 
 
 @_jit
+def _clip_offset(a, b, limit):
+    """(a, b) scaled radially just inside the disc of radius ``limit``."""
+    lim = limit * OFFSET_SAFETY
+    r = math.hypot(a, b)
+    f = lim / max(r, 1e-300) if r > lim else 1.0
+    return a * f, b * f
+
+
+@_jit
+def _clip_offsets(a, b, limit):
+    for e in range(a.shape[0]):
+        a[e], b[e] = _clip_offset(a[e], b[e], limit)
+
+
+@_jit
 def _action_to_shot(actions, base, lo, hi, limit, out):
     """Actions [n, 4] -> rows (phi, draw, a, b) of ``out`` [4, n]: clipped to
     [-1, 1]; phi = base + pi * a0 wrapped to [-pi, pi); (a, b) scaled
-    radially just inside the miscue limit (as ``clip_offsets``)."""
-    lim = limit * OFFSET_SAFETY
+    radially just inside the miscue limit (``_clip_offset``)."""
     for e in range(actions.shape[0]):
         a0 = min(max(actions[e, 0], -1.0), 1.0)
         a1 = min(max(actions[e, 1], -1.0), 1.0)
@@ -77,11 +84,7 @@ def _action_to_shot(actions, base, lo, hi, limit, out):
         a3 = min(max(actions[e, 3], -1.0), 1.0)
         out[0, e] = (base[e] + math.pi * a0 + math.pi) % (2 * math.pi) - math.pi
         out[1, e] = lo + (a1 + 1.0) * 0.5 * (hi - lo)
-        sa, sb = a2 * limit, a3 * limit
-        r = math.hypot(sa, sb)
-        f = lim / max(r, 1e-300) if r > lim else 1.0
-        out[2, e] = sa * f
-        out[3, e] = sb * f
+        out[2, e], out[3, e] = _clip_offset(a2 * limit, a3 * limit, limit)
 
 
 @_jit
@@ -100,14 +103,6 @@ def _observe(pos, pocket, shots, max_shots, width, length, obs):
         if t >= 0:
             obs[e, 3 * B + t] = 1.0
         obs[e, 4 * B] = min(shots[e] / max_shots, 1.0)
-
-
-def clip_offsets(a: np.ndarray, b: np.ndarray, limit: float):
-    """Scale (a, b) radially into the disc of radius ``limit`` (just inside it)."""
-    r = np.hypot(a, b)
-    lim = limit * OFFSET_SAFETY
-    f = np.where(r > lim, lim / np.maximum(r, 1e-300), 1.0)
-    return a * f, b * f
 
 
 class BilliardsCore:
@@ -136,7 +131,8 @@ class BilliardsCore:
 
     # --- geometry helpers -------------------------------------------------
     def legal_target(self) -> np.ndarray:
-        return legal_target(self.state.pocket)
+        """Legal target ball of every table (-1 if none)."""
+        return self.targets(self.state.pos, self.state.pocket, aim=False)[0]
 
     def targets(self, pos: np.ndarray, pocket: np.ndarray, aim: bool = True):
         """Of tables at ``pos`` [n, B, 2], ``pocket`` [n, B]: (legal target [n]
@@ -202,7 +198,7 @@ class BilliardsCore:
         speed = np.clip(speed + z[:, 1] * nz.speed, 0.0, self.params.max_speed)
         a = a + z[:, 2] * nz.side_mm * 1e-3 / R
         b = b + z[:, 3] * nz.height_mm * 1e-3 / R
-        a, b = clip_offsets(a, b, self.params.miscue_limit)
+        _clip_offsets(a, b, self.params.miscue_limit)  # a, b are new arrays here
         return phi, speed, a, b
 
     # --- simulation -------------------------------------------------------
