@@ -129,6 +129,16 @@ class TableStreams:
 
 # ----------------------------------------------------- placement kernels --
 @_jit
+def _in_pocket(x, y, pockets):
+    """True if (x, y) lies in a pocket capture circle (squared distance <= r**2)."""
+    for p in range(pockets.shape[0]):
+        dx, dy = x - pockets[p, 0], y - pockets[p, 1]
+        if dx * dx + dy * dy <= pockets[p, 2] * pockets[p, 2]:
+            return True
+    return False
+
+
+@_jit
 def place_balls(keys, counters, idx, B, lo_x, lo_y, hi_x, hi_y, pockets, min_dist, max_tries, out):
     """Rejection-sample ``B`` ball centres per table ``idx[j]`` into ``out[j]``.
 
@@ -153,12 +163,7 @@ def place_balls(keys, counters, idx, B, lo_x, lo_y, hi_x, hi_y, pockets, min_dis
             x = lo_x + (hi_x - lo_x) * _next_uniform(key, c + _ONE)
             y = lo_y + (hi_y - lo_y) * _next_uniform(key, c + _ONE + _ONE)
             c += _ONE + _ONE
-            good = True
-            for p in range(pockets.shape[0]):
-                dx, dy = x - pockets[p, 0], y - pockets[p, 1]
-                if dx * dx + dy * dy <= pockets[p, 2] * pockets[p, 2]:
-                    good = False
-                    break
+            good = not _in_pocket(x, y, pockets)
             if good:
                 for q in range(placed):
                     dx, dy = x - out[j, q, 0], y - out[j, q, 1]
@@ -178,10 +183,8 @@ def _spot_free(x, y, pos, on, width, length, R, pockets, min_dist):
     edge = R + 1e-4
     if x < edge or x > width - edge or y < edge or y > length - edge:
         return False
-    for p in range(pockets.shape[0]):
-        dx, dy = x - pockets[p, 0], y - pockets[p, 1]
-        if dx * dx + dy * dy <= pockets[p, 2] * pockets[p, 2]:
-            return False
+    if _in_pocket(x, y, pockets):
+        return False
     for q in range(pos.shape[0]):
         if on[q]:
             dx, dy = x - pos[q, 0], y - pos[q, 1]
