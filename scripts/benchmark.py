@@ -100,96 +100,50 @@ def solver_rows(args, P, T):
     return rows
 
 
+EFFECT_SETS = {
+    "all (= default)": Effects.all(),  # both physics presets default to every effect
+    "no spin": Effects(spin=False),
+    "no sliding": Effects(sliding=False),
+    "no vertical spin": Effects(vertical_spin=False),
+    "no ball friction": Effects(ball_friction=False),
+    "no cushion friction": Effects(cushion_friction=False),
+    "no pockets": Effects(pockets=False),
+    "minimal": Effects.minimal(),
+}
+
+
 def effects_rows(args, P, T):
+    """Each effect switched off alone, and all at once, on the same shots.
+    Besides shots/s the rows give what explains them: events and simulated
+    seconds per shot (the physics of the set) and the cost of one event
+    (event solver) or one step (step solver) (the kernel's work)."""
     rows = []
-    sets = {"all": Effects.all(), "no spin": Effects(spin=False), "no ball/cushion friction":
-            Effects(ball_friction=False, cushion_friction=False), "minimal": Effects.minimal()}
+    nt = numba.config.NUMBA_NUM_THREADS
     for scene in ("9-ball break (8 m/s)", "two-ball cut (2 m/s, top+side)"):
-        s = SCENES[scene](args.batch, P, T, np.random.default_rng(1))
-        one = s.take([0])
-        base = {}
         for solver, dt in (("event", None), ("step", 1e-3)):
-            for label, eff in sets.items():
+            # the step solver is ~30x slower: a quarter batch keeps the run short
+            n = args.batch if solver == "event" else max(16, args.batch // 4)
+            s = SCENES[scene](n, P, T, np.random.default_rng(1))
+            one = s.take([0])
+            base = None
+            for label, eff in EFFECT_SETS.items():
                 run = lambda st=s, e=eff: simulate(st, T, P, solver=solver, dt=dt, effects=e)
                 res = run()
                 set_num_threads(1)
                 t1 = timeit(run, args.repeats)
-                set_num_threads(numba.config.NUMBA_NUM_THREADS)
+                set_num_threads(nt)
                 tall = timeit(run, args.repeats)
                 lat = timeit(lambda e=eff: simulate(one, T, P, solver=solver, dt=dt, effects=e), args.repeats * 3)
-                key = (scene, solver)
-                if label == "all":
-                    base[key] = t1
+                base = t1 if base is None else base
+                events = float(np.mean(res.n_events))
+                sim_s = float(np.mean(res.time))
+                units = events if dt is None else sim_s / dt  # events, or steps
                 rows.append(dict(section="effects", scene=scene, solver=solver if dt is None else f"step dt={dt:g}",
-                                 effects=label, batch=args.batch, events_per_shot=float(np.mean(res.n_events)),
-                                 shots_per_s_1t=args.batch / t1,
-                                 **{f"shots_per_s_{numba.config.NUMBA_NUM_THREADS}t": args.batch / tall},
-                                 latency_ms=1e3 * lat, speedup_vs_all=base[key] / t1))
-                print(f"  {scene:32s} {solver:6s} {label:26s} x{base[key] / t1:5.2f} vs all", flush=True)
-    return rows
-
-
-def env_rows(args):
-    """Env steps/s through gymnasium.make_vec with random actions. The env's
-    own simulator calls (shots and NineBall's break simulations in resets)
-    are timed in the same run, so the overhead is the time the env spends
-    outside the simulator, over the time inside it."""
-    import gymnasium as gym
-    import billiards_env  # noqa: F401  (registers the tasks)
-    rows = []
-    cases = [(n, "same_step") for n in (1, 64, 1024)] + [(1024, "next_step")]
-    for env_id in ("Billiards-PotOne-v0", "Billiards-NineBall-v0"):
-        for n, mode in cases:
-            env = gym.make_vec(env_id, num_envs=n, vectorization_mode="vector_entry_point", autoreset_mode=mode)
-            core = env.unwrapped._core
-            inner_sim = core._simulate
-            sim_time = [0.0]
-
-            def timed(state, _inner=inner_sim, _acc=sim_time):
-                t0 = time.perf_counter()
-                out = _inner(state)
-                _acc[0] += time.perf_counter() - t0
-                return out
-
-            core._simulate = timed  # instance attribute: times this env's simulator calls only
-            env.reset(seed=0)
-            rng = np.random.default_rng(0)
-            acts = rng.uniform(-1, 1, size=(32, n, 4)).astype(np.float32)
-            env.step(acts[0])
-            steps = max(4, min(64, 20_000 // n)) if not args.quick else 4
-            runs = []
-            for _ in range(args.repeats):
-                sim_time[0] = 0.0
-                t0 = time.perf_counter()
-                for k in range(steps):
-                    env.step(acts[k % 32])
-                runs.append((time.perf_counter() - t0, sim_time[0]))
-            dt = statistics.median(r[0] for r in runs)
-            rows.append(dict(section="env", scene=env_id, solver="event", effects="task", batch=n, autoreset=mode,
-                             env_steps_per_s=n * steps / dt,
-                             sim_share=statistics.median(ts / d for d, ts in runs),
-                             env_overhead_pct=statistics.median(100.0 * (d - ts) / ts for d, ts in runs)))
-            env.close()
-            r = rows[-1]
-            print(f"  {env_id:24s} {n:5d} tables {mode:9s} {r['env_steps_per_s']:10.0f} steps/s, "
-                  f"overhead {r['env_overhead_pct']:5.1f}%", flush=True)
-    return rows
-
-
-def cold_start_rows():
-    code = ("import time; t0=time.perf_counter(); import numpy as np; "
-            "from billiards_env.physics import *; P=PhysicsParams.standard(); T=Table.pool(9); "
-            "s=strike_velocity(rack(T,P,'nine',1,seed=0), 1.5708, 8.0, params=P); simulate(s,T,P); "
-            "print(time.perf_counter()-t0)")
-    rows = []
-    with tempfile.TemporaryDirectory() as cold_dir:
-        for label, env in (("cold (empty numba cache)", {"NUMBA_CACHE_DIR": cold_dir}),
-                           ("warm (numba cache on disk)", {"NUMBA_CACHE_DIR": cold_dir})):
-            out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                                 env={**os.environ, **env}, check=True)
-            rows.append(dict(section="cold start", scene="import + first 9-ball break", solver="event",
-                             effects="all", batch=1, seconds=float(out.stdout.strip().splitlines()[-1]), note=label))
-            print(f"  {label}: {rows[-1]['seconds']:.2f} s", flush=True)
+                                 effects=label, batch=n, events_per_shot=events, sim_seconds_per_shot=sim_s,
+                                 us_per_unit=1e6 * t1 / n / units, shots_per_s_1t=n / t1,
+                                 **{f"shots_per_s_{nt}t": n / tall},
+                                 latency_ms=1e3 * lat, speedup_vs_all=base / t1))
+                print(f"  {scene:32s} {solver:6s} {label:20s} x{base / t1:5.2f} vs all", flush=True)
     return rows
 
 
@@ -209,11 +163,13 @@ def markdown(rows):
         lines.append("")
     eff = [r for r in rows if r["section"] == "effects"]
     if eff:
-        lines += ["| scene | solver | effects | events/shot | shots/s, 1 thread | speed-up vs all effects |",
-                  "|---|---|---|---:|---:|---:|"]
+        lines += ["| scene | solver | effects | events/shot | simulated s/shot | µs per event or step | "
+                  f"shots/s, 1 thread | shots/s, {nt} threads | single-shot latency (ms) | speed-up vs all |",
+                  "|---|---|---|---:|---:|---:|---:|---:|---:|---:|"]
         for r in eff:
             lines.append(f"| {r['scene']} | {r['solver']} | {r['effects']} | {r['events_per_shot']:.1f} | "
-                         f"{r['shots_per_s_1t']:,.0f} | {r['speedup_vs_all']:.2f}x |")
+                         f"{r['sim_seconds_per_shot']:.2f} | {r['us_per_unit']:.2f} | {r['shots_per_s_1t']:,.0f} | "
+                         f"{r[f'shots_per_s_{nt}t']:,.0f} | {r['latency_ms']:.3f} | {r['speedup_vs_all']:.2f}x |")
         lines.append("")
     env = [r for r in rows if r["section"] == "env"]
     if env:
