@@ -81,6 +81,31 @@ def _count(info: dict, *names) -> int:
     return 0
 
 
+def parse_noise(spec: str | None):
+    """A ``--noise`` value: a preset name (``none``, ``tournament``) or
+    ``key=value`` pairs of ``NoiseConfig`` separated by commas, optionally
+    with ``preset=...`` (``aim_deg=1`` or ``preset=tournament,aim_deg=0.5``).
+    Returns what the env's ``noise`` option takes; errors name the bad part."""
+    if spec is None or "=" not in spec:
+        return spec
+    d = {}
+    for part in spec.split(","):
+        key, sep, value = part.partition("=")
+        key = key.strip()
+        if not sep or not key:
+            raise ValueError(f"noise spec {spec!r}: expected key=value, got {part!r}")
+        if key == "preset":
+            d[key] = value.strip()
+            continue
+        try:
+            d[key] = float(value)
+        except ValueError:
+            raise ValueError(f"noise spec {spec!r}: {key} must be a number, got {value!r}") from None
+    from billiards_env.envs.config import NoiseConfig
+    NoiseConfig.from_any(d)  # validates names and values before any env is built
+    return d
+
+
 def evaluate(policy_fn: Callable, env_id: str, n_episodes: int = 1000, seed: int = 0, noise: str = "none",
              batch_size: int = 1000, max_steps: int = 10_000, env_kwargs: dict | None = None,
              name: str | None = None, numba_threads: int | None = None) -> EvalResult:
@@ -89,7 +114,7 @@ def evaluate(policy_fn: Callable, env_id: str, n_episodes: int = 1000, seed: int
     t0 = time.perf_counter()
     kw = dict(env_kwargs or {})
     if noise and noise != "none":
-        kw["noise"] = noise
+        kw["noise"] = parse_noise(noise)
     succ, ret, scratch, foul, balls, shots = ([] for _ in range(6))
     done_total = 0
     batch_idx = 0

@@ -15,7 +15,7 @@ pytest.importorskip("stable_baselines3")
 
 from agents.baselines import GhostBallPolicy, SB3Policy, SearchPolicy  # noqa: E402
 from agents.config import load_config  # noqa: E402
-from agents.evaluation import evaluate, wilson_interval  # noqa: E402
+from agents.evaluation import evaluate, parse_noise, wilson_interval  # noqa: E402
 from agents.sb3_vec_env import NativeVecEnv, make_sb3_vec_env, split_infos  # noqa: E402
 from billiards_env.physics import BallState  # noqa: E402
 
@@ -162,6 +162,17 @@ def test_evaluation_same_tables_for_every_policy():
     a = evaluate(lambda env: GhostBallPolicy(env), POT, 30, seed=11)
     b = evaluate(lambda env: GhostBallPolicy(env), POT, 30, seed=11)
     assert a.per_episode == b.per_episode
+
+
+def test_noise_spec_parsing_and_aim_noise_lowers_success():
+    assert parse_noise("none") == "none" and parse_noise("tournament") == "tournament"
+    assert parse_noise("preset=tournament,aim_deg=0.5") == {"preset": "tournament", "aim_deg": 0.5}
+    for bad in ("aim_deg=x", "aim=1", "aim_deg=-1"):
+        with pytest.raises(ValueError, match="aim"):
+            parse_noise(bad)
+    clean = evaluate(lambda env: GhostBallPolicy(env), POT, 60, seed=3)
+    noisy = evaluate(lambda env: GhostBallPolicy(env), POT, 60, seed=3, noise="aim_deg=2")
+    assert noisy.noise == "aim_deg=2" and noisy.success_rate < clean.success_rate - 0.2
 
 
 # ---------------------------------------------------------------- config
