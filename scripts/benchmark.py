@@ -100,16 +100,8 @@ def solver_rows(args, P, T):
     return rows
 
 
-EFFECT_SETS = {
-    "all (= default)": Effects.all(),  # both physics presets default to every effect
-    "no spin": Effects(spin=False),
-    "no sliding": Effects(sliding=False),
-    "no vertical spin": Effects(vertical_spin=False),
-    "no ball friction": Effects(ball_friction=False),
-    "no cushion friction": Effects(cushion_friction=False),
-    "no pockets": Effects(pockets=False),
-    "minimal": Effects.minimal(),
-}
+# "all" is also the default set: both physics presets model every effect
+EFFECT_SETS = {("all (= default)" if k == "all" else k): v for k, v in Effects.each_off().items()}
 
 
 def effects_rows(args, P, T):

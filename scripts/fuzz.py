@@ -4,6 +4,7 @@ JSON regression cases (replayed by tests/test_regressions.py).
 
     python scripts/fuzz.py --shots 1000000 --solver event
     python scripts/fuzz.py --shots 20000 --solver step --dt 1e-3
+    python scripts/fuzz.py --shots 1000000 --effects each   # every effect set
 """
 from __future__ import annotations
 
@@ -15,6 +16,7 @@ import time
 import numpy as np
 from tqdm import tqdm
 
+from billiards_env.physics import Effects
 from billiards_env.testing import LAYOUTS, case_dict, random_batch, run_batch, save_case
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
@@ -25,6 +27,9 @@ def main(argv=None):
     ap.add_argument("--shots", type=int, default=1_000_000)
     ap.add_argument("--solver", choices=["event", "step"], default="event")
     ap.add_argument("--dt", type=float, default=1e-3, help="step solver time step (s)")
+    ap.add_argument("--effects", default="all",
+                    help="an effect set of Effects.each_off() ('all', 'no spin', ..., 'minimal'), "
+                         "or 'each': a random one of them per batch")
     ap.add_argument("--batch", type=int, default=4096)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--regressions", type=pathlib.Path, default=ROOT / "tests" / "regressions")
@@ -32,10 +37,15 @@ def main(argv=None):
     ap.add_argument("--max-minutes", type=float, default=None,
                     help="stop after this much wall time (the summary says how many shots ran)")
     args = ap.parse_args(argv)
+    effect_sets = Effects.each_off()
+    if args.effects != "each" and args.effects not in effect_sets:
+        ap.error(f"--effects must be 'each' or one of {sorted(effect_sets)}, got {args.effects!r}")
+    names = sorted(effect_sets) if args.effects == "each" else [args.effects]
 
     rng = np.random.default_rng(args.seed)
     done = failures = events = 0
     kinds = {}
+    per_set, failures_per_set = {}, {}  # shots and failing shots per effect set
     t0 = time.perf_counter()
     stopped_early = False
     with tqdm(total=args.shots, unit="shot", desc=f"fuzz {args.solver}") as bar:
@@ -47,15 +57,20 @@ def main(argv=None):
             layout = LAYOUTS[int(rng.integers(len(LAYOUTS)))]
             preset = "seed" if rng.random() < 0.2 else "standard"
             state, table, params = random_batch(rng, n, layout, preset)
-            res, viol = run_batch(state, table, params, args.solver, dt=args.dt)
+            name = names[int(rng.integers(len(names)))] if len(names) > 1 else names[0]
+            effects = effect_sets[name]
+            res, viol = run_batch(state, table, params, args.solver, dt=args.dt, effects=effects)
+            per_set[name] = per_set.get(name, 0) + n
             events += int(res.n_events.sum())
             for e, v in enumerate(viol):
                 if v:
                     failures += 1
                     for m in v:
                         kinds[m.split(" ")[0]] = kinds.get(m.split(" ")[0], 0) + 1
+                    failures_per_set[name] = failures_per_set.get(name, 0) + 1
                     if failures <= 50:
-                        save_case(case_dict(state, e, params, args.solver, args.dt, v), args.regressions, tag="fuzz")
+                        save_case(case_dict(state, e, params, args.solver, args.dt, v, effects),
+                                  args.regressions, tag="fuzz")
             done += n
             bar.update(n)
             bar.set_postfix(violations=failures)
@@ -63,7 +78,9 @@ def main(argv=None):
     summary = dict(solver=args.solver, dt=args.dt if args.solver == "step" else None, shots=done,
                    shots_requested=args.shots, stopped_by_time_budget=stopped_early,
                    shots_with_violations=failures, violation_kinds=kinds, events=events,
-                   wall_s=round(wall, 1), shots_per_s=round(done / wall, 1), seed=args.seed)
+                   wall_s=round(wall, 1), shots_per_s=round(done / wall, 1), seed=args.seed,
+                   effects=args.effects, shots_per_effect_set=per_set,
+                   violations_per_effect_set=failures_per_set)
     print(json.dumps(summary, indent=1))
     if args.summary:
         args.summary.parent.mkdir(parents=True, exist_ok=True)

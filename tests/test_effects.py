@@ -126,6 +126,16 @@ def test_each_effect_set_compiles_its_own_kernel():
     assert Effects(spin=False).key() == Effects(spin=False, ball_friction=False).key()
 
 
+def test_each_off_lists_every_effect_once():
+    sets = Effects.each_off()
+    assert sets["all"] == Effects.all() and sets["minimal"] == Effects.minimal()
+    singles = {k: v for k, v in sets.items() if k not in ("all", "minimal")}
+    assert len(singles) == len(dataclasses.fields(Effects))
+    for eff in singles.values():
+        assert sum(not getattr(eff, f.name) for f in dataclasses.fields(Effects)) == 1
+    assert len({v.key() for v in sets.values()}) == len(sets)  # distinct kernels
+
+
 def test_unknown_effect_is_rejected():
     with pytest.raises(ValueError, match="unknown effects"):
         Effects.from_dict({"spinn": False})

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
+from billiards_env.physics import Effects
 from billiards_env.testing import LAYOUTS, case_dict, random_batch, run_batch, save_case
 
 REGRESSIONS = pathlib.Path(__file__).parent / "regressions"
@@ -27,4 +28,20 @@ def test_random_shots_keep_invariants(solver, seed, layout, preset):
     bad = [e for e, v in enumerate(viol) if v]
     for e in bad:
         save_case(case_dict(state, e, params, solver, 1e-3, viol[e]), REGRESSIONS, tag="hyp")
+    assert not bad, {e: viol[e] for e in bad}
+
+
+@pytest.mark.parametrize("effects", sorted(Effects.each_off()))
+@settings(SETTINGS, max_examples=4)
+@given(seed=st.integers(0, 2**32 - 1), layout=st.sampled_from(LAYOUTS))
+def test_random_shots_keep_invariants_under_every_effect_set(effects, seed, layout):
+    """Every kernel variant keeps the invariants, not only the default one
+    (event solver; each set with one effect off, and the minimal set)."""
+    eff = Effects.each_off()[effects]
+    rng = np.random.default_rng(seed)
+    state, table, params = random_batch(rng, 8, layout, "standard")
+    res, viol = run_batch(state, table, params, "event", effects=eff)
+    bad = [e for e, v in enumerate(viol) if v]
+    for e in bad:
+        save_case(case_dict(state, e, params, "event", None, viol[e], eff), REGRESSIONS, tag="hyp")
     assert not bad, {e: viol[e] for e in bad}

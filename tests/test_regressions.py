@@ -5,6 +5,8 @@ import pathlib
 
 import pytest
 
+from billiards_env.physics import Effects
+
 from billiards_env.testing import load_case, run_checked
 
 REGRESSIONS = pathlib.Path(__file__).parent / "regressions"
@@ -19,4 +21,5 @@ def test_regression_cases_exist():
 @pytest.mark.parametrize("path", CASES, ids=[p.stem for p in CASES])
 def test_regression_case(path):
     c, state, table, params = load_case(path)
-    run_checked(state, table, params, c["solver"], dt=c.get("dt") or 1e-3)
+    run_checked(state, table, params, c["solver"], dt=c.get("dt") or 1e-3,
+                effects=Effects.from_dict(c.get("effects")))

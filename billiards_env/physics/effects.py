@@ -49,6 +49,16 @@ class Effects:
                    ball_friction=False, cushion_friction=False, pockets=False)
 
     @classmethod
+    def each_off(cls) -> dict[str, "Effects"]:
+        """All effects, each effect switched off alone, and the minimal set,
+        by name: the sets the benchmark times and the fuzzer checks."""
+        sets = {"all": cls.all()}
+        for f in dataclasses.fields(cls):
+            sets[f"no {f.name.replace('_', ' ')}"] = cls(**{f.name: False})
+        sets["minimal"] = cls.minimal()
+        return sets
+
+    @classmethod
     def from_dict(cls, d: dict | None) -> "Effects":
         d = dict(d or {})
         names = {f.name for f in dataclasses.fields(cls)}
