@@ -56,9 +56,9 @@ def main(argv=None):
             n = min(args.batch, args.shots - done)
             layout = LAYOUTS[int(rng.integers(len(LAYOUTS)))]
             preset = "seed" if rng.random() < 0.2 else "standard"
-            state, table, params = random_batch(rng, n, layout, preset)
             name = names[int(rng.integers(len(names)))] if len(names) > 1 else names[0]
             effects = effect_sets[name]
+            state, table, params = random_batch(rng, n, layout, preset, pockets=effects.pockets)
             res, viol = run_batch(state, table, params, args.solver, dt=args.dt, effects=effects)
             per_set[name] = per_set.get(name, 0) + n
             events += int(res.n_events.sum())

@@ -39,7 +39,7 @@ def test_random_shots_keep_invariants_under_every_effect_set(effects, seed, layo
     (event solver; each set with one effect off, and the minimal set)."""
     eff = Effects.each_off()[effects]
     rng = np.random.default_rng(seed)
-    state, table, params = random_batch(rng, 8, layout, "standard")
+    state, table, params = random_batch(rng, 8, layout, "standard", pockets=eff.pockets)
     res, viol = run_batch(state, table, params, "event", effects=eff)
     bad = [e for e, v in enumerate(viol) if v]
     for e in bad:

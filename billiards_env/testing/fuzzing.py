@@ -14,8 +14,10 @@ from .invariants import check_invariants
 LAYOUTS = ("nine", "eight", "random")
 
 
-def random_batch(rng, n_envs, layout, preset, n_balls=None):
-    """``n_envs`` tables of one layout, each with a random cue strike."""
+def random_batch(rng, n_envs, layout, preset, n_balls=None, pockets=True):
+    """``n_envs`` tables of one layout, each with a random cue strike.
+    ``pockets=False``: random balls lie inside the closed box (a ball in a
+    pocket mouth would be off that table)."""
     params = PhysicsParams.preset(preset)
     table = Table.pool(9)
     R = params.R
@@ -34,7 +36,7 @@ def random_batch(rng, n_envs, layout, preset, n_balls=None):
                     k = rng.integers(0, b)
                     ang = rng.uniform(0, 2 * np.pi, len(todo))
                     p = pos[todo, k] + 2 * R * np.stack([np.cos(ang), np.sin(ang)], 1)
-                ok = table.contains(p, R, 0.0)
+                ok = table.contains(p, R, 0.0, pockets)
                 if b:
                     d = np.hypot(*(pos[todo, :b] - p[:, None]).transpose(2, 0, 1))
                     ok &= (d >= 2 * R - 1e-12).all(1)
