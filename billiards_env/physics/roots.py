@@ -111,9 +111,11 @@ def first_entry(c4, c3, c2, c1, c0, H, f_tol, f_floor):
     """Earliest t in [0, H] at which f goes from > 0 to <= 0; inf if none.
 
     At t = 0, a gap within ``f_tol`` of zero counts as contact if it is
-    closing (f' < 0) or held closed by the accelerations (f' = 0, f'' < 0);
-    a touching pair that is opening is not a contact. Below ``f_floor`` the
-    gap is not a contact at all (a ball far behind a cushion line).
+    closing (f' < 0) or held closed by the accelerations (f' = 0 within
+    rounding, f'' < 0); a touching pair that is opening is not a contact,
+    and its next contact is when the gap returns to its current level.
+    Below ``f_floor`` the gap is not a contact at all (a ball far behind a
+    cushion line).
     """
     if not H > 0.0:
         H = 0.0
@@ -123,15 +125,23 @@ def first_entry(c4, c3, c2, c1, c0, H, f_tol, f_floor):
         c1_tol = f_tol * (C.SPEED_EPS / C.CONTACT_TOL)
         # held closed: likewise only by more than rounding of accelerations
         c2_tol = f_tol * (C.ACCEL_EPS / C.CONTACT_TOL)
-        if c1 < -c1_tol or (c1 <= 0.0 and c2 < -c2_tol):
+        if c1 < -c1_tol or (c1 <= c1_tol and c2 < -c2_tol):
             return 0.0
-        if H > 0.0 and c1 > 0.0 and c2 < -c2_tol:
-            # Touching, opening and pressed: the gap may open by less than
+        if H > 0.0:
+            # Touching and not closing: the gap may open by less than
             # rounding can resolve and close again (a pair pressed by the
-            # felt after a slow impact). Contact is then when f returns to its current
-            # level: the first root of (f - c0) / t = c4 t^3 + c3 t^2 + c2 t + c1.
-            t_back = _entry(0.0, c4, c3, c2, c1, H)
-            return min(t_back, _entry(c4, c3, c2, c1, c0, H))
+            # felt after a slow impact; two balls sliding past each other
+            # whose decelerations turn them into each other, a cubic term).
+            # c0 itself may be a rounding below zero, so f need never rise
+            # above zero first. Contact is when f returns to its current
+            # level: the first root of (f - c0) / t = c4 t^3 + c3 t^2 +
+            # c2 t + c1. Rates within rounding of zero are zero, in this and
+            # in f itself: taken as real they close a pair that moves
+            # together a few nanoseconds later, again and again.
+            g1 = c1 if c1 > c1_tol else 0.0
+            g2 = c2 if abs(c2) > c2_tol else 0.0
+            t_back = _entry(0.0, c4, c3, g2, g1, H)
+            return min(t_back, _entry(c4, c3, g2, g1, c0, H))
     if H == 0.0:
         return math.inf
     return _entry(c4, c3, c2, c1, c0, H)
