@@ -30,9 +30,14 @@ MAX_EVENTS = 20_000
 # Inelastic collapse: a slow ball wedged between a ball and a cushion can be
 # struck back and forth at one instant forever (each impact pushes it into
 # the other contact). After ZENO_EVENTS events without time advancing, the
-# balls of those events slower than ZENO_FREEZE_SPEED (surface speed
-# |v| + R|w|, m/s) are stopped: the felt would stop such a ball within
-# (1e-3)^2 / (2 mu_r g) ~ 5 um, and stopping it only removes energy.
+# balls of those events slower than ZENO_FREEZE_SPEED (speed of the contact
+# point with the cloth, |v| + R|w_xy|, m/s) stop translating and rolling
+# (spin about the vertical axis, which drives no contact, is kept): the felt
+# would stop such a ball within (1e-3)^2 / (2 mu_r g) ~ 5 um, and stopping it
+# only removes energy. If the same instant still does not end, each further
+# ZENO_EVENTS events double the speed limit (a ball with strong side spin
+# sliding along a jaw into a neighbour stalled one at 3 mm/s), so the
+# collapse ends after at most ~log2(max speed / 1e-3) rounds.
 ZENO_EVENTS = 100
 ZENO_FREEZE_SPEED = 1e-3
 # Fixed steps per table before the step solver flags truncation (600 s of

@@ -235,19 +235,20 @@ def _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, i, t, p, se
 
 @numba.njit(**JIT)
 def _break_collapse(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, t, p, segs, norms, tips, pockets,
-                    stuck):
-    """Stop the slow balls of an inelastic collapse (constants.ZENO_EVENTS)
-    and recompute their events."""
+                    stuck, rounds, spin_on):
+    """Stop the translation and rolling of the slow balls of an inelastic
+    collapse (constants.ZENO_EVENTS; the speed limit doubles with each
+    earlier round at this instant) and recompute their events."""
     R = p[C.P_R]
+    limit = C.ZENO_FREEZE_SPEED * 2.0 ** rounds
     for i in range(pos.shape[1]):
         if not stuck[i] or st[e, i] == C.POCKETED:
             continue
-        surface = norm(vel[e, i, 0], vel[e, i, 1]) + R * math.sqrt(
-            om[e, i, 0] ** 2 + om[e, i, 1] ** 2 + om[e, i, 2] ** 2)
-        if surface < C.ZENO_FREEZE_SPEED:
+        contact = norm(vel[e, i, 0], vel[e, i, 1]) + R * norm(om[e, i, 0], om[e, i, 1])
+        if contact < limit:
             vel[e, i, 0] = 0.0; vel[e, i, 1] = 0.0
-            om[e, i, 0] = 0.0; om[e, i, 1] = 0.0; om[e, i, 2] = 0.0
-            st[e, i] = C.STATIONARY
+            om[e, i, 0] = 0.0; om[e, i, 1] = 0.0
+            classify(vel, om, st, e, i, R, spin_on)  # SPINNING or STATIONARY
     for i in range(pos.shape[1]):
         if stuck[i]:
             _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, i, t, p, segs, norms, tips, pockets)
@@ -378,6 +379,7 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
             sim_i, sim_j, sim_w, balls, buf, buf2 = _impact_buffers()
             stuck = np.zeros(B, dtype=np.bool_)  # balls of the events at the current instant
             n_stuck = 0  # events since time last advanced
+            rounds = 0  # collapse rounds at the current instant
             while True:
                 # earliest event; ties go to the first found (pairs, then
                 # boundaries, then transitions), a fixed deterministic order
@@ -402,6 +404,7 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                 dt = tmin - t
                 if dt > SIMULTANEOUS_TIME:
                     n_stuck = 0
+                    rounds = 0
                     stuck[:] = False
                 n_stuck += 1
                 for i in range(B):
@@ -434,8 +437,9 @@ def _make_event(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DI
                     _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, a, t, p, segs, norms, tips, pk)
                 if n_stuck > C.ZENO_EVENTS:
                     _break_collapse(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, t, p, segs, norms, tips,
-                                    pk, stuck)
+                                    pk, stuck, rounds, SPIN)
                     n_stuck = 0
+                    rounds += 1
                 if DIAG:
                     _check_geometry(pos, st, e, p, width, length, pockets, diag)
                     # total energy may never rise from one event to the next
@@ -474,8 +478,6 @@ def _make_step(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIA
             nev = 0
             steps = 0
             sim_i, sim_j, sim_w, balls, buf, buf2 = _impact_buffers()
-            stuck = np.zeros(B, dtype=np.bool_)  # balls of the events at the current instant
-            n_stuck = 0  # events since time last advanced
             while True:
                 moving = False
                 for i in range(B):
