@@ -139,6 +139,70 @@ def effects_rows(args, P, T):
     return rows
 
 
+def env_rows(args):
+    """Env steps/s through gymnasium.make_vec with random actions. The env's
+    own simulator calls (shots and NineBall's break simulations in resets)
+    are timed in the same run, so the overhead is the time the env spends
+    outside the simulator, over the time inside it."""
+    import gymnasium as gym
+    import billiards_env  # noqa: F401  (registers the tasks)
+    rows = []
+    cases = [(n, "same_step") for n in (1, 64, 1024)] + [(1024, "next_step")]
+    for env_id in ("Billiards-PotOne-v0", "Billiards-NineBall-v0"):
+        for n, mode in cases:
+            env = gym.make_vec(env_id, num_envs=n, vectorization_mode="vector_entry_point", autoreset_mode=mode)
+            core = env.unwrapped._core
+            inner_sim = core._simulate
+            sim_time = [0.0]
+
+            def timed(state, _inner=inner_sim, _acc=sim_time):
+                t0 = time.perf_counter()
+                out = _inner(state)
+                _acc[0] += time.perf_counter() - t0
+                return out
+
+            core._simulate = timed  # instance attribute: times this env's simulator calls only
+            env.reset(seed=0)
+            rng = np.random.default_rng(0)
+            acts = rng.uniform(-1, 1, size=(32, n, 4)).astype(np.float32)
+            env.step(acts[0])
+            steps = max(4, min(64, 20_000 // n)) if not args.quick else 4
+            runs = []
+            for _ in range(args.repeats):
+                sim_time[0] = 0.0
+                t0 = time.perf_counter()
+                for k in range(steps):
+                    env.step(acts[k % 32])
+                runs.append((time.perf_counter() - t0, sim_time[0]))
+            dt = statistics.median(r[0] for r in runs)
+            rows.append(dict(section="env", scene=env_id, solver="event", effects="task", batch=n, autoreset=mode,
+                             env_steps_per_s=n * steps / dt,
+                             sim_share=statistics.median(ts / d for d, ts in runs),
+                             env_overhead_pct=statistics.median(100.0 * (d - ts) / ts for d, ts in runs)))
+            env.close()
+            r = rows[-1]
+            print(f"  {env_id:24s} {n:5d} tables {mode:9s} {r['env_steps_per_s']:10.0f} steps/s, "
+                  f"overhead {r['env_overhead_pct']:5.1f}%", flush=True)
+    return rows
+
+
+def cold_start_rows():
+    code = ("import time; t0=time.perf_counter(); import numpy as np; "
+            "from billiards_env.physics import *; P=PhysicsParams.standard(); T=Table.pool(9); "
+            "s=strike_velocity(rack(T,P,'nine',1,seed=0), 1.5708, 8.0, params=P); simulate(s,T,P); "
+            "print(time.perf_counter()-t0)")
+    rows = []
+    with tempfile.TemporaryDirectory() as cold_dir:
+        for label, env in (("cold (empty numba cache)", {"NUMBA_CACHE_DIR": cold_dir}),
+                           ("warm (numba cache on disk)", {"NUMBA_CACHE_DIR": cold_dir})):
+            out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                                 env={**os.environ, **env}, check=True)
+            rows.append(dict(section="cold start", scene="import + first 9-ball break", solver="event",
+                             effects="all", batch=1, seconds=float(out.stdout.strip().splitlines()[-1]), note=label))
+            print(f"  {label}: {rows[-1]['seconds']:.2f} s", flush=True)
+    return rows
+
+
 SECTION_NAMES = {"solver": "solver", "effects": "effects", "env": "env", "cold": "cold start"}
 
 
