@@ -29,8 +29,8 @@ def main(argv=None) -> int:
     ap.add_argument("--env", default="Billiards-PotOne-v0")
     ap.add_argument("--episodes", type=int, default=1000)
     ap.add_argument("--seed", type=int, default=12345)
-    ap.add_argument("--noise", action="append", default=None, help="none | tournament | key=value,... of NoiseConfig, e.g. aim_deg=1 "
-                    "(repeatable; default none)")
+    ap.add_argument("--noise", action="append", default=None,
+                    help="none | tournament | key=value,... of NoiseConfig, e.g. aim_deg=1 (repeatable; default none)")
     ap.add_argument("--search-k", type=int, default=256)
     ap.add_argument("--batch-size", type=int, default=1000, help="tables simulated together")
     ap.add_argument("--out", default=None, help="output prefix for .json and .png (default results/agents/eval)")

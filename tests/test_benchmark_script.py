@@ -7,8 +7,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def test_benchmark_env_section_quick(tmp_path):
-    out = subprocess.run([sys.executable, str(ROOT / "scripts" / "benchmark.py"), "--quick", "--batch", "16",
-                          "--only", "env", "--out", str(tmp_path)],
+    out = subprocess.run([sys.executable, str(ROOT / "scripts" / "benchmark.py"), "--quick", "--only", "env", "--out", str(tmp_path)],
                          capture_output=True, text=True, timeout=900, cwd=ROOT)
     assert out.returncode == 0, out.stderr[-2000:]
     table = (tmp_path / "env.md").read_text()

@@ -23,12 +23,7 @@ SETTINGS = settings(max_examples=12, deadline=None, derandomize=True,
        preset=st.sampled_from(["standard", "seed"]))
 def test_random_shots_keep_invariants(solver, seed, layout, preset):
     rng = np.random.default_rng(seed)
-    state, table, params = random_batch(rng, 8, layout, preset)
-    res, viol = run_batch(state, table, params, solver)
-    bad = [e for e, v in enumerate(viol) if v]
-    for e in bad:
-        save_case(case_dict(state, e, params, solver, 1e-3, viol[e]), REGRESSIONS, tag="hyp")
-    assert not bad, {e: viol[e] for e in bad}
+    _check_batch(*random_batch(rng, 8, layout, preset), solver, Effects.all())
 
 
 @pytest.mark.parametrize("effects", sorted(Effects.each_off()))
@@ -39,9 +34,13 @@ def test_random_shots_keep_invariants_under_every_effect_set(effects, seed, layo
     (event solver; each set with one effect off, and the minimal set)."""
     eff = Effects.each_off()[effects]
     rng = np.random.default_rng(seed)
-    state, table, params = random_batch(rng, 8, layout, "standard", pockets=eff.pockets)
-    res, viol = run_batch(state, table, params, "event", effects=eff)
+    _check_batch(*random_batch(rng, 8, layout, "standard", pockets=eff.pockets), "event", eff)
+
+
+def _check_batch(state, table, params, solver, effects):
+    """Simulate, save every failing table as a regression case, and fail."""
+    _, viol = run_batch(state, table, params, solver, effects=effects)
     bad = [e for e, v in enumerate(viol) if v]
     for e in bad:
-        save_case(case_dict(state, e, params, "event", None, viol[e], eff), REGRESSIONS, tag="hyp")
+        save_case(case_dict(state, e, params, solver, 1e-3, viol[e], effects), REGRESSIONS, tag="hyp")
     assert not bad, {e: viol[e] for e in bad}

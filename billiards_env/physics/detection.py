@@ -14,7 +14,6 @@ import math
 from ._jit import njit
 from . import constants as C
 from .vec import norm
-from .motion import acceleration
 from .roots import first_entry, first_entry_quadratic
 
 
@@ -51,11 +50,10 @@ def _apart(lo1, hi1, lo2, hi2, gap):
 
 
 @njit
-def sweep_path(pos, vel, om, st, e, i, H, p, paths):
-    """Store ball i's acceleration and the box its path sweeps over
+def sweep_path(pos, vel, st, e, i, ax, ay, H, paths):
+    """Store ball i's acceleration (ax, ay) and the box its path sweeps over
     [now, now + H] in paths[e, i] = (ax, ay, x_lo, x_hi, y_lo, y_hi)."""
     x, y = pos[e, i, 0], pos[e, i, 1]
-    ax, ay = acceleration(vel, om, st, e, i, p)
     paths[e, i, 0] = ax; paths[e, i, 1] = ay
     if not _moving(st[e, i]):
         paths[e, i, 2] = x; paths[e, i, 3] = x; paths[e, i, 4] = y; paths[e, i, 5] = y
@@ -117,10 +115,11 @@ def _circle_time(px, py, vx, vy, ax, ay, cx, cy, r, H, f_tol, f_floor):
 
 
 @njit
-def boundary_time(pos, vel, om, st, e, i, H, p, segs, norms, tips, pockets, quadratic):
-    """Earliest contact of ball i with a cushion segment, a jaw tip or a
-    pocket within H. Returns (time, kind, index). With ``quadratic`` the
-    ball moves in a straight line (step solver)."""
+def boundary_time(pos, vel, st, e, i, ax, ay, H, p, segs, norms, tips, pockets, quadratic):
+    """Earliest contact of ball i, moving with acceleration (ax, ay), with a
+    cushion segment, a jaw tip or a pocket within H. Returns (time, kind,
+    index). With ``quadratic`` the ball moves in a straight line (step
+    solver; pass ax = ay = 0)."""
     best = math.inf
     kind = -1
     idx = -1
@@ -129,10 +128,6 @@ def boundary_time(pos, vel, om, st, e, i, H, p, segs, norms, tips, pockets, quad
     R = p[C.P_R]
     x, y = pos[e, i, 0], pos[e, i, 1]
     vx, vy = vel[e, i, 0], vel[e, i, 1]
-    if quadratic:
-        ax, ay = 0.0, 0.0
-    else:
-        ax, ay = acceleration(vel, om, st, e, i, p)
     # broad phase: the box swept by the ball's path until its next transition
     bx0, bx1, by0, by1 = -math.inf, math.inf, -math.inf, math.inf
     if H < math.inf:  # (H is infinite only without sliding friction)

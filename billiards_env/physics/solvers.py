@@ -37,7 +37,7 @@ from .ball_ball import resolve_ball_ball, rest_contact
 from .ball_cushion import resolve_cushion
 from .detection import boundary_time, pair_time, pair_time_linear, sweep_path
 from .vec import norm
-from .motion import apply_transition, classify, end_slide, energy, evolve, friction_step, transition_time
+from .motion import acceleration, apply_transition, classify, end_slide, energy, evolve, friction_step, transition_time
 
 # Ball-ball events closer in time than this are one simultaneous impact:
 # 1e-12 s is a femtometre of travel at 1 m/s.
@@ -218,13 +218,14 @@ def _refresh(pos, vel, om, st, tt, tb, bkind, bidx, tpair, paths, e, i, t, p, se
         return
     tt[e, i] = t + transition_time(vel, om, st, e, i, p)
     h = tt[e, i] - t
-    tb_rel, k, idx = boundary_time(pos, vel, om, st, e, i, h, p, segs, norms, tips, pockets, False)
+    ax, ay = acceleration(vel, om, st, e, i, p)
+    tb_rel, k, idx = boundary_time(pos, vel, st, e, i, ax, ay, h, p, segs, norms, tips, pockets, False)
     tb[e, i] = t + tb_rel; bkind[e, i] = k; bidx[e, i] = idx
     # A pair needs looking at only until the first known event of either
     # ball (transition or boundary): that event refreshes the ball and so
     # recomputes the pair. Short horizons keep the broad phase tight.
     next_i = min(tt[e, i], tb[e, i])
-    sweep_path(pos, vel, om, st, e, i, next_i - t, p, paths)
+    sweep_path(pos, vel, st, e, i, ax, ay, next_i - t, paths)
     for j in range(B):
         if j == i:
             continue
@@ -498,7 +499,7 @@ def _make_step(SPIN, SLIDE, ZSPIN, BALL_FRICTION, CUSHION_FRICTION, POCKETS, DIA
                             if tij < tmin:
                                 tmin = tij; kind = C.EV_BALL_BALL; a = i; b = j
                     for i in range(B):
-                        tbi, k, idx = boundary_time(pos, vel, om, st, e, i, min(rem, tmin), p,
+                        tbi, k, idx = boundary_time(pos, vel, st, e, i, 0.0, 0.0, min(rem, tmin), p,
                                                     segs, norms, tips, pk, True)
                         if tbi < tmin:
                             tmin = tbi; kind = k; a = i; b = idx

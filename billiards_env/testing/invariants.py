@@ -94,14 +94,13 @@ def run_checked(state, table, params, solver, *, dt=1e-3, effects=None, max_even
                 record=False):
     """Simulate with diagnostics, assert the invariants, return the result."""
     kw = {} if solver == "event" else {"dt": dt}
+    effects = effects or Effects.all()
     # the wall-time bound is for the simulation, not for compiling (or
     # loading from cache) a kernel variant on its first call in this process
-    kernel = make_solver(solver, (effects or Effects.all()).key(), True)
-    compiled = bool(kernel.signatures)
+    compiled = bool(make_solver(solver, effects.key(), True).signatures)
     t0 = time.perf_counter()
     res = simulate(state, table, params, solver=solver, effects=effects, diagnostics=True,
                    record=record, **kw)
     wall = time.perf_counter() - t0 if compiled else None
-    pockets = True if effects is None else effects.pockets
-    assert_invariants(res, state, table, params, wall=wall, max_events=max_events, pockets=pockets)
+    assert_invariants(res, state, table, params, wall=wall, max_events=max_events, pockets=effects.pockets)
     return res
