@@ -13,6 +13,8 @@ import numpy as np
 from PIL import Image, ImageDraw
 
 from ..physics import constants as C
+from ..physics.effects import Effects
+from .replay import evolve_state
 
 FELT_COLOR = (35, 100, 155)
 RAIL_COLOR = (95, 55, 30)
@@ -23,6 +25,16 @@ BALL_COLORS = {
     5: (255, 120, 0), 6: (0, 150, 60), 7: (130, 20, 30), 8: (20, 20, 20),
 }
 BORDER = 0.08  # m of rail drawn around the playing surface
+# Ball numbers: drawn from this ball radius (px) up (smaller balls have no
+# room for them), straight on the ball up to NUMBER_DISC_RADIUS, on a white
+# disc of NUMBER_DISC_FRACTION R from there. Digits are a 3 x 5 pixel font
+# scaled by whole pixels, so they stay sharp at any size.
+NUMBER_MIN_RADIUS = 5.0
+NUMBER_DISC_RADIUS = 8.0
+NUMBER_DISC_FRACTION = 0.6
+STRIPE_ANGLE = 40.5  # degrees: the band of a striped ball spans |dy| < sin(40.5 deg) R = 0.65 R
+_DIGITS = ("111101101101111", "010110010010111", "111001111100111", "111001111001111", "101101111001001",
+           "111100111001111", "111100111101111", "111001010010010", "111101111101111", "111101111001111")
 
 
 def ball_color(i: int) -> tuple:
@@ -53,27 +65,16 @@ def _records(log, n_balls: int):
     return rec
 
 
-def _advance(st: np.ndarray, dt, params) -> np.ndarray:
-    """Positions [K, 2] of a ball in recorded state ``st`` after times ``dt [K]``
-    (closed-form constant-acceleration motion of its current motion state)."""
-    x, y, vx, vy, wx, wy, _, ms = st
-    ax = ay = 0.0
-    if ms == C.SLIDING:
-        ux, uy = vx - params.R * wy, vy + params.R * wx
-        n = np.hypot(ux, uy)
-        if n > 0:
-            ax, ay = -params.mu_s * params.g * ux / n, -params.mu_s * params.g * uy / n
-    elif ms == C.ROLLING:
-        n = np.hypot(vx, vy)
-        if n > 0:
-            ax, ay = -params.mu_r * params.g * vx / n, -params.mu_r * params.g * vy / n
-    else:
-        vx = vy = 0.0
-    dt = np.asarray(dt, dtype=np.float64)
-    return np.stack([x + vx * dt + 0.5 * ax * dt ** 2, y + vy * dt + 0.5 * ay * dt ** 2], axis=-1)
+def _advance(st: np.ndarray, dt, params, effects=None) -> np.ndarray:
+    """Positions [K, 2] of a ball in recorded state ``st`` after times ``dt [K]``,
+    by the simulator's own motion law (``replay.evolve_state``)."""
+    p = params.as_array()
+    eff = (effects or Effects()).normalized()
+    dt = np.atleast_1d(np.asarray(dt, dtype=np.float64))
+    return np.array([evolve_state(st, d, p, eff.vertical_spin, eff.spin)[:2] for d in dt]).reshape(-1, 2)
 
 
-def ball_paths(log, params, n_balls: int, samples: int = 24) -> list[np.ndarray]:
+def ball_paths(log, params, n_balls: int, samples: int = 24, effects=None) -> list[np.ndarray]:
     """Path [K, 2] of every ball over a recorded shot (``simulate(..., record=True)``)."""
     out = []
     for rec in _records(log, n_balls):
@@ -82,12 +83,12 @@ def ball_paths(log, params, n_balls: int, samples: int = 24) -> list[np.ndarray]
             pts.append(st[None, :2])
             if st[7] in (C.SLIDING, C.ROLLING) and n + 1 < len(rec):
                 t1 = rec[n + 1][0]
-                pts.append(_advance(st, np.linspace(0.0, t1 - t, samples)[1:-1], params))
+                pts.append(_advance(st, np.linspace(0.0, t1 - t, samples)[1:-1], params, effects))
         out.append(np.concatenate(pts) if pts else np.zeros((0, 2)))
     return out
 
 
-def positions_at(log, params, n_balls: int, t: float):
+def positions_at(log, params, n_balls: int, t: float, effects=None):
     """(pos [B, 2], on_table [B]) of every ball at time ``t`` of a recorded shot."""
     pos = np.zeros((n_balls, 2))
     on = np.zeros(n_balls, dtype=bool)
@@ -103,7 +104,7 @@ def positions_at(log, params, n_balls: int, t: float):
         tr, st = last
         if st[7] == C.POCKETED:
             continue
-        pos[i] = _advance(st, t - tr, params)
+        pos[i] = _advance(st, t - tr, params, effects)[0]
         on[i] = True
     return pos, on
 
@@ -141,38 +142,101 @@ def render_table(table, params, pos, pocket=None, paths=None, ppm: float = 200,
         box = [cx - rp, cy - rp, cx + rp, cy + rp]
         col = ball_color(i)
         d.ellipse(box, fill=col, outline=(0, 0, 0))
-        if i >= 9:  # stripe: white caps above and below a coloured band
-            d.chord(box, 210, 330, fill=(255, 255, 255))
-            d.chord(box, 30, 150, fill=(255, 255, 255))
+        if i >= 9:  # stripe: white caps above and below a coloured band of 1.3 R
+            d.chord(box, 180 + STRIPE_ANGLE, 360 - STRIPE_ANGLE, fill=(255, 255, 255))
+            d.chord(box, STRIPE_ANGLE, 180 - STRIPE_ANGLE, fill=(255, 255, 255))
+        if i > 0 and rp >= NUMBER_MIN_RADIUS:
+            _draw_number(d, i, cx, cy, rp, col)
     return np.asarray(img, dtype=np.uint8).copy()
 
 
-def save_shot_animation(path, table, params, log, n_balls: int, fps: int = 30, ppm: float = 150,
-                        speedup: float = 1.0, max_seconds: float = 30.0, paths: bool = True) -> Path:
-    """Write a recorded shot (an ``EventLog`` from ``simulate(..., record=True)``)
-    as an animated GIF (``.gif``) or MP4 (``.mp4``, needs imageio-ffmpeg or
-    PyAV). Frames are ``fps`` per second of video; ``speedup`` > 1 plays faster.
-    Returns the path."""
+def _draw_number(d, i: int, cx: float, cy: float, rp: float, col: tuple) -> None:
+    """Ball number ``i`` centred at pixel (cx, cy) of a ball of radius ``rp`` px."""
+    s = max(1, int(rp / 5.5))  # font pixel size: "15" fits the disc
+    text = str(i)
+    w, h = (4 * len(text) - 1) * s, 5 * s
+    if rp >= NUMBER_DISC_RADIUS:
+        dr = NUMBER_DISC_FRACTION * rp
+        d.ellipse([cx - dr, cy - dr, cx + dr, cy + dr], fill=(255, 255, 255))
+        ink = (0, 0, 0)
+    else:  # no room for a disc: dark digits on light balls, light on dark
+        ink = (0, 0, 0) if i >= 9 or sum(col) > 380 else (255, 255, 255)
+    x0, y0 = int(round(cx - w / 2)), int(round(cy - h / 2))
+    for k, ch in enumerate(text):
+        bits = _DIGITS[int(ch)]
+        for n, bit in enumerate(bits):
+            if bit == "1":
+                x = x0 + (4 * k + n % 3) * s
+                y = y0 + (n // 3) * s
+                d.rectangle([x, y, x + s - 1, y + s - 1], fill=ink)
+
+
+def write_animation(path, frames, fps: int) -> Path:
+    """Write frames [N, H, W, 3] as an animated GIF (``.gif``) or an MP4
+    (``.mp4``, needs the imageio-ffmpeg package). Returns the path."""
+    import importlib.util
+
     import imageio.v3 as iio
 
     path = Path(path)
-    t_end = float(log.time[-1]) if len(log) else 0.0
-    n_frames = int(min(t_end / speedup, max_seconds) * fps) + 2
-    times = np.minimum(np.arange(n_frames) * speedup / fps, t_end)
-    full = ball_paths(log, params, n_balls) if paths else None
-    frames = []
-    for t in times:
-        pos, on = positions_at(log, params, n_balls, t)
-        frames.append(render_table(table, params, pos, np.where(on, -1, 0), paths=full, ppm=ppm))
-    frames = np.stack(frames)
     suffix = path.suffix.lower()
     if suffix == ".gif":
         iio.imwrite(path, frames, duration=1000.0 / fps, loop=0)
     elif suffix == ".mp4":
-        try:
-            iio.imwrite(path, frames, fps=fps)
-        except Exception as exc:  # no video backend installed
-            raise RuntimeError(f"writing MP4 needs imageio-ffmpeg or PyAV ({exc}); save as .gif instead") from exc
+        if importlib.util.find_spec("imageio_ffmpeg") is None and importlib.util.find_spec("av") is None:
+            raise RuntimeError("writing MP4 needs imageio-ffmpeg (pip install imageio-ffmpeg) or PyAV; "
+                               "or save the animation as .gif")
+        iio.imwrite(path, frames, fps=fps)
     else:
         raise ValueError(f"animation path must end in .gif or .mp4, got {path.name!r}")
     return path
+
+
+def _check_suffix(path) -> Path:
+    path = Path(path)
+    if path.suffix.lower() not in (".gif", ".mp4"):
+        raise ValueError(f"animation path must end in .gif or .mp4, got {path.name!r}")
+    return path
+
+
+def save_shot_animation(path, table, params, log, n_balls: int, fps: int = 30, ppm: float = 150,
+                        speedup: float = 1.0, max_seconds: float = 30.0, paths: bool = True,
+                        effects=None) -> Path:
+    """Write a recorded shot (an ``EventLog`` from ``simulate(..., record=True)``)
+    as an animated GIF (``.gif``) or MP4 (``.mp4``, needs imageio-ffmpeg).
+    Frames are ``fps`` per second of video; ``speedup`` > 1 plays faster.
+    Returns the path."""
+    path = _check_suffix(path)
+    t_end = float(log.time[-1]) if len(log) else 0.0
+    n_frames = int(min(t_end / speedup, max_seconds) * fps) + 2
+    times = np.minimum(np.arange(n_frames) * speedup / fps, t_end)
+    full = ball_paths(log, params, n_balls, effects=effects) if paths else None
+    frames = []
+    for t in times:
+        pos, on = positions_at(log, params, n_balls, t, effects)
+        frames.append(render_table(table, params, pos, np.where(on, -1, 0), paths=full, ppm=ppm))
+    return write_animation(path, np.stack(frames), fps)
+
+
+def save_replay_animation(path, replay, shots=None, fps: int = 30, ppm: float = 300, speedup: float = 1.0,
+                          max_seconds: float = 60.0, paths: bool = True, hold: float = 0.5) -> Path:
+    """Write the shots (default: all) of a ``Replay`` one after another as a
+    GIF or MP4, holding each shot's last frame ``hold`` seconds of video.
+    Positions come from ``Replay.positions_at``. Returns the path."""
+    from ..physics.simulate import EventLog
+
+    path = _check_suffix(path)
+    table, params = replay.table_object(), replay.params
+    frames = []
+    for k in range(len(replay)) if shots is None else shots:
+        t_end = replay.duration(k)
+        n = int(min(t_end / speedup, max_seconds) * fps) + 2
+        times = np.concatenate([np.minimum(np.arange(n) * speedup / fps, t_end), np.full(int(hold * fps), t_end)])
+        full = ball_paths(EventLog(*replay.event_states(k)), params, replay.n_balls, effects=replay.effects) \
+            if paths else None
+        for t in times:
+            pos, on = replay.positions_at(t, k)
+            frames.append(render_table(table, params, pos, np.where(on, -1, 0), paths=full, ppm=ppm))
+    if not frames:
+        raise ValueError("the replay has no shots to animate")
+    return write_animation(path, np.stack(frames), fps)

@@ -1,0 +1,45 @@
+"""One self-contained HTML page per replay: viewer.html (script and styles
+inline, no network access) with the replay's JSON and the ball colours
+written into it."""
+from __future__ import annotations
+
+import html
+import json
+from pathlib import Path
+
+from .draw import BALL_COLORS
+from .replay import Replay
+
+TEMPLATE = Path(__file__).with_name("viewer.html")
+
+
+def _script_safe(text: str) -> str:
+    """JSON text that cannot end the <script> element holding it."""
+    return text.replace("</", "<\\/").replace("<!--", "<\\!--")
+
+
+def replay_html(replay: Replay, title: str | None = None) -> str:
+    """The viewer page of ``replay`` as a string."""
+    if title is not None:
+        replay.data.setdefault("meta", {})["title"] = title
+    page = TEMPLATE.read_text()
+    colors = json.dumps({str(k): list(v) for k, v in BALL_COLORS.items()})
+    title = (replay.data.get("meta") or {}).get("title", "billiards_env replay")
+    return (page.replace("__TITLE__", html.escape(str(title)))
+            .replace("__BALL_COLORS__", _script_safe(colors))
+            .replace("__REPLAY_JSON__", _script_safe(replay.to_json())))
+
+
+def save_replay_html(replay_or_result, path, title: str | None = None, **from_sim) -> Path:
+    """Write the viewer page of a ``Replay``, or of a ``simulate(...,
+    record=True)`` result (then ``from_sim`` holds ``Replay.from_sim``'s
+    arguments: ``table=`` (required), ``start_state=``, ``params=``,
+    ``effects=``, ``index=``, ``info=``, ``meta=``). Returns the path."""
+    rep = replay_or_result
+    if not isinstance(rep, Replay):
+        rep = Replay.from_sim(rep, **from_sim)
+    elif from_sim:
+        raise TypeError(f"arguments {sorted(from_sim)} apply only to a simulate() result, not to a Replay")
+    path = Path(path)
+    path.write_text(replay_html(rep, title))
+    return path
