@@ -6,13 +6,25 @@ import pytest
 import billiards_env  # noqa: F401
 from billiards_env.envs import NineBallEnv, PotOneEnv, RunOutVectorEnv
 from billiards_env.rendering import FELT_COLOR, ball_color, ball_paths, image_size, save_shot_animation, world_to_pixel
+from billiards_env.rendering.draw import NUMBER_DISC_RADIUS, NUMBER_MIN_RADIUS
+
+
+def ball_body_pixel(table, p, i, R, ppm):
+    """(column, row) of a pixel inside ball i's body colour: its centre, or
+    beside its number (on the stripe band of balls 9-15) when numbers are drawn."""
+    cx, cy = world_to_pixel(table, p, ppm)
+    rp = R * ppm
+    dx = 0.0
+    if i > 0 and rp >= NUMBER_MIN_RADIUS:
+        dx = (0.82 if rp >= NUMBER_DISC_RADIUS else 0.72) * rp
+    return int(round(cx + dx)), int(round(cy))
 
 
 def _check_balls(img, env, state_pos, pocket, ppm=200):
     for i, (p, pk) in enumerate(zip(state_pos, pocket)):
         if pk >= 0:
             continue
-        c, r = np.round(world_to_pixel(env.table, p, ppm)).astype(int)
+        c, r = ball_body_pixel(env.table, p, i, env.params.R, ppm)
         assert tuple(img[r, c]) == ball_color(i), f"ball {i} at {p}: pixel {img[r, c]}"
 
 
@@ -28,7 +40,7 @@ def test_rgb_array_shape_and_balls_at_state_positions():
     from billiards_env.physics import BallState
     env.set_state(BallState(s.pos.copy(), s.vel, s.omega, pk))
     img = env.render()
-    c, r = np.round(world_to_pixel(env.table, s.pos[0, 3])).astype(int)
+    c, r = ball_body_pixel(env.table, s.pos[0, 3], 3, env.params.R, 200)
     assert tuple(img[r, c]) != ball_color(3)
     # the felt is drawn mid-table away from the balls
     empty = np.array([env.table.width / 2, 0.05 * env.table.length])
