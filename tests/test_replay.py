@@ -361,3 +361,36 @@ def test_browser_frame_times(browser, break_page):
           f"p95 {np.percentile(ft, 95):.2f} ms; draw median {np.median(dt):.3f} ms, p95 {np.percentile(dt, 95):.3f} ms")
     assert len(ft) >= 30, "the viewer did not animate"
     assert np.median(dt) < 8.0, "drawing a frame takes too long for 60 frames per second"
+
+
+def test_browser_controls_and_play_through(browser, tmp_path):
+    """Next / previous event buttons, the speed menu, and play-through from one shot to the next."""
+    import time
+
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import Select
+
+    start, res, table, params = _cut_draw()
+    rep = Replay.from_sim(res, start, table, params)
+    nxt = strike_velocity(BallState.from_positions(res.state.pos, res.state.pocket), 0.5, 0.8, params=params)
+    res2 = simulate(nxt, table, params, record=True)
+    rep.add_log(res2.events[0], duration=float(res2.time[0]))
+    browser.get(save_replay_html(rep, tmp_path / "two.html").as_uri())
+    marked = [row[0] for row in rep.shots[0]["events"] if row[1] in (C.EV_BALL_BALL, C.EV_CUSHION, C.EV_JAW_TIP,
+                                                                     C.EV_POCKET)]
+    cur = lambda: browser.execute_script("return window.billiardsReplay.current()")
+    browser.find_element(By.ID, "next").click()
+    assert cur()["t"] == marked[0]
+    browser.find_element(By.ID, "next").click()
+    assert cur()["t"] == marked[1]
+    browser.find_element(By.ID, "prev").click()
+    assert cur()["t"] == marked[0]
+    Select(browser.find_element(By.ID, "speed")).select_by_visible_text("4x")
+    browser.execute_script("window.billiardsReplay.seek(0, window.billiardsReplay.duration(0) - 0.05)")
+    browser.find_element(By.ID, "play").click()
+    deadline = time.time() + 5.0
+    while cur()["shot"] == 0 and time.time() < deadline:
+        time.sleep(0.1)
+    state = cur()
+    assert state["shot"] == 1 and state["playing"], state
+    browser.execute_script("window.billiardsReplay.pause()")

@@ -1,5 +1,7 @@
-"""Draw a pool table as an RGB uint8 image with Pillow; reconstruct ball
-paths from a simulator event log with the closed-form felt motion.
+"""Draw a pool table as an RGB uint8 image with Pillow (balls numbered and
+striped); reconstruct ball paths from a simulator event log with the
+simulator's own motion kernel (``replay.evolve_state``); write GIF / MP4
+animations of shots and replays.
 
 Image frame: the table's x axis runs left to right, its y axis bottom to
 top; a ``border`` (m) of rail surrounds the playing surface; ``ppm`` pixels

@@ -1,13 +1,13 @@
 """One self-contained HTML page per replay: viewer.html (script and styles
-inline, no network access) with the replay's JSON and the ball colours
-written into it."""
+inline, no network access) with the replay's JSON and the raster
+renderer's colours written into it."""
 from __future__ import annotations
 
 import html
 import json
 from pathlib import Path
 
-from .draw import BALL_COLORS
+from .draw import BALL_COLORS, CUSHION_COLOR, FELT_COLOR, POCKET_COLOR, RAIL_COLOR
 from .replay import Replay
 
 TEMPLATE = Path(__file__).with_name("viewer.html")
@@ -23,10 +23,11 @@ def replay_html(replay: Replay, title: str | None = None) -> str:
     if title is not None:
         replay.data.setdefault("meta", {})["title"] = title
     page = TEMPLATE.read_text()
-    colors = json.dumps({str(k): list(v) for k, v in BALL_COLORS.items()})
+    colors = json.dumps({"balls": {str(k): list(v) for k, v in BALL_COLORS.items()}, "felt": FELT_COLOR,
+                         "rail": RAIL_COLOR, "cushion": CUSHION_COLOR, "pocket": POCKET_COLOR})
     title = (replay.data.get("meta") or {}).get("title", "billiards_env replay")
     return (page.replace("__TITLE__", html.escape(str(title)))
-            .replace("__BALL_COLORS__", _script_safe(colors))
+            .replace("__PALETTE__", _script_safe(colors))
             .replace("__REPLAY_JSON__", _script_safe(replay.to_json())))
 
 
