@@ -276,14 +276,30 @@ def _missing(msg: str):
     pytest.skip(msg)
 
 
-@pytest.fixture(scope="module")
-def browser():
+def _find_browser(chromium: str | None = None, driver: str | None = None) -> tuple[str, str]:
+    """Paths of Chromium and chromedriver; skips (fails under CI) when either, or selenium, is missing."""
     if importlib.util.find_spec("selenium") is None:
         _missing("selenium is not installed: pip install selenium (part of the 'test' extra)")
-    chromium = shutil.which("chromium") or "/usr/bin/chromium"
-    driver_bin = shutil.which("chromedriver") or "/usr/bin/chromedriver"
-    if not (os.path.exists(chromium) and os.path.exists(driver_bin)):
+    chromium = chromium or shutil.which("chromium") or "/usr/bin/chromium"
+    driver = driver or shutil.which("chromedriver") or "/usr/bin/chromedriver"
+    if not (os.path.exists(chromium) and os.path.exists(driver)):
         _missing("Chromium not found: install it with apt-get install -y chromium chromium-driver")
+    return chromium, driver
+
+
+def test_missing_browser_skips_locally_and_fails_under_ci(monkeypatch, tmp_path):
+    gone = str(tmp_path / "no-such-browser")
+    monkeypatch.delenv("CI", raising=False)
+    with pytest.raises(pytest.skip.Exception, match="apt-get install -y chromium chromium-driver"):
+        _find_browser(gone, gone)
+    monkeypatch.setenv("CI", "true")
+    with pytest.raises(pytest.fail.Exception, match="required under CI"):
+        _find_browser(gone, gone)
+
+
+@pytest.fixture(scope="module")
+def browser():
+    chromium, driver_bin = _find_browser()
     from selenium import webdriver
     from selenium.webdriver.chrome.service import Service
 
