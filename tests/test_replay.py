@@ -410,3 +410,17 @@ def test_browser_controls_and_play_through(browser, tmp_path):
     state = cur()
     assert state["shot"] == 1 and state["playing"], state
     browser.execute_script("window.billiardsReplay.pause()")
+
+
+def test_from_sim_takes_one_table_of_a_batch():
+    start, res, table, params = _cut_draw()
+    batch = BallState.stack([start, strike_velocity(start, 0.3, 2.0, 0.1, 0.2, params)])
+    res2 = simulate(batch, table, params, record=True)
+    one = Replay.from_sim(res2, batch, table, params, index=0)
+    other = Replay.from_sim(res2, batch, table, params, index=1)
+    assert one.shots[0] == Replay.from_sim(res, start, table, params).shots[0]
+    assert other.shots[0]["info"]["speed"] == pytest.approx(2.0, abs=1e-12)
+    assert other.shots[0]["info"]["side"] == pytest.approx(0.1, abs=1e-12)
+    pos, on = other.positions_at(other.duration(0))
+    np.testing.assert_array_equal(on, res2.state.pocket[1] < 0)
+    assert np.abs(pos[on] - res2.state.pos[1][on]).max() < POS_TOL

@@ -67,7 +67,7 @@ def evolve_state(state, dt: float, p: np.ndarray, zspin_on: bool, spin_on: bool)
 
 
 # ------------------------------------------------------------- records --
-def pack_state(s, spin_on: bool = True) -> list:
+def pack_state(s) -> list:
     """One ball's state [8] -> its record (see the module docstring)."""
     x, y, vx, vy, wx, wy, wz, ms = (float(v) for v in s)
     ms = int(ms)
@@ -102,7 +102,7 @@ def unpack_state(rec, R: float, spin_on: bool = True) -> np.ndarray:
     return out
 
 
-def _shot_from_log(log, spin_on: bool, duration: float | None, truncated: bool, info: dict) -> dict:
+def _shot_from_log(log, duration: float | None, truncated: bool, info: dict) -> dict:
     n_start = 0
     while n_start < len(log) and log.kind[n_start] == C.EV_START:
         n_start += 1
@@ -110,14 +110,14 @@ def _shot_from_log(log, spin_on: bool, duration: float | None, truncated: bool, 
         raise ValueError("the event log has no start records (simulate(..., record=True) writes one per ball)")
     start = [None] * n_start
     for n in range(n_start):
-        start[int(log.balls[n, 0])] = pack_state(log.states[n, 0], spin_on)
+        start[int(log.balls[n, 0])] = pack_state(log.states[n, 0])
     events = []
     for n in range(n_start, len(log)):
         kind = int(log.kind[n])
         i, j = int(log.balls[n, 0]), int(log.balls[n, 1])
-        row = [float(log.time[n]), kind, i, j, pack_state(log.states[n, 0], spin_on)]
+        row = [float(log.time[n]), kind, i, j, pack_state(log.states[n, 0])]
         if kind == C.EV_BALL_BALL:
-            row.append(pack_state(log.states[n, 1], spin_on))
+            row.append(pack_state(log.states[n, 1]))
         events.append(row)
     t_end = float(log.time[-1]) if duration is None else float(duration)
     return {"info": info, "duration": t_end, "truncated": bool(truncated), "start": start, "events": events}
@@ -234,7 +234,7 @@ class Replay:
             strike = (log.states[n0, 0, 2:4], log.states[n0, 0, 4:7])
         shot_info.update(_strike_info(strike[0], strike[1], self.params.R))
         shot_info.update({k: v for k, v in (info or {}).items() if v is not None})
-        shot = _shot_from_log(log, self.effects.spin, duration, truncated, _jsonable(shot_info))
+        shot = _shot_from_log(log, duration, truncated, _jsonable(shot_info))
         if len(shot["start"]) != self.n_balls:
             raise ValueError(f"the log has {len(shot['start'])} balls, the replay {self.n_balls}")
         self.data["shots"].append(shot)
