@@ -192,6 +192,26 @@ def test_multi_shot_replay_and_bad_input(tmp_path):
         Replay.from_sim(simulate(start, table, params), start, table, params)
 
 
+def _without_stops(rep: Replay) -> Replay:
+    """The replay with its roll-stop records removed: balls whose last record is rolling."""
+    data = json.loads(rep.to_json())
+    for sh in data["shots"]:
+        sh["events"] = [row for row in sh["events"] if row[1] != C.EV_ROLL_STOP]
+    return Replay(data)
+
+
+def test_evaluation_stops_at_the_motion_transition():
+    """The closed form of a state ends at its transition: without the
+    roll-stop records the balls still come to rest where they stopped."""
+    start, res, table, params = _cut_draw()
+    rep = _without_stops(Replay.from_sim(res, start, table, params))
+    assert rep.shots[0]["events"][-1][4][0] == C.ROLLING
+    for t in (rep.duration(0), 10 * rep.duration(0)):
+        pos, on = rep.positions_at(t)
+        np.testing.assert_array_equal(on, res.state.pocket[0] < 0)
+        assert np.abs(pos[on] - res.state.pos[0][on]).max() < POS_TOL
+
+
 def test_ball_paths_use_the_replay_motion(brk):
     start, res, table, params, rep = brk
     paths = ball_paths(EventLog(*rep.event_states(0)), params, rep.n_balls)
@@ -318,8 +338,14 @@ def browser():
 
 
 @pytest.fixture(scope="module")
-def break_page(brk, browser, tmp_path_factory):
-    path = save_replay_html(brk[4], tmp_path_factory.mktemp("html") / "break.html", title="break")
+def break_html(brk, tmp_path_factory):
+    return save_replay_html(brk[4], tmp_path_factory.mktemp("html") / "break.html", title="break")
+
+
+@pytest.fixture
+def break_page(break_html, browser):
+    """The browser showing the break (other tests load other pages)."""
+    path = break_html
     browser.get(path.as_uri())
     assert browser.execute_script("return typeof window.billiardsReplay") == "object"
     return path
@@ -343,6 +369,16 @@ def test_browser_positions_match_simulator(brk, browser, break_page):
         np.testing.assert_array_equal([g[2] for g in got], on)
         err = np.abs(np.array([g[:2] for g in got])[on] - pos[on]).max()
         assert err < BROWSER_TOL, f"t = {t}: {err:.3g} m"
+
+
+def test_browser_evaluation_stops_at_the_motion_transition(browser, tmp_path):
+    start, res, table, params = _cut_draw()
+    rep = _without_stops(Replay.from_sim(res, start, table, params))
+    browser.get(save_replay_html(rep, tmp_path / "nostop.html").as_uri())
+    got = browser.execute_script("return window.billiardsReplay.positionsAt(0, arguments[0])", rep.duration(0))
+    on = res.state.pocket[0] < 0
+    assert [g[2] for g in got] == on.tolist()
+    assert np.abs(np.array([g[:2] for g in got])[on] - res.state.pos[0][on]).max() < BROWSER_TOL
 
 
 def test_browser_screenshot_shows_balls_in_their_colours(brk, browser, break_page):

@@ -40,7 +40,7 @@ import numpy as np
 
 from ..physics import constants as C
 from ..physics.effects import Effects
-from ..physics.motion import evolve
+from ..physics.motion import evolve, transition_time
 from ..physics.params import PhysicsParams
 from ..physics.table import Table
 
@@ -53,15 +53,17 @@ _INFO_KEYS = ("first_contact", "foul", "scratch", "success", "reward", "shooter"
 
 def evolve_state(state, dt: float, p: np.ndarray, zspin_on: bool, spin_on: bool) -> np.ndarray:
     """State [8] (x, y, vx, vy, wx, wy, wz, motion state) of a ball ``dt``
-    seconds after ``state``, by the simulator's motion kernel. ``dt`` must
-    not pass the ball's next recorded event. ``p``: ``PhysicsParams.as_array()``.
-    The only call into the physics kernels in the rendering package."""
+    seconds after ``state``, by the simulator's motion kernels; ``dt`` is
+    clamped at the ball's next motion transition, where the closed form of
+    its state ends. ``p``: ``PhysicsParams.as_array()``. The only place the
+    rendering package calls the physics kernels."""
     s = np.asarray(state, dtype=np.float64)
     pos = s[None, None, 0:2].copy()
     vel = s[None, None, 2:4].copy()
     om = s[None, None, 4:7].copy()
     st = np.array([[int(s[7])]], dtype=np.int64)
-    evolve(pos, vel, om, st, 0, 0, float(dt), p, bool(zspin_on), bool(spin_on))
+    dt = min(float(dt), transition_time(vel, om, st, 0, 0, p))
+    evolve(pos, vel, om, st, 0, 0, dt, p, bool(zspin_on), bool(spin_on))
     return np.array([pos[0, 0, 0], pos[0, 0, 1], vel[0, 0, 0], vel[0, 0, 1],
                      om[0, 0, 0], om[0, 0, 1], om[0, 0, 2], st[0, 0]], dtype=np.float64)
 
