@@ -416,22 +416,23 @@ def checked_out(rev: str):
 
 
 def share_numba_cache(src: Path, dst: Path) -> int:
-    """Copy numba's on-disk kernels of ``src``'s package into ``dst`` for every
-    source file that is byte-identical in both trees. numba keys a cached
-    kernel on its source file's content and the kernel's bytecode and closure
-    (the solvers' closures hold a hash of every physics source), so a copied
-    kernel is only ever loaded where it is the same code. Returns files copied."""
+    """Copy numba's on-disk kernels of ``src``'s package into ``dst`` when every
+    source file of the package is byte-identical in both trees (then every
+    kernel is the same code; numba keys a cached kernel on its own file only,
+    not on the files of the helpers compiled into it, so with any difference
+    nothing is shared). Returns the number of files copied."""
+    pkg_a, pkg_b = src / "billiards_env", dst / "billiards_env"
+    sources_a = sorted(p.relative_to(pkg_a) for p in pkg_a.rglob("*.py"))
+    sources_b = sorted(p.relative_to(pkg_b) for p in pkg_b.rglob("*.py"))
+    if sources_a != sources_b or any((pkg_a / p).read_bytes() != (pkg_b / p).read_bytes() for p in sources_a):
+        return 0
     copied = 0
-    for cache_dir in (src / "billiards_env").rglob("__pycache__"):
-        rel = cache_dir.parent.relative_to(src)
+    for cache_dir in pkg_a.rglob("__pycache__"):
+        target = pkg_b / cache_dir.relative_to(pkg_a)
         for f in cache_dir.iterdir():
-            if f.suffix not in (".nbi", ".nbc"):
-                continue
-            source = f.name.split(".")[0] + ".py"  # <module>.<function>-<line>.pyXY[.N].nb?
-            a, b = src / rel / source, dst / rel / source
-            if a.is_file() and b.is_file() and a.read_bytes() == b.read_bytes():
-                (dst / rel / "__pycache__").mkdir(exist_ok=True)
-                shutil.copy2(f, dst / rel / "__pycache__" / f.name)
+            if f.suffix in (".nbi", ".nbc"):
+                target.mkdir(parents=True, exist_ok=True)
+                shutil.copy2(f, target / f.name)
                 copied += 1
     return copied
 
