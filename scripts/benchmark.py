@@ -451,8 +451,8 @@ def run_in_tree(args, tree: Path, section: str, warm: bool = False) -> list[dict
     """Run one section in a fresh process that imports ``tree``'s billiards_env."""
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "rows.json"
-        env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(tree)] + [p for p in
-                                                                          os.environ.get("PYTHONPATH", "").split(os.pathsep) if p and Path(p).resolve() != ROOT.resolve()])}
+        others = [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p and Path(p).resolve() != ROOT]
+        env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(tree)] + others)}
         out = subprocess.run(worker_command(args, section, path, warm), cwd=tree, env=env, capture_output=True,
                              text=True)
         if out.returncode != 0:
@@ -545,7 +545,7 @@ def main(argv=None):
                     help="keep only scenes (or env ids) containing this text (repeatable)")
     ap.add_argument("--out", type=Path, default=ROOT / "results" / "benchmark")
     ap.add_argument("--against", metavar="REV", default=None,
-                    help="also time git revision REV (temporary worktree), interleaved; writes against.md")
+                    help="time this tree and git revision REV (temporary worktree) in turn; writes against.md")
     ap.add_argument("--rounds", type=int, default=3, help="interleaved rounds per tree with --against")
     ap.add_argument("--history", action="store_true", help="only redraw history.png from the CSVs")
     ap.add_argument("--worker", type=Path, default=None, help=argparse.SUPPRESS)  # rows as JSON to this file
