@@ -1,18 +1,31 @@
-"""Simulator and environment throughput (issues 3, 4 and 8).
+"""Simulator and environment throughput, and how it compares across commits.
 
 Compiles before timing, reports medians over repeats and ratios measured in
-the same run, prints a Markdown table and appends rows to a CSV.
+the same run, prints Markdown tables (one file per section, joined in
+benchmark.md), appends rows with the git revision to benchmark.csv and plots
+the history of the headline figures (history.png).
 
     python scripts/benchmark.py                 # full run (a few minutes)
     python scripts/benchmark.py --quick         # smaller batches, fewer repeats
+    python scripts/benchmark.py --only solver --against HEAD~1 --quick
+    python scripts/benchmark.py --history       # only redraw history.png
+
+``--against REV`` checks REV out in a temporary git worktree, warms both
+trees' numba caches, then runs each section in both trees in turn, a fresh
+process per run with PYTHONPATH set to the tree and the same seeds, ``--rounds``
+times (the order alternating), and writes the medians of both and their
+ratio (this tree / REV) to against.md.
 """
 from __future__ import annotations
 
 import argparse
+import contextlib
 import csv
 import datetime
+import json
 import math
 import os
+import shutil
 import statistics
 import subprocess
 import sys
@@ -65,6 +78,11 @@ SCENES = {
 }
 
 
+def chosen_scenes(args, names=tuple(SCENES)):
+    """The scenes among ``names`` whose name contains one of ``--scene``."""
+    return [n for n in names if not args.scene or any(part in n for part in args.scene)]
+
+
 def timeit(fn, repeats):
     fn()  # warm-up: compile or load from cache
     times = []
@@ -78,7 +96,8 @@ def timeit(fn, repeats):
 def solver_rows(args, P, T):
     rows = []
     solvers = [("event", None), ("step", 1e-3), ("step", 1e-4)]
-    for name, make in SCENES.items():
+    for name in chosen_scenes(args):
+        make = SCENES[name]
         for solver, dt in solvers:
             n = args.batch
             if solver == "step" and dt < 1e-3:
@@ -111,7 +130,7 @@ def effects_rows(args, P, T):
     (event solver) or one step (step solver) (the kernel's work)."""
     rows = []
     nt = numba.config.NUMBA_NUM_THREADS
-    for scene in ("9-ball break (8 m/s)", "two-ball cut (2 m/s, top+side)"):
+    for scene in chosen_scenes(args, ("9-ball break (8 m/s)", "two-ball cut (2 m/s, top+side)")):
         for solver, dt in (("event", None), ("step", 1e-3)):
             # the step solver is ~30x slower: a quarter batch keeps the run short
             n = args.batch if solver == "event" else max(16, args.batch // 4)
@@ -139,6 +158,34 @@ def effects_rows(args, P, T):
     return rows
 
 
+@contextlib.contextmanager
+def simulator_clock():
+    """Time every simulator call the env layer makes: rebinds ``simulate`` in
+    the loaded ``billiards_env.envs`` modules that imported it to a wrapper
+    adding each call's wall time to the yielded one-element list."""
+    from billiards_env import physics
+    inner = physics.simulate
+    total = [0.0]
+
+    def timed(*a, **kw):
+        t0 = time.perf_counter()
+        out = inner(*a, **kw)
+        total[0] += time.perf_counter() - t0
+        return out
+
+    mods = [m for name, m in list(sys.modules.items())
+            if name.startswith("billiards_env.envs") and getattr(m, "simulate", None) is inner]
+    if not mods:
+        raise RuntimeError("no billiards_env.envs module calls billiards_env.physics.simulate by that name")
+    for m in mods:
+        m.simulate = timed
+    try:
+        yield total
+    finally:
+        for m in mods:
+            m.simulate = inner
+
+
 def env_rows(args):
     """Env steps/s through gymnasium.make_vec with random actions. The env's
     own simulator calls (shots and NineBall's break simulations in resets)
@@ -148,32 +195,23 @@ def env_rows(args):
     import billiards_env  # noqa: F401  (registers the tasks)
     rows = []
     cases = [(n, "same_step") for n in (1, 64, 1024)] + [(1024, "next_step")]
-    for env_id in ("Billiards-PotOne-v0", "Billiards-NineBall-v0"):
+    for env_id in [e for e in ("Billiards-PotOne-v0", "Billiards-NineBall-v0")
+                   if not args.scene or any(part in e for part in args.scene)]:
         for n, mode in cases:
             env = gym.make_vec(env_id, num_envs=n, vectorization_mode="vector_entry_point", autoreset_mode=mode)
-            core = env.unwrapped._core
-            inner_sim = core._simulate
-            sim_time = [0.0]
-
-            def timed(state, _inner=inner_sim, _acc=sim_time):
-                t0 = time.perf_counter()
-                out = _inner(state)
-                _acc[0] += time.perf_counter() - t0
-                return out
-
-            core._simulate = timed  # instance attribute: times this env's simulator calls only
-            env.reset(seed=0)
-            rng = np.random.default_rng(0)
-            acts = rng.uniform(-1, 1, size=(32, n, 4)).astype(np.float32)
-            env.step(acts[0])
-            steps = max(4, min(64, 20_000 // n)) if not args.quick else 4
-            runs = []
-            for _ in range(args.repeats):
-                sim_time[0] = 0.0
-                t0 = time.perf_counter()
-                for k in range(steps):
-                    env.step(acts[k % 32])
-                runs.append((time.perf_counter() - t0, sim_time[0]))
+            with simulator_clock() as sim_time:
+                env.reset(seed=0)
+                rng = np.random.default_rng(0)
+                acts = rng.uniform(-1, 1, size=(32, n, 4)).astype(np.float32)
+                env.step(acts[0])
+                steps = max(4, min(64, 20_000 // n)) if not args.quick else 4
+                runs = []
+                for _ in range(args.repeats):
+                    sim_time[0] = 0.0
+                    t0 = time.perf_counter()
+                    for k in range(steps):
+                        env.step(acts[k % 32])
+                    runs.append((time.perf_counter() - t0, sim_time[0]))
             dt = statistics.median(r[0] for r in runs)
             rows.append(dict(section="env", scene=env_id, solver="event", effects="task", batch=n, autoreset=mode,
                              env_steps_per_s=n * steps / dt,
@@ -243,20 +281,10 @@ def markdown(rows):
     return "\n".join(lines)
 
 
-def main(argv=None):
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--batch", type=int, default=1024)
-    ap.add_argument("--repeats", type=int, default=5)
-    ap.add_argument("--quick", action="store_true", help="batch 64, 2 repeats")
-    ap.add_argument("--only", nargs="*", default=["solver", "effects", "env", "cold"],
-                    choices=["solver", "effects", "env", "cold"])
-    ap.add_argument("--out", type=Path, default=ROOT / "results" / "benchmark")
-    args = ap.parse_args(argv)
-    if args.quick:
-        args.batch, args.repeats = 64, 2
+def run_sections(args) -> list[dict]:
     P, T = PhysicsParams.standard(), Table.pool(9)
     rows = []
-    print(f"numba threads: {numba.config.NUMBA_NUM_THREADS}, batch {args.batch}")
+    print(f"numba threads: {numba.config.NUMBA_NUM_THREADS}, batch {args.batch}", flush=True)
     if "solver" in args.only:
         print("solvers:"); rows += solver_rows(args, P, T)
     if "effects" in args.only:
@@ -265,34 +293,299 @@ def main(argv=None):
         print("environments:"); rows += env_rows(args)
     if "cold" in args.only:
         print("cold start:"); rows += cold_start_rows()
+    return rows
+
+
+# ---------------------------------------------------------------- records --
+def revision(tree: Path) -> str:
+    """The tree's commit (short hash), ``+dirty`` if tracked files differ from it."""
+    try:
+        sha = subprocess.run(["git", "-C", str(tree), "rev-parse", "--short=10", "HEAD"], capture_output=True,
+                             text=True, check=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", str(tree), "status", "--porcelain", "--untracked-files=no"],
+                               capture_output=True, text=True, check=True).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+    return sha + ("+dirty" if dirty else "")
+
+
+def append_csv(csv_path: Path, rows: list[dict]) -> None:
+    """Append ``rows`` to the CSV; when they bring new columns the file is
+    rewritten with the union of the columns, so the history stays in one file."""
+    old_rows, old_keys = [], []
+    if csv_path.exists():
+        with csv_path.open(newline="") as f:
+            reader = csv.DictReader(f)
+            old_keys = list(reader.fieldnames or [])
+            old_rows = list(reader)
+    keys = sorted(set(old_keys) | {k for r in rows for k in r})
+    if old_keys and set(keys) == set(old_keys):
+        with csv_path.open("a", newline="") as f:
+            csv.DictWriter(f, fieldnames=old_keys).writerows(rows)
+        return
+    with csv_path.open("w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        w.writerows(old_rows + rows)
+
+
+# the figures history.png follows: (section, scene, solver, batch, autoreset, column, label)
+HEADLINES = (
+    ("solver", "9-ball break (8 m/s)", "event", "1024", "", "shots_per_s_1t", "9-ball breaks/s, 1 thread"),
+    ("solver", "two-ball cut (2 m/s, top+side)", "event", "1024", "", "shots_per_s_1t",
+     "two-ball cut shots/s, 1 thread"),
+    ("env", "Billiards-PotOne-v0", "event", "1024", "same_step", "env_steps_per_s", "PotOne env steps/s, 1024 tables"),
+    ("env", "Billiards-NineBall-v0", "event", "1024", "same_step", "env_steps_per_s",
+     "NineBall env steps/s, 1024 tables"),
+)
+
+
+def history_rows(out_dir: Path) -> list[dict]:
+    """Every full-size row of benchmark.csv and of the files older versions of
+    this script set aside when the columns changed (benchmark.<stamp>.csv),
+    without --quick runs and without the rows of --against comparisons."""
+    rows, seen = [], set()
+    for path in sorted(out_dir.glob("benchmark*.csv")):
+        with path.open(newline="") as f:
+            for r in csv.DictReader(f):
+                key = (r.get("timestamp"), r.get("section"), r.get("scene"), r.get("solver"), r.get("effects"),
+                       r.get("batch"), r.get("autoreset"), r.get("note"))
+                if key in seen or r.get("quick") == "True" or r.get("compared_with"):
+                    continue
+                seen.add(key)
+                rows.append(r)
+    return rows
+
+
+def plot_history(out_dir: Path) -> Path | None:
+    """history.png: each headline figure against the date of its run."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows = history_rows(out_dir)
+    if not rows:
+        return None
+    fig, axes = plt.subplots(2, 2, figsize=(11, 6.5), sharex=True)
+    for ax, (section, scene, solver, batch, mode, col, label) in zip(axes.flat, HEADLINES):
+        pts = sorted((datetime.datetime.fromisoformat(r["timestamp"]), float(r[col])) for r in rows
+                     if r["section"] == section and r["scene"] == scene and r["solver"] == solver
+                     and r["batch"] == batch and r.get("autoreset", "") == mode and r.get(col))
+        if pts:
+            ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-")
+            ax.annotate(f"{pts[-1][1]:,.0f}", pts[-1], textcoords="offset points", xytext=(-10, 6), fontsize=8)
+        ax.set_title(label, fontsize=10)
+        ax.set_ylim(bottom=0)
+        ax.grid(True, alpha=0.3)
+    fig.autofmt_xdate()
+    fig.suptitle("Benchmark history (results/benchmark/benchmark.csv, full runs)")
+    fig.tight_layout()
+    path = out_dir / "history.png"
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
+# ---------------------------------------------------------------- against --
+# per section: the figures compared, as (column, label)
+COMPARED = {
+    "solver": (("shots_per_s_1t", "shots/s, 1 thread"), ("latency_ms", "single-table latency (ms)")),
+    "effects": (("shots_per_s_1t", "shots/s, 1 thread"), ("latency_ms", "single-shot latency (ms)")),
+    "env": (("env_steps_per_s", "env steps/s"),),
+    "cold": (("seconds", "seconds"),),
+}
+ROW_KEY = ("section", "scene", "solver", "effects", "batch", "autoreset", "note")
+
+
+@contextlib.contextmanager
+def checked_out(rev: str):
+    """A temporary git worktree of ``rev`` (detached), removed afterwards."""
+    sha = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--verify", f"{rev}^{{commit}}"],
+                         capture_output=True, text=True, check=True).stdout.strip()
+    tmp = Path(tempfile.mkdtemp(prefix="billiards-bench-"))
+    tree = tmp / "tree"
+    subprocess.run(["git", "-C", str(ROOT), "worktree", "add", "--detach", str(tree), sha],
+                   capture_output=True, text=True, check=True)
+    try:
+        yield tree
+    finally:
+        removed = subprocess.run(["git", "-C", str(ROOT), "worktree", "remove", "--force", str(tree)],
+                                 capture_output=True).returncode == 0
+        shutil.rmtree(tmp, ignore_errors=True)
+        if not removed:  # drop the registration of the deleted directory
+            subprocess.run(["git", "-C", str(ROOT), "worktree", "prune"], capture_output=True)
+
+
+def share_numba_cache(src: Path, dst: Path) -> int:
+    """Copy numba's on-disk kernels of ``src``'s package into ``dst`` when every
+    source file of the package is byte-identical in both trees (then every
+    kernel is the same code; numba keys a cached kernel on its own file only,
+    not on the files of the helpers compiled into it, so with any difference
+    nothing is shared). Returns the number of files copied."""
+    pkg_a, pkg_b = src / "billiards_env", dst / "billiards_env"
+    sources_a = sorted(p.relative_to(pkg_a) for p in pkg_a.rglob("*.py"))
+    sources_b = sorted(p.relative_to(pkg_b) for p in pkg_b.rglob("*.py"))
+    if sources_a != sources_b or any((pkg_a / p).read_bytes() != (pkg_b / p).read_bytes() for p in sources_a):
+        return 0
+    copied = 0
+    for cache_dir in pkg_a.rglob("__pycache__"):
+        target = pkg_b / cache_dir.relative_to(pkg_a)
+        for f in cache_dir.iterdir():
+            if f.suffix in (".nbi", ".nbc"):
+                target.mkdir(parents=True, exist_ok=True)
+                shutil.copy2(f, target / f.name)
+                copied += 1
+    return copied
+
+
+def worker_command(args, section: str, json_path: Path, warm: bool = False) -> list[str]:
+    cmd = [sys.executable, str(Path(__file__).resolve()), "--worker", str(json_path), "--only", section,
+           "--batch", str(2 if warm else args.batch), "--repeats", str(1 if warm else args.repeats)]
+    if args.quick or warm:
+        cmd.append("--quick")
+    for part in args.scene or []:
+        cmd += ["--scene", part]
+    return cmd
+
+
+def run_in_tree(args, tree: Path, section: str, warm: bool = False) -> list[dict]:
+    """Run one section in a fresh process that imports ``tree``'s billiards_env."""
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "rows.json"
+        others = [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p and Path(p).resolve() != ROOT]
+        env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(tree)] + others)}
+        out = subprocess.run(worker_command(args, section, path, warm), cwd=tree, env=env, capture_output=True,
+                             text=True)
+        if out.returncode != 0:
+            raise RuntimeError(f"benchmark section {section!r} failed in {tree}:\n{out.stderr[-3000:]}")
+        return json.loads(path.read_text())
+
+
+def against(args) -> list[dict]:
+    """Interleaved runs of every chosen section in this tree and in ``args.against``;
+    returns both trees' median rows, tagged with their revisions."""
+    new_rev = revision(ROOT)
+    with checked_out(args.against) as old_tree:
+        old_rev = revision(old_tree)
+        trees = {"new": (ROOT, new_rev), "old": (old_tree, old_rev)}
+        n = share_numba_cache(ROOT, old_tree)
+        print(f"this tree {new_rev} against {args.against} = {old_rev} (temporary worktree {old_tree}; "
+              f"{n} cached kernel files shared)", flush=True)
+        sections = [s for s in args.only if s != "cold"]
+        for label, (tree, rev) in trees.items():  # compile (or load) every variant before timing
+            t0 = time.perf_counter()
+            for section in sections:
+                run_in_tree(args, tree, section, warm=True)
+            print(f"  warmed {label} tree ({rev}) in {time.perf_counter() - t0:.0f} s", flush=True)
+        runs = {"new": [], "old": []}
+        for k in range(args.rounds):
+            order = ("new", "old") if k % 2 == 0 else ("old", "new")
+            for section in args.only:
+                for label in order:
+                    runs[label] += run_in_tree(args, trees[label][0], section)
+            print(f"  round {k + 1}/{args.rounds} done", flush=True)
+    out = []
+    for label, (_, rev) in trees.items():
+        groups = {}
+        for r in runs[label]:
+            groups.setdefault(tuple(r.get(k) for k in ROW_KEY), []).append(r)
+        for rs in groups.values():
+            med = dict(rs[0])
+            for k, v in rs[0].items():
+                if isinstance(v, float):
+                    med[k] = statistics.median(r[k] for r in rs)
+            med.update(revision=rev, compared_with=trees["old" if label == "new" else "new"][1], tree=label,
+                       rounds=len(rs))
+            out.append(med)
+    return out
+
+
+def _figure(x) -> str:
+    return "-" if not x else f"{x:,.0f}" if x >= 100 else f"{x:.4g}"
+
+
+def against_markdown(rows: list[dict], rev_spec: str) -> str:
+    new = [r for r in rows if r["tree"] == "new"]
+    old = {tuple(r.get(k) for k in ROW_KEY): r for r in rows if r["tree"] == "old"}
+    if not new:
+        return ""
+    new_rev, old_rev = new[0]["revision"], new[0]["compared_with"]
+    lines = [f"# This tree ({new_rev}) against {rev_spec} ({old_rev})", "",
+             f"Medians over {new[0]['rounds']} interleaved rounds (each a fresh process per tree and section, "
+             "the same seeds); ratio = this tree / the other. Higher is better for rates, lower for latencies "
+             "and seconds.", ""]
+    for section, figures in COMPARED.items():
+        rs = [r for r in new if r["section"] == SECTION_NAMES[section]]
+        if not rs:
+            continue
+        head = "| scene | solver | effects | tables | " + " | ".join(
+            f"{lab}, {old_rev} | {lab}, {new_rev} | ratio" for _, lab in figures) + " |"
+        lines += [f"## {SECTION_NAMES[section]}", "", head,
+                  "|---|---|---|---:|" + "---:|---:|---:|" * len(figures)]
+        for r in rs:
+            o = old.get(tuple(r.get(k) for k in ROW_KEY))
+            cells = []
+            for col, _ in figures:
+                a, b = (o or {}).get(col), r.get(col)
+                cells += [_figure(a), _figure(b), f"{b / a:.3f}" if a and b else "-"]
+            kind = r.get("autoreset") or r.get("note") or r["effects"]
+            lines.append(f"| {r['scene']} | {r['solver']} | {kind} | {r['batch']} | " + " | ".join(cells) + " |")
+        lines.append("")
+    return "\n".join(lines)
+
+
+# ------------------------------------------------------------------- main --
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--batch", type=int, default=None, help="tables per simulator call (default 1024, quick 64)")
+    ap.add_argument("--repeats", type=int, default=None, help="timed repeats per figure (default 5, quick 2)")
+    ap.add_argument("--quick", action="store_true", help="batch 64, 2 repeats, 4 env steps")
+    ap.add_argument("--only", nargs="*", default=["solver", "effects", "env", "cold"],
+                    choices=["solver", "effects", "env", "cold"])
+    ap.add_argument("--scene", action="append", default=None,
+                    help="keep only scenes (or env ids) containing this text (repeatable)")
+    ap.add_argument("--out", type=Path, default=ROOT / "results" / "benchmark")
+    ap.add_argument("--against", metavar="REV", default=None,
+                    help="time this tree and git revision REV (temporary worktree) in turn; writes against.md")
+    ap.add_argument("--rounds", type=int, default=3, help="interleaved rounds per tree with --against")
+    ap.add_argument("--history", action="store_true", help="only redraw history.png from the CSVs")
+    ap.add_argument("--worker", type=Path, default=None, help=argparse.SUPPRESS)  # rows as JSON to this file
+    args = ap.parse_args(argv)
+    args.batch = args.batch or (64 if args.quick else 1024)
+    args.repeats = args.repeats or (2 if args.quick else 5)
+    if args.history:
+        path = plot_history(args.out)
+        print(f"wrote {path}" if path else f"no full-size rows in {args.out}/benchmark*.csv: nothing to plot")
+        return
+    if args.worker is not None:
+        args.worker.write_text(json.dumps(run_sections(args)))
+        return
+    args.out.mkdir(parents=True, exist_ok=True)
+    stamp = datetime.datetime.now().isoformat(timespec="seconds")
+    common = dict(timestamp=stamp, quick=args.quick)
+    if args.against:
+        rows = against(args)
+        md = against_markdown(rows, args.against)
+        print()
+        print(md)
+        (args.out / "against.md").write_text(md)
+        append_csv(args.out / "benchmark.csv", [{**r, **common} for r in rows])
+        print(f"\nwrote {args.out / 'against.md'} and appended to {args.out / 'benchmark.csv'}")
+        return
+    rows = run_sections(args)
     md = markdown(rows)
     print()
     print(md)
     # one Markdown file per section, so a partial run (--only) replaces only
     # its own sections; benchmark.md joins the latest of every section
-    args.out.mkdir(parents=True, exist_ok=True)
     for section in args.only:
         part = markdown([r for r in rows if r["section"] == SECTION_NAMES[section]])
         (args.out / f"{section}.md").write_text(part.rstrip("\n") + "\n")
     parts = [(args.out / f"{k}.md").read_text() for k in SECTION_NAMES if (args.out / f"{k}.md").exists()]
     (args.out / "benchmark.md").write_text("\n".join(parts))
-    stamp = datetime.datetime.now().isoformat(timespec="seconds")
-    csv_path = args.out / "benchmark.csv"
-    keys = sorted({k for r in rows for k in r} | {"timestamp"})
-    new = not csv_path.exists()
-    if not new:
-        with csv_path.open() as f:
-            old_keys = next(csv.reader(f), [])
-        if set(old_keys) != set(keys):
-            new = True
-            csv_path.rename(csv_path.with_suffix(f".{stamp.replace(':', '')}.csv"))
-    with csv_path.open("a", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=keys)
-        if new:
-            w.writeheader()
-        for r in rows:
-            w.writerow({**r, "timestamp": stamp})
-    print(f"\nwrote {args.out / 'benchmark.md'} and appended to {csv_path}")
+    append_csv(args.out / "benchmark.csv", [{**r, **common, "revision": revision(ROOT)} for r in rows])
+    history = plot_history(args.out)
+    print(f"\nwrote {args.out / 'benchmark.md'}{' and ' + str(history) if history else ''}, appended to "
+          f"{args.out / 'benchmark.csv'}")
 
 
 if __name__ == "__main__":

@@ -1,5 +1,5 @@
-"""Accuracy study (issue 6): the step solver converges as dt shrinks, the
-event solver matches closed-form answers, and the study script runs."""
+"""Accuracy study: the step solver converges as dt shrinks, the event solver
+matches closed-form answers, and the study (library and script) runs."""
 import csv
 import dataclasses
 import math
@@ -12,7 +12,7 @@ import pytest
 
 from billiards_env.physics import BallState, PhysicsParams, Table, simulate, strike_velocity
 from billiards_env.physics import constants as C
-from billiards_env.studies import scenes
+from billiards_env.studies import accuracy, scenes
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 P = PhysicsParams.standard()
@@ -103,12 +103,6 @@ def test_stun_head_on_leaves_cue_at_restitution_fraction(mu_b):
 
 
 def test_event_sequence_ignores_order_within_an_instant():
-    sys.path.insert(0, str(ROOT / "scripts"))
-    try:
-        import accuracy_vs_time as avt
-    finally:
-        sys.path.pop(0)
-
     class Log:
         def __init__(self, t, k, b):
             self.time, self.kind, self.balls = np.array(t), np.array(k), np.array(b)
@@ -116,8 +110,8 @@ def test_event_sequence_ignores_order_within_an_instant():
     a = Log([0, 0.1, 0.1, 0.3, 0.5], [0, 1, 1, 5, 2], [[0, -1], [1, 3], [1, 7], [2, -1], [3, 1]])
     b = Log([0, 0.1, 0.1, 0.5], [0, 1, 1, 2], [[0, -1], [1, 7], [1, 3], [3, 1]])
     c = Log([0, 0.1, 0.2, 0.5], [0, 1, 1, 2], [[0, -1], [1, 7], [1, 3], [3, 1]])
-    assert avt.event_sequence(a) == avt.event_sequence(b)
-    assert avt.event_sequence(a) != avt.event_sequence(c)
+    assert accuracy.event_sequence(a) == accuracy.event_sequence(b)
+    assert accuracy.event_sequence(a) != accuracy.event_sequence(c)
 
 
 def test_quick_study_writes_table_and_plot(tmp_path):

@@ -1,4 +1,4 @@
-"""Effects switch physics on and off (issue 8): each changes outcomes where
+"""Effects switch physics on and off: each changes outcomes where
 it matters and not where it cannot, and every combination compiles its own
 kernel."""
 import dataclasses

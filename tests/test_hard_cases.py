@@ -1,7 +1,7 @@
-"""Issue 7: hard cases stay numerically stable, on both solvers.
+"""Hard cases stay numerically stable, on both solvers.
 
 Every scenario runs with diagnostics=True and asserts the shared invariants
-(tests/_invariants.py): finite values, no overlap beyond 1e-9 m, nobody off
+(billiards_env.testing.invariants): finite values, no overlap beyond 1e-9 m, nobody off
 the table except through a pocket, total energy never rising from one event
 to the next, momentum conserved in every ball-ball impact, every ball at rest
 at the end without hitting the event cap, bounded wall time.

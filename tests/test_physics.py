@@ -1,6 +1,6 @@
 """Simulator checks against closed-form answers and conservation laws
-(issue 3; the slide/roll/spin closed forms and the step solver's convergence
-are in test_accuracy.py). Closed forms follow Alciatore's technical proofs (slide and roll,
+(the slide/roll/spin closed forms and the step solver's convergence are in
+test_accuracy.py). Closed forms follow Alciatore's technical proofs (slide and roll,
 the 90-degree rule, throw)."""
 import dataclasses
 import math
@@ -37,7 +37,7 @@ def test_strike_follows_hookes_law_and_torque(params):
 def test_max_draw_gives_a_hard_break(params):
     assert 9.5 < params.max_speed < 10.5
     seed = PhysicsParams.seed()
-    assert 0.01 < seed.max_speed < 0.1  # the write-up's constants: a few cm/s
+    assert 0.01 < seed.max_speed < 0.1  # the original parameter set: a few cm/s
 
 
 def test_miscue_raises(params):

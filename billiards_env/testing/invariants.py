@@ -1,4 +1,4 @@
-"""Invariants every simulated shot must satisfy (issue 7), shared by the
+"""Invariants every simulated shot must satisfy, shared by the
 hard-case tests, the hypothesis fuzzing and scripts/fuzz.py.
 
 ``check_invariants`` returns a list of violation messages per table;
@@ -80,7 +80,7 @@ def check_invariants(result, initial, table, params, *, max_events=None, pockets
 
 
 def assert_invariants(result, initial, table, params, *, wall=None, max_events=None, pockets=True):
-    """Assert every issue-7 invariant for each table of ``result``, the
+    """Assert every invariant of ``check_invariants`` for each table of ``result``, the
     simulation of ``initial`` (needs ``diagnostics=True``)."""
     assert result.diagnostics is not None, "run with diagnostics=True"
     viol = check_invariants(result, initial, table, params, max_events=max_events, pockets=pockets)
