@@ -362,7 +362,7 @@ def test_random_placement_is_legal():
 
 
 def test_free_spot_search_order():
-    from billiards_env.envs.streams import free_spot
+    from billiards_env.physics.state import free_spot
     env = NineBallEnv()
     t, R = env.table, env.params.R
     foot = (t.width / 2, 0.75 * t.length)

@@ -4,8 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...physics import BallState, strike_velocity
-from ...physics.state import diamond_slots
-from ..streams import free_spot
+from ...physics.state import diamond_slots, free_spot
 from .base import Judgement, ShotOutcome, Task
 
 
