@@ -49,7 +49,8 @@ _COMMON_DOC = """
          so a0 = 0 aims straight at the target's centre; ``aim="absolute"``:
          phi = pi*a0 counter-clockwise from +x
     a1   cue draw: min_draw + (a1 + 1)/2 * (max_draw - min_draw) m
-         (speed = k * contact_time * draw / m, ~10 m/s at max_draw)
+         (speed = ``draw_to_speed(draw)`` = k * contact_time * draw / m,
+         ~10 m/s at max_draw)
     a2   side offset a = miscue_limit * a2 (units of R, + = right english)
     a3   height offset b = miscue_limit * a3 (+ = follow, - = draw); (a, b) is
          scaled radially into the disc of radius miscue_limit
