@@ -391,7 +391,7 @@ class BilliardsVectorEnv(VectorEnv):
             "n_events": np.zeros(N, dtype=np.int64), "sim_time": np.zeros(N), "sim_truncated": np.zeros(N, dtype=bool),
             "action_clipped": np.zeros(N, dtype=bool), "shot": np.zeros(N, dtype=np.int64),
         }
-        terms = {k: np.zeros(N) for k in ("pocket", "scratch", "foul", "contact", "success", "shaping")}
+        terms = {k: np.zeros(N) for k in self._core.task.reward_names}
         if len(act) == N:  # every table shot: the core's arrays are already complete
             out = self._core.step(a, act)
             reward, terminated, truncated = out["reward"], out["terminated"], out["truncated"]

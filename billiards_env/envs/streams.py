@@ -143,21 +143,20 @@ def place_balls(streams: TableStreams, idx, B, lo_x, lo_y, hi_x, hi_y, pockets, 
     idx = np.ascontiguousarray(idx, dtype=np.int64)
     n = len(idx)
     start = streams.counters[idx].copy()
-    used = np.full(n, -1, dtype=np.int64)
-    chunk = 4 * B + 16  # candidates per table in the first round: almost always enough
-    while True:
-        k = min(chunk, max_tries)
+    used = np.empty(n, dtype=np.int64)
+    k = min(B + 2, max_tries)  # candidates per table in the first round: enough for most tables
+    place_many(streams.uniform(idx, 2 * k).reshape(n, k, 2), B, lo_x, lo_y, hi_x, hi_y, pockets, min_dist,
+               out, used)
+    while not (used >= 0).all() and k < max_tries:  # the rest: again from their first draw, with more
+        k = min(4 * k, max_tries)
         todo = np.nonzero(used < 0)[0]
         streams.counters[idx[todo]] = start[todo]
-        u = streams.uniform(idx[todo], 2 * k).reshape(len(todo), k, 2)
         sub = np.empty((len(todo), B, 2))
-        got = np.full(len(todo), -1, dtype=np.int64)
-        place_many(u, B, lo_x, lo_y, hi_x, hi_y, pockets, min_dist, sub, got)
+        got = np.empty(len(todo), dtype=np.int64)
+        place_many(streams.uniform(idx[todo], 2 * k).reshape(len(todo), k, 2), B, lo_x, lo_y, hi_x, hi_y,
+                   pockets, min_dist, sub, got)
         out[todo] = sub
         used[todo] = got
-        if (used >= 0).all() or k >= max_tries:
-            break
-        chunk *= 4
     ok = used >= 0
     streams.counters[idx] = start + (2 * np.where(ok, used, max_tries)).astype(np.uint64)
     return ok

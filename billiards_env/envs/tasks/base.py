@@ -95,13 +95,15 @@ class Task:
     Class attributes: ``name`` (the ``task`` key of the YAML config),
     ``env_id`` (the Gymnasium id), ``class_prefix`` (env classes
     ``<prefix>Env`` and ``<prefix>VectorEnv``) and ``config_path`` (the
-    default YAML; ``None``: ``configs/tasks/<name>.yaml``).
+    default YAML; ``None``: ``configs/tasks/<name>.yaml``); ``reward_names``
+    the keys ``reward_terms`` returns (default ``REWARD_TERMS``).
     """
 
     name: str = ""
     env_id: str = ""
     class_prefix: str = ""
     config_path: Path | None = None
+    reward_names: tuple = REWARD_TERMS  # the keys of reward_terms, in order
 
     # --- configuration ------------------------------------------------------
     @property
