@@ -3,8 +3,8 @@
 A policy has ``act(obs) -> actions [N, 4]`` (batched over the tables of a
 vector env). Geometric policies hold a reference to the native vector env
 (``env``) and read its ``.state``, ``.table``, ``.params``, ``.effects``,
-``legal_target()`` and ``shot_to_action()``; they produce a physical shot
-(aim angle, cue draw, side a, height b) and map it into the env's action
+``legal_target()`` and ``shots_to_actions()``; they choose ``Shots`` (aim
+angle, cue-ball speed, side a, height b) and map them into the env's action
 space with the env's own inverse mapping, so they work with either aim mode.
 
 - ``RandomPolicy``: uniform actions.
@@ -25,8 +25,10 @@ from typing import Protocol
 import numpy as np
 
 from billiards_env.physics import BallState, simulate, strike_velocity
+from billiards_env.physics.strike import Shots, draw_to_speed
 
 from . import geometry as G
+from .features import shot_features, transform_actions
 
 
 class Policy(Protocol):
@@ -40,7 +42,7 @@ def native_env(env):
     seen = 0
     while seen < 10:
         seen += 1
-        if hasattr(env, "legal_target") and hasattr(env, "shot_to_action"):
+        if hasattr(env, "legal_target") and hasattr(env, "shots_to_actions"):
             return env
         for attr in ("venv", "unwrapped", "env"):
             inner = getattr(env, attr, None)
@@ -51,7 +53,7 @@ def native_env(env):
             break
     if hasattr(env, "legal_target"):
         return env
-    raise TypeError("this policy needs the native billiards vector env (with .state, legal_target(), shot_to_action())")
+    raise TypeError("this policy needs the native billiards vector env (with .state, legal_target(), shots_to_actions())")
 
 
 class RandomPolicy:
@@ -84,31 +86,20 @@ class GhostBallPolicy:
         self.env = native_env(env)
         self.b, self.margin, self.dist_weight, self.inset = b, margin, dist_weight, inset
 
-    def shots(self, state: BallState, target: np.ndarray):
+    def shots(self, state: BallState, target: np.ndarray) -> Shots:
         env = self.env
-        table, params = env.table, env.params
-        sh = G.ghost_shots(state.pos, state.on_table, target, table, params, self.inset)
-        k = G.choose_pocket(sh, dist_weight=self.dist_weight, side_mask=G.side_pocket_mask(table))
-        ar = np.arange(state.n_envs)
-        phi = sh["phi"][ar, k]
-        speed = G.required_speed(sh["d_cg"][ar, k], sh["d_op"][ar, k], sh["cut"][ar, k], params,
-                                 b=self.b, margin=self.margin)
-        return phi, speed, np.zeros_like(phi), np.full_like(phi, self.b)
+        return G.ghost_ball_shot(state.pos, state.on_table, target, env.table, env.params, b=self.b,
+                                 margin=self.margin, dist_weight=self.dist_weight, inset=self.inset)
 
     def act(self, obs: np.ndarray) -> np.ndarray:
         env = self.env
         target = np.asarray(env.legal_target(), dtype=np.int64)
-        phi, speed, a, b = self.shots(env.state, target)
-        return to_action(env, phi, speed, a, b)
+        return to_action(env, self.shots(env.state, target))
 
 
-def to_action(env, phi, speed, a, b) -> np.ndarray:
-    params = env.params
-    draw = G.speed_to_draw(speed, params)
-    lo = getattr(getattr(env, "config", None), "min_draw", 0.0)
-    draw = np.clip(draw, lo, params.max_draw)
-    act = np.asarray(env.shot_to_action(phi, draw, a, b), dtype=np.float32)
-    return np.clip(act, -1.0, 1.0)
+def to_action(env, shots: Shots) -> np.ndarray:
+    """The env's actions (float32 [N, 4]) for ``shots``."""
+    return np.clip(np.asarray(env.shots_to_actions(shots), dtype=np.float32), -1.0, 1.0)
 
 
 class SearchPolicy:
@@ -171,8 +162,7 @@ class SearchPolicy:
         speed = np.clip(v0 * smul, 0.05, params.max_speed)
         # keep speeds the env can express (its draw range)
         lo = getattr(getattr(env, "config", None), "min_draw", 0.0)
-        vmin = params.k * params.contact_time * lo / params.m
-        speed = np.maximum(speed, vmin)
+        speed = np.maximum(speed, draw_to_speed(lo, params))
         closeness = np.abs(dphi) / self.aim_jitter + np.abs(np.log(smul)) + (a ** 2 + b ** 2)
         return phi0 + dphi, speed, a, b, closeness
 
@@ -205,13 +195,12 @@ class SearchPolicy:
         best = np.argmax(score, axis=1)
         ar = np.arange(state.n_envs)
         self.last_found = ok.any(axis=1)
-        return phi[ar, best], speed[ar, best], a[ar, best], b[ar, best]
+        return Shots(phi[ar, best], speed[ar, best], a[ar, best], b[ar, best])
 
     def act(self, obs: np.ndarray) -> np.ndarray:
         env = self.env
         target = np.asarray(env.legal_target(), dtype=np.int64)
-        phi, speed, a, b = self.shots(env.state, target)
-        return to_action(env, phi, speed, a, b)
+        return to_action(env, self.shots(env.state, target))
 
 
 class SB3Policy:
@@ -230,8 +219,6 @@ class SB3Policy:
                          self.action_mode)
 
     def act(self, obs: np.ndarray) -> np.ndarray:
-        from .features import shot_features, transform_actions
-
         if self.features:
             obs = np.concatenate([obs, shot_features(self.env, self.aim_scale)], axis=1)
         if self.vecnormalize is not None:

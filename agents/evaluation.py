@@ -168,6 +168,36 @@ def evaluate(policy_fn: Callable, env_id: str, n_episodes: int = 1000, seed: int
         per_episode=dict(success=succ.tolist(), reward=ret.tolist()))
 
 
+def evaluate_policies(specs: list[str], env_id: str, n_episodes: int = 1000, seed: int = 0,
+                      noises: list | None = None, search_k: int = 256, batch_size: int = 1000,
+                      names: list[str] | None = None) -> list[EvalResult]:
+    """Evaluate every policy of ``specs`` (``random``, ``ghost``, ``search``
+    (K = ``search_k``), ``search<K>``, or a run directory / model .zip) under
+    every noise setting of ``noises`` (default ``["none"]``) on the same
+    seeded episodes, printing one line per result. ``names``: display names
+    per spec (optional)."""
+    from .baselines import SB3Policy, make_policy
+
+    results = []
+    for j, spec in enumerate(specs):
+        display = names[j] if names and j < len(names) else None
+        if spec in ("random", "ghost") or spec.startswith("search"):
+            if spec == "search":
+                spec = f"search{search_k}"
+            fn = lambda env, s=spec: make_policy(s, env, seed=seed)  # noqa: E731
+            display = display or spec
+        else:
+            loaded = SB3Policy.load(spec)
+            fn = lambda env, p=loaded: p.bind(env)  # noqa: E731
+            display = display or f"{loaded.name}:{Path(spec).name}"
+        for nz in noises or ["none"]:
+            r = evaluate(fn, env_id, n_episodes, seed, nz, batch_size=batch_size, name=display)
+            print(f"{display:>20s} noise={nz:<10s} success {r.success_rate:.3f} "
+                  f"[{r.success_ci95[0]:.3f}, {r.success_ci95[1]:.3f}]  ({r.wall_time_s:.1f} s)", flush=True)
+            results.append(r)
+    return results
+
+
 def format_table(results: list[EvalResult]) -> str:
     """A Markdown table of results."""
     multi = any(r.env_id not in ("Billiards-PotOne-v0",) for r in results)

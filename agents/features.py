@@ -20,7 +20,8 @@ the policy's action noise and resolution are spent where shots are.
 action is a *correction* to the ghost-ball baseline's shot (aim offset of up
 to +-pi * aim_scale, speed factor exp(0.5 a1), side/height spin), so it
 starts at the baseline and learns what the geometry leaves out (throw,
-speed, spin against scratches).
+speed, spin against scratches). The correction is applied in shot space
+(``Shots``) and mapped to the env's action once.
 """
 from __future__ import annotations
 
@@ -29,6 +30,8 @@ import math
 import numpy as np
 from gymnasium import spaces
 from stable_baselines3.common.vec_env.base_vec_env import VecEnvWrapper
+
+from billiards_env.physics.strike import Shots, speed_to_draw
 
 from . import geometry as G
 
@@ -49,18 +52,13 @@ def shot_features(native, aim_scale: float = 1.0) -> np.ndarray:
     sh = G.ghost_shots(st.pos, st.on_table, tgt_c, table, params, 0.0)
     E, P = sh["phi"].shape
     diag = math.hypot(table.width, table.length)
-    # aim origin of the env (relative aim: the cue -> target direction)
-    cfg = getattr(native, "config", None)
-    if cfg is None or getattr(cfg, "aim", "relative") == "relative":
-        d = st.pos[np.arange(E), tgt_c] - st.pos[:, 0]
-        base = np.where(has, np.arctan2(d[:, 1], d[:, 0]), 0.0)
-    else:
-        base = np.zeros(E)
+    base = native.aim_origin()  # the env's aim origin (relative aim: the cue -> target direction)
     rel = (sh["phi"] - base[:, None]) / math.pi
     rel = (rel + 1.0) % 2.0 - 1.0
     rel = np.clip(rel / aim_scale, -1.5, 1.5)
     speed = G.required_speed(sh["d_cg"], sh["d_op"], sh["cut"], params)
-    draw = G.speed_to_draw(speed, params)
+    draw = np.clip(speed_to_draw(speed, params), 0.0, params.max_draw)
+    cfg = getattr(native, "config", None)
     lo = getattr(cfg, "min_draw", 0.0) if cfg is not None else 0.0
     draw_act = 2.0 * (draw - lo) / (params.max_draw - lo) - 1.0
     open_ = (sh["valid"] & ~sh["blocked"]).astype(np.float64)
@@ -78,22 +76,21 @@ def scale_actions(actions: np.ndarray, aim_scale: float) -> np.ndarray:
 def residual_actions(native, actions: np.ndarray, aim_scale: float, speed_scale: float = 0.5,
                      spin_scale: float = 1.0) -> np.ndarray:
     """Residual mode: the policy's action corrects the ghost-ball shot
-    (``GhostBallPolicy``: easiest open pocket, model speed, centre hit).
-    env a0 = ghost a0 + aim_scale * a0 (aim offset up to +-pi * aim_scale rad);
-    cue draw = ghost draw * exp(speed_scale * a1); side/height = spin_scale *
-    (a2, a3) of the miscue limit."""
-    from .baselines import GhostBallPolicy, to_action
-
+    (``geometry.ghost_ball_shot``: easiest open pocket, model speed, centre
+    hit), in shot space: aim phi = ghost phi + pi * aim_scale * a0; speed =
+    ghost speed * exp(speed_scale * a1) (at most max_speed); side/height =
+    spin_scale * (a2, a3) of the miscue limit. The corrected shots are mapped
+    to the env's actions once (``shots_to_actions``)."""
     a = np.clip(np.asarray(actions, dtype=np.float64), -1.0, 1.0)
-    ghost = GhostBallPolicy(native)
+    params, st = native.params, native.state
     tgt = np.asarray(native.legal_target(), dtype=np.int64)
     has = tgt > 0
-    phi, speed, sa, sb = ghost.shots(native.state, np.where(has, tgt, 1))
-    speed = speed * np.exp(speed_scale * a[:, 1])
-    sa = spin_scale * a[:, 2] * native.params.miscue_limit
-    sb = spin_scale * a[:, 3] * native.params.miscue_limit
-    out = to_action(native, phi, np.minimum(speed, native.params.max_speed), sa, sb).astype(np.float64)
-    out[:, 0] = out[:, 0] + aim_scale * a[:, 0]
+    ghost = G.ghost_ball_shot(st.pos, st.on_table, np.where(has, tgt, 1), native.table, params)
+    lim = params.miscue_limit
+    shots = Shots(ghost.phi + math.pi * aim_scale * a[:, 0],
+                  np.minimum(ghost.speed * np.exp(speed_scale * a[:, 1]), params.max_speed),
+                  spin_scale * a[:, 2] * lim, spin_scale * a[:, 3] * lim)
+    out = np.asarray(native.shots_to_actions(shots), dtype=np.float64)
     out[~has] = a[~has]  # no target (cannot happen on PotOne): pass the action through
     return np.clip(out, -1.0, 1.0).astype(np.float32)
 

@@ -21,6 +21,7 @@ import math
 import numpy as np
 
 from billiards_env.physics import PhysicsParams, Table
+from billiards_env.physics.strike import Shots
 
 
 def pocket_aim_points(table: Table, inset: float = 0.02) -> np.ndarray:
@@ -129,11 +130,6 @@ def required_speed(d_cg, d_op, cut, params: PhysicsParams, b: float = 0.0, margi
     return np.minimum(margin * v0, params.max_speed)
 
 
-def speed_to_draw(speed, params: PhysicsParams) -> np.ndarray:
-    """Cue draw distance (m) giving the cue-ball speed: v = k dt x / m."""
-    return np.clip(np.asarray(speed) * params.m / (params.k * params.contact_time), 0.0, params.max_draw)
-
-
 def choose_pocket(shots: dict, cut_weight: float = 1.0, dist_weight: float = 0.35,
                   approach_limit_corner: float = math.radians(60), approach_limit_side: float = math.radians(50),
                   side_mask: np.ndarray | None = None) -> np.ndarray:
@@ -157,3 +153,17 @@ def choose_pocket(shots: dict, cut_weight: float = 1.0, dist_weight: float = 0.3
 def side_pocket_mask(table: Table) -> np.ndarray:
     l = table.length
     return np.array([abs(cy - l / 2) < 1e-9 for _, cy, _ in table.pockets])
+
+
+def ghost_ball_shot(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, table: Table,
+                    params: PhysicsParams, b: float = 0.0, margin: float = 1.0, dist_weight: float = 0.5,
+                    inset: float = 0.0) -> Shots:
+    """The ghost-ball shot of each table: aim at the ghost ball of the easiest
+    pocket (``choose_pocket``), ``required_speed`` times ``margin``, no side
+    spin, height offset ``b``."""
+    sh = ghost_shots(pos, on_table, target, table, params, inset)
+    k = choose_pocket(sh, dist_weight=dist_weight, side_mask=side_pocket_mask(table))
+    ar = np.arange(len(pos))
+    phi = sh["phi"][ar, k]
+    speed = required_speed(sh["d_cg"][ar, k], sh["d_op"][ar, k], sh["cut"][ar, k], params, b=b, margin=margin)
+    return Shots(phi, speed, np.zeros_like(phi), np.full_like(phi, b))

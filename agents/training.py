@@ -6,6 +6,10 @@ trains with a progress bar, TensorBoard logging (when installed), a CSV log
 of episode statistics (for the learning curve), periodic checkpoints (model +
 VecNormalize stats) and the final model saved as ``<run>/model.zip`` with
 ``<run>/vecnormalize.pkl`` and ``<run>/config.yaml``.
+
+``train_and_evaluate(cfg, run_dir, command)`` (what ``scripts/train.py``
+runs) also plots the learning curve and evaluates the trained model against
+the baselines on the same seeded episodes (``eval.json``, ``eval.png``).
 """
 from __future__ import annotations
 
@@ -183,4 +187,49 @@ def train(cfg: TrainConfig, run_dir, command: str = "") -> dict:
                    env_steps_per_s=model.num_timesteps / wall,
                    final_train_success=float(np.mean([r["success_rate"] for r in last])) if last else None)
     (run_dir / "train_summary.json").write_text(json.dumps(summary, indent=2))
+    return summary
+
+
+def final_evaluation(cfg: TrainConfig, run_dir) -> list:
+    """The trained model of ``run_dir`` and ``cfg.train.eval_baselines`` on
+    ``eval_episodes`` seeded episodes per noise setting; prints a Markdown
+    table and writes ``eval.json`` / ``eval.png`` into ``run_dir``."""
+    from .baselines import SB3Policy, make_policy
+    from .evaluation import evaluate, format_table, save_results
+
+    run_dir = Path(run_dir)
+    trained = SB3Policy.load(run_dir, name=cfg.algo)
+    ts = cfg.train
+    results = []
+    for noise in ts.eval_noise:
+        results.append(evaluate(lambda env: trained.bind(env), cfg.env_id, ts.eval_episodes, ts.eval_seed,
+                                noise, name=cfg.algo))
+        for b in ts.eval_baselines:
+            bname = f"search{ts.search_k}" if b == "search" else b
+            results.append(evaluate(lambda env, b=bname: make_policy(b, env, seed=ts.eval_seed), cfg.env_id,
+                                    ts.eval_episodes, ts.eval_seed, noise, name=bname))
+    print(format_table(results))
+    save_results(results, run_dir / "eval.json", run_dir / "eval.png")
+    return results
+
+
+def train_and_evaluate(cfg: TrainConfig, run_dir, command: str = "", t_start: float | None = None) -> dict:
+    """Train (``train``), plot ``learning_curve.png`` and run the final
+    evaluation (``final_evaluation``, skipped when ``eval_episodes`` is 0);
+    the summary, with the evaluation and the total wall time since
+    ``t_start`` (default: now), is written to ``train_summary.json``."""
+    from .plotting import plot_runs
+
+    t_start = time.perf_counter() if t_start is None else t_start
+    run_dir = Path(run_dir)
+    summary = train(cfg, run_dir, command)
+    print(f"trained {summary['timesteps']} steps in {summary['train_wall_s']:.1f} s "
+          f"({summary['env_steps_per_s']:.0f} env steps/s incl. updates); model: {run_dir / 'model.zip'}")
+    plot_runs([run_dir], run_dir / "learning_curve.png")
+    results = final_evaluation(cfg, run_dir) if cfg.train.eval_episodes > 0 else []
+    wall = time.perf_counter() - t_start
+    summary["total_wall_s"] = wall
+    summary["eval"] = [r.to_dict() for r in results]
+    (run_dir / "train_summary.json").write_text(json.dumps(summary, indent=2))
+    print(f"total wall time (training + evaluation): {wall:.1f} s; run directory: {run_dir}")
     return summary

@@ -36,27 +36,9 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default=None, help="output prefix for .json and .png (default results/agents/eval)")
     a = ap.parse_args(argv)
 
-    from agents.baselines import SB3Policy, make_policy
-    from agents.evaluation import evaluate, format_table, save_results
+    from agents.evaluation import evaluate_policies, format_table, save_results
 
-    noises = a.noise or ["none"]
-    results = []
-    for j, spec in enumerate(a.policy):
-        display = a.name[j] if a.name and j < len(a.name) else None
-        if spec in ("random", "ghost") or spec.startswith("search"):
-            if spec == "search":
-                spec = f"search{a.search_k}"
-            fn = lambda env, s=spec: make_policy(s, env, seed=a.seed)  # noqa: E731
-            display = display or spec
-        else:
-            loaded = SB3Policy.load(spec)
-            fn = lambda env, p=loaded: p.bind(env)  # noqa: E731
-            display = display or f"{loaded.name}:{Path(spec).name}"
-        for nz in noises:
-            r = evaluate(fn, a.env, a.episodes, a.seed, nz, batch_size=a.batch_size, name=display)
-            print(f"{display:>20s} noise={nz:<10s} success {r.success_rate:.3f} "
-                  f"[{r.success_ci95[0]:.3f}, {r.success_ci95[1]:.3f}]  ({r.wall_time_s:.1f} s)", flush=True)
-            results.append(r)
+    results = evaluate_policies(a.policy, a.env, a.episodes, a.seed, a.noise, a.search_k, a.batch_size, a.name)
     print()
     print(format_table(results))
     out = Path(a.out) if a.out else ROOT / "results" / "agents" / "eval"

@@ -7,56 +7,11 @@ runs/<name>/progress.csv.
 from __future__ import annotations
 
 import argparse
-import csv
 import sys
 from pathlib import Path
 
-
-def read_progress(run_dir) -> dict:
-    rows = list(csv.DictReader(open(Path(run_dir) / "progress.csv")))
-    return {k: [float(r[k]) for r in rows] for k in (rows[0].keys() if rows else [])}
-
-
-def smooth(d: dict, min_episodes: int = 2048) -> dict:
-    """Merge consecutive rows until each covers >= ``min_episodes`` episodes
-    (SAC logs every vector step, 64 episodes: too noisy to read)."""
-    out = {k: [] for k in ("timesteps", "success_rate", "mean_reward")}
-    acc = {"n": 0.0, "s": 0.0, "r": 0.0}
-    for t, n, sr, mr in zip(d["timesteps"], d["episodes"], d["success_rate"], d["mean_reward"]):
-        acc["n"] += n; acc["s"] += sr * n; acc["r"] += mr * n
-        if acc["n"] >= min_episodes:
-            out["timesteps"].append(t)
-            out["success_rate"].append(acc["s"] / acc["n"])
-            out["mean_reward"].append(acc["r"] / acc["n"])
-            acc = {"n": 0.0, "s": 0.0, "r": 0.0}
-    return out
-
-
-def plot_runs(run_dirs, out, labels=None) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
-    for k, rd in enumerate(run_dirs):
-        d = read_progress(rd)
-        if not d:
-            continue
-        d = smooth(d)
-        label = labels[k] if labels else Path(rd).name
-        axes[0].plot(d["timesteps"], d["success_rate"], label=label)
-        axes[1].plot(d["timesteps"], d["mean_reward"], label=label)
-    axes[0].set_ylabel("training success rate (>= 2048 episodes/point)")
-    axes[1].set_ylabel("mean episode reward")
-    for ax in axes:
-        ax.set_xlabel("env steps")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.tight_layout()
-    Path(out).parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
 
 
 def main(argv=None) -> int:
@@ -65,6 +20,8 @@ def main(argv=None) -> int:
     ap.add_argument("--labels", nargs="*", default=None)
     ap.add_argument("--out", default="learning_curve.png")
     a = ap.parse_args(argv)
+
+    from agents.plotting import plot_runs
     plot_runs(a.runs, a.out, a.labels)
     print(f"wrote {a.out}")
     return 0

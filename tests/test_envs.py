@@ -13,7 +13,8 @@ from gymnasium.vector import AutoresetMode
 import billiards_env  # noqa: F401  (registers the tasks)
 from billiards_env.envs import (ENV_IDS, BilliardsVectorEnv, NineBallEnv, PotOneEnv, RunOutVectorEnv,
                                 TaskConfig, register_envs)
-from billiards_env.envs.config import BUILTIN_DEFAULTS, CONFIG_DIR, NoiseConfig
+from billiards_env.envs.config import CONFIG_DIR, NoiseConfig
+from billiards_env.physics.strike import draw_to_speed, speed_to_draw
 
 IDS = list(ENV_IDS)
 
@@ -143,10 +144,18 @@ def test_nine_ball_break_reset():
     assert NineBallEnv.__doc__.count("Rules") == 1
 
 
+def _yaml(task):
+    import yaml
+    return yaml.safe_load((CONFIG_DIR / f"{task}.yaml").read_text())
+
+
+BUILTIN_DEFAULTS = {task: _yaml(task) for task in ("pot_one", "run_out", "nine_ball")}  # the YAML files
+
+
 def test_config_yaml_and_overrides(tmp_path):
     for task in ("pot_one", "run_out", "nine_ball"):
         cfg = TaskConfig.from_yaml(CONFIG_DIR / f"{task}.yaml")
-        assert cfg == TaskConfig.from_dict(BUILTIN_DEFAULTS[task])
+        assert cfg == TaskConfig.from_dict(BUILTIN_DEFAULTS[task]) == TaskConfig.default(task)
         assert cfg.version == 1 and cfg.solver == "event"
         assert TaskConfig.from_dict(cfg.to_dict()) == cfg
         with pytest.raises(dataclasses.FrozenInstanceError):
@@ -216,17 +225,20 @@ def test_action_shot_round_trip(aim):
     rng = np.random.default_rng(0)
     acts = rng.uniform(-1, 1, size=(5, 4)).astype(np.float32)
     acts[:, 2:] *= 0.7  # inside the offset disc, where the map is invertible
-    phi, draw, a, b = v.action_to_shot(acts)
-    assert np.all((draw >= v.config.min_draw) & (draw <= p.max_draw))
+    shots = v.actions_to_shots(acts)
+    phi, speed, a, b = shots
+    draw = speed_to_draw(speed, p)
+    assert np.all((speed >= draw_to_speed(v.config.min_draw, p)) & (speed <= p.max_speed))
+    assert np.all((draw >= v.config.min_draw * (1 - 1e-15)) & (draw <= p.max_draw * (1 + 1e-15)))
     assert np.all(np.hypot(a, b) <= p.miscue_limit)
-    np.testing.assert_allclose(v.shot_to_action(phi, draw, a, b), acts, atol=1e-6)
+    np.testing.assert_allclose(v.shots_to_actions(shots), acts, atol=1e-6)
     if aim == "relative":  # a0 = 0 aims at the legal target's centre
-        phi0 = v.action_to_shot(np.zeros((5, 4)))[0]
+        phi0 = v.actions_to_shots(np.zeros((5, 4))).phi
         s, t = v.state, v.legal_target()
         d = s.pos[np.arange(5), t] - s.pos[:, 0]
         np.testing.assert_allclose(phi0, np.arctan2(d[:, 1], d[:, 0]), atol=1e-12)
     # offsets outside the disc are scaled radially onto it
-    _, _, a, b = v.action_to_shot(np.tile([0, 0, 1, 1], (5, 1)))
+    _, _, a, b = v.actions_to_shots(np.tile([0, 0, 1, 1], (5, 1)))
     np.testing.assert_allclose(np.hypot(a, b), p.miscue_limit, rtol=1e-8)
     np.testing.assert_allclose(a, b)
 
@@ -335,7 +347,7 @@ def test_random_placement_is_legal():
     cfg = TaskConfig.default("run_out", n_balls=9)
     core = BilliardsCore(cfg, 300)
     core.streams.seed(np.arange(300), np.arange(300))
-    pos = core._place(np.arange(300))
+    pos = core.place(np.arange(300))
     R, m, t = core.params.R, cfg.margin, core.table
     assert pos.shape == (300, 10, 2)
     assert np.all(pos >= R + m) and np.all(pos[..., 0] <= t.width - R - m) and np.all(pos[..., 1] <= t.length - R - m)
@@ -346,11 +358,11 @@ def test_random_placement_is_legal():
     assert d.min() >= 2 * R + m
     assert t.contains(pos.reshape(-1, 2), R, 0.0).all()
     with pytest.raises(ValueError, match="could not place 10 balls without overlap"):
-        core._place(np.arange(3), max_tries=9)
+        core.place(np.arange(3), max_tries=9)
 
 
 def test_free_spot_search_order():
-    from billiards_env.envs.streams import free_spot
+    from billiards_env.physics.state import free_spot
     env = NineBallEnv()
     t, R = env.table, env.params.R
     foot = (t.width / 2, 0.75 * t.length)
@@ -366,10 +378,10 @@ def test_free_spot_search_order():
 
 
 def test_nine_ball_breaks_leave_cue_and_nine_on_a_legal_table(monkeypatch):
-    import billiards_env.envs.core as core_mod
+    import billiards_env.envs.tasks.nine_ball as nine_mod
     calls = []
-    spot = core_mod.free_spot
-    monkeypatch.setattr(core_mod, "free_spot", lambda *a: calls.append(1) or spot(*a))
+    spot = nine_mod.free_spot
+    monkeypatch.setattr(nine_mod, "free_spot", lambda *a: calls.append(1) or spot(*a))
     v = make_vec("Billiards-NineBall-v0", 128).unwrapped
     R, t = v.params.R, v.table
     for seed in (0, 1000):

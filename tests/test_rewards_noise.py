@@ -7,7 +7,8 @@ import pytest
 
 import billiards_env  # noqa: F401
 from billiards_env.envs import PotOneEnv, PotOneVectorEnv
-from billiards_env.physics import BallState, simulate, strike
+from billiards_env.physics import BallState, simulate, strike_velocity
+from billiards_env.physics.strike import Shots, draw_to_speed
 
 # cue ball, object ball and the corner pocket at (0, 0) on one line
 STRAIGHT_IN = np.array([[0.6, 0.6], [0.3, 0.3]])
@@ -18,7 +19,7 @@ def test_straight_in_shot_earns_pocket_reward():
     env = PotOneEnv(reward={"pocket": 1.0, "contact": 0.25, "success": 0.5, "shaping": 0.0})
     env.reset(seed=0)
     env.set_state(STRAIGHT_IN)
-    act = env.shot_to_action(AIM, 0.05, 0.0, -0.3)[0]  # draw back: the cue ball stays up
+    act = env.shots_to_actions(Shots(AIM, draw_to_speed(0.05, env.params), 0.0, -0.3))[0]  # draw back: the cue ball stays up
     _, r, term, trunc, info = env.step(act)
     assert info["pocketed"].tolist() == [False, True] and info["success"] and not info["scratch"]
     assert info["first_contact"] == 1 and not info["foul"] and term and not trunc
@@ -34,7 +35,7 @@ def test_scratch_earns_penalty_and_shaping_is_potential_based():
     env.reset(seed=0)
     obj = np.array([0.6, 1.5])
     env.set_state(np.array([[0.3, 0.3], obj]))
-    act = env.shot_to_action(math.atan2(-0.3, -0.3), 0.05)[0]  # cue ball straight into the corner
+    act = env.shots_to_actions(Shots(math.atan2(-0.3, -0.3), draw_to_speed(0.05, env.params), 0.0, 0.0))[0]  # cue ball straight into the corner
     _, r, term, _, info = env.step(act)
     assert info["scratch"] and info["foul"] and info["first_contact"] == -1 and not info["success"]
     t = info["reward_terms"]
@@ -65,9 +66,9 @@ def test_zero_noise_reproduces_the_noiseless_shot():
     env.reset(seed=3)
     start = env.state.copy()
     act = np.array([0.02, -0.2, 0.3, -0.4], np.float32)
-    phi, draw, a, b = env.action_to_shot(act[None])
+    shots = env.actions_to_shots(act[None])
     obs, *_ = env.step(act)
-    ref = simulate(strike(start, phi, draw, a, b, env.params), env.table, env.params)
+    ref = simulate(strike_velocity(start, *shots, env.params), env.table, env.params)
     np.testing.assert_array_equal(env.state.pos, ref.state.pos)
     np.testing.assert_array_equal(env.state.pocket, ref.state.pocket)
 
@@ -94,7 +95,7 @@ def test_measured_noise_std_matches_config():
     for _ in range(rounds):
         v.set_state(pos)
         acts = np.tile([0.0, -0.4, 0.2, -0.2], (n, 1))
-        phi0, draw0, a0, b0 = v.action_to_shot(acts)
+        phi0, speed0, a0, b0 = v.actions_to_shots(acts)
         v.step(acts)
         # struck cue-ball state: the 'start' event of ball 0
         st = np.stack([log.states[0, 0] for log in v.last_events])
@@ -104,7 +105,7 @@ def test_measured_noise_std_matches_config():
         k = 2.5 * speed / p.R
         a, b = wz / k, (wy * dx - wx * dy) / k
         dphi = np.angle(np.exp(1j * (np.arctan2(vy, vx) - phi0)))
-        samples.append(np.stack([dphi, speed - p.k * p.contact_time * draw0 / p.m, a - a0, b - b0], 1))
+        samples.append(np.stack([dphi, speed - speed0, a - a0, b - b0], 1))
     s = np.concatenate(samples)
     want = np.array([math.radians(0.5), 0.075, 0.5e-3 / p.R, 0.5e-3 / p.R])
     np.testing.assert_allclose(s.std(axis=0), want, rtol=0.15)
@@ -115,7 +116,7 @@ def test_noise_respects_limits():
     v = PotOneVectorEnv(num_envs=200, noise={"aim_deg": 1.0, "speed": 5.0, "side_mm": 50.0, "height_mm": 50.0})
     v.reset(seed=0)
     core, p = v._core, v.params
-    phi, speed, a, b = core.apply_noise(np.zeros(200), np.full(200, p.max_speed), np.full(200, 0.49),
-                                        np.zeros(200), np.arange(200))
+    phi, speed, a, b = core.apply_noise(Shots(np.zeros(200), np.full(200, p.max_speed), np.full(200, 0.49),
+                                              np.zeros(200)), np.arange(200))
     assert np.all((speed >= 0) & (speed <= p.max_speed)) and np.any(speed < p.max_speed)
     assert np.all(np.hypot(a, b) <= p.miscue_limit)

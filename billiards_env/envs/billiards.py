@@ -4,7 +4,10 @@ The cue ball is struck, the table is simulated until every ball rests, and
 the observation is the resting table. ``BilliardsEnv`` is a single-table
 ``gymnasium.Env``; ``BilliardsVectorEnv`` is a native
 ``gymnasium.vector.VectorEnv`` that shoots all its tables with one batched
-simulator call. Task classes below fix the rules.
+simulator call. The task classes (``PotOneEnv``, ``PotOneVectorEnv``, ...)
+are generated from the task registry (``envs/tasks/``): one single-table and
+one vector class per registered task, named ``<class_prefix>Env`` and
+``<class_prefix>VectorEnv``, with the task's spec as their docstring.
 """
 from __future__ import annotations
 
@@ -19,8 +22,10 @@ from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
+from ..physics.strike import Shots
 from .config import TaskConfig
-from .core import BilliardsCore
+from .core import BilliardsCore, ShotContext
+from .tasks.registry import TASKS, get_task
 
 _COMMON_DOC = """
     **Observation** (``Box(0, 1, (4*B + 1,), float32)``, B = n_balls + 1 balls,
@@ -44,15 +49,20 @@ _COMMON_DOC = """
          so a0 = 0 aims straight at the target's centre; ``aim="absolute"``:
          phi = pi*a0 counter-clockwise from +x
     a1   cue draw: min_draw + (a1 + 1)/2 * (max_draw - min_draw) m
-         (speed = k * contact_time * draw / m, ~10 m/s at max_draw)
+         (speed = ``draw_to_speed(draw)`` = k * contact_time * draw / m,
+         ~10 m/s at max_draw)
     a2   side offset a = miscue_limit * a2 (units of R, + = right english)
     a3   height offset b = miscue_limit * a3 (+ = follow, - = draw); (a, b) is
          scaled radially into the disc of radius miscue_limit
     ===  ========================================================================
 
     Values outside [-1, 1] are clipped (``info["action_clipped"]``); NaN or
-    infinite values, or a wrong shape, raise ``ValueError``. ``action_to_shot``
-    and ``shot_to_action`` convert between actions and (phi, draw, a, b).
+    infinite values, or a wrong shape, raise ``ValueError``.
+    ``actions_to_shots(actions) -> Shots`` (phi, speed in m/s, a, b) and
+    ``shots_to_actions(shots) -> actions`` convert, each the inverse of the
+    other on the unclipped range; both are relative to ``shot_context()``
+    (legal target, aim origin, potential of every table, computed once per
+    state change and shared by the observation, the reward and the policies).
 
     **Shot noise** (``noise=``: ``"none"`` default, ``"tournament"`` = std
     0.125 deg aim, 0.075 m/s speed, 0.5 mm per offset, or a mapping) is drawn
@@ -162,18 +172,27 @@ class BilliardsEnv(gym.Env):
     last_start = property(lambda self: self._core.last_start[0])
 
     def legal_target(self) -> int:
+        """Legal target ball id (-1 if none)."""
         return int(self._core.legal_target()[0])
 
-    def action_to_shot(self, actions):
-        """Actions [N, 4] (or [4]) -> (phi, draw, a, b) arrays [N] for this table (after clipping)."""
+    def aim_origin(self) -> float:
+        """Direction (rad) that action a0 = 0 aims at."""
+        return float(self._core.shot_context().aim_origin[0])
+
+    def shot_context(self) -> ShotContext:
+        """The table's ``ShotContext`` (arrays of length 1; do not modify)."""
+        return self._core.shot_context()
+
+    def actions_to_shots(self, actions) -> Shots:
+        """Actions [n, 4] (or [4]), each for this table as it is now -> ``Shots`` [n] (after clipping)."""
         a = np.asarray(actions, dtype=np.float64)
         a2 = self._core.validate_actions(a.reshape(-1, 4) if a.ndim == 1 else a, len(a.reshape(-1, 4)))
-        return self._core.action_to_shot(a2, np.zeros(len(a2), dtype=np.int64))
+        return self._core.actions_to_shots(a2, np.zeros(len(a2), dtype=np.int64))
 
-    def shot_to_action(self, phi, draw, a=0.0, b=0.0) -> np.ndarray:
-        """(phi, draw, a, b) (scalars or arrays [N]) -> actions [N, 4] float32 for this table."""
-        n = max(np.size(phi), np.size(draw), np.size(a), np.size(b))
-        return self._core.shot_to_action(phi, draw, a, b, np.zeros(n, dtype=np.int64))
+    def shots_to_actions(self, shots: Shots) -> np.ndarray:
+        """``Shots`` [n] (or scalars), each for this table as it is now -> actions [n, 4] (float64,
+        clipped to [-1, 1])."""
+        return self._core.shots_to_actions(shots, np.zeros(len(shots), dtype=np.int64))
 
     def set_state(self, state) -> np.ndarray:
         """Start a new episode from ``state`` (a one-table ``BallState``, or
@@ -292,16 +311,24 @@ class BilliardsVectorEnv(VectorEnv):
 
     def legal_target(self) -> np.ndarray:
         """Legal target ball id of every table, int [N] (-1 if none)."""
-        return self._core.legal_target()
+        return self._core.legal_target().copy()
 
-    def action_to_shot(self, actions):
-        """Actions [N, 4] -> (phi, draw, a, b) arrays [N] for the current tables (after clipping)."""
+    def aim_origin(self) -> np.ndarray:
+        """Direction (rad) that action a0 = 0 aims at, per table [N]."""
+        return self._core.shot_context().aim_origin.copy()
+
+    def shot_context(self) -> ShotContext:
+        """The ``ShotContext`` of every table (cached until the state changes; do not modify)."""
+        return self._core.shot_context()
+
+    def actions_to_shots(self, actions) -> Shots:
+        """Actions [N, 4] -> ``Shots`` [N] for the current tables (after clipping)."""
         a = self._core.validate_actions(actions, self.num_envs)
-        return self._core.action_to_shot(a, np.arange(self.num_envs))
+        return self._core.actions_to_shots(a, np.arange(self.num_envs))
 
-    def shot_to_action(self, phi, draw, a=0.0, b=0.0) -> np.ndarray:
-        """(phi, draw, a, b) scalars or arrays [N] -> actions [N, 4] float32 for the current tables."""
-        return self._core.shot_to_action(phi, draw, a, b, np.arange(self.num_envs))
+    def shots_to_actions(self, shots: Shots) -> np.ndarray:
+        """``Shots`` [N] (or scalars) -> actions [N, 4] (float64, clipped to [-1, 1]) for the current tables."""
+        return self._core.shots_to_actions(shots, np.arange(self.num_envs))
 
     def set_state(self, state) -> np.ndarray:
         """Start new episodes on every table from ``state`` (a ``BallState``
@@ -364,7 +391,7 @@ class BilliardsVectorEnv(VectorEnv):
             "n_events": np.zeros(N, dtype=np.int64), "sim_time": np.zeros(N), "sim_truncated": np.zeros(N, dtype=bool),
             "action_clipped": np.zeros(N, dtype=bool), "shot": np.zeros(N, dtype=np.int64),
         }
-        terms = {k: np.zeros(N) for k in ("pocket", "scratch", "foul", "contact", "success", "shaping")}
+        terms = {k: np.zeros(N) for k in self._core.task.reward_names}
         if len(act) == N:  # every table shot: the core's arrays are already complete
             out = self._core.step(a, act)
             reward, terminated, truncated = out["reward"], out["terminated"], out["truncated"]
@@ -408,69 +435,37 @@ class BilliardsVectorEnv(VectorEnv):
 
 
 # ----------------------------------------------------------------- tasks
-_POT_ONE_DOC = """Billiards-PotOne-v0: the cue ball and one object ball at random
-    positions; one shot per episode. Success (``info["success"]``): the object
-    ball is pocketed and the cue ball is not. Every episode terminates after
-    its shot. Foul: the cue ball misses the object ball.
-"""
-_RUN_OUT_DOC = """Billiards-RunOut-v0: ``n_balls`` object balls (default 5) at random
-    positions. Any object ball may be hit first and pocketed; the legal
-    *target* (for relative aim, contact reward and shaping) is the
-    lowest-numbered ball on the table. The episode continues while every shot
-    pockets at least one ball without foul or scratch. It terminates on a
-    miss (nothing pocketed), a scratch (cue ball pocketed), a foul (the cue
-    ball hits no object ball) or when the table is cleared (success); it is
-    truncated after ``max_shots`` shots (default 10).
-"""
-_NINE_BALL_DOC = """Billiards-NineBall-v0: simplified single-player 9-ball.
-
-    Rules:
-
-    1. Each episode starts from a seeded 9-ball rack (1 on the foot spot, 9 in
-       the centre, others shuffled) broken from the head-spot area at
-       ~``break_speed`` (8 m/s) with small seeded variation of position, aim,
-       speed and tip offset. A cue ball pocketed on the break is respotted on
-       the head spot (or the nearest free spot behind it); a 9 pocketed on
-       the break is respotted on the foot spot (or the nearest free spot).
-    2. The legal target is the lowest-numbered ball on the table; the cue
-       ball must hit it first.
-    3. A wrong first contact (another ball, or none) is a foul; a pocketed
-       cue ball is a scratch. Either ends the episode (terminated).
-    4. Balls pocketed on a legal shot stay down (+``pocket`` each); pocketing
-       the 9 on a legal shot (directly or by combination) wins: success,
-       episode terminated. A 9 pocketed on a foul or scratch ends the episode
-       without success.
-    5. A legal shot that pockets nothing is a miss: the player shoots again
-       from where the balls lie (no turn passes). The episode is truncated
-       after ``max_shots`` shots (default 20).
-"""
+_CLASSES: dict[str, tuple] = {}  # task name -> (task, single-table class, vector class)
 
 
-class PotOneEnv(BilliardsEnv):
-    task = "pot_one"
-    __doc__ = _POT_ONE_DOC + _COMMON_DOC
+def env_classes(task) -> tuple[type, type]:
+    """The (single-table, vector) env classes of a registered task (a name or
+    a ``Task``), generated on first use: ``<class_prefix>Env`` and
+    ``<class_prefix>VectorEnv``, documented by the task's spec."""
+    task = get_task(task) if isinstance(task, str) else task
+    cached = _CLASSES.get(task.name)
+    if cached is not None and cached[0] is task:
+        return cached[1], cached[2]
+    spec = task.__doc__ or f"{task.env_id}\n"
+    ns = {"task": task.name, "__module__": __name__}
+    single = type(f"{task.class_prefix}Env", (BilliardsEnv,), {**ns, "__doc__": spec + _COMMON_DOC})
+    vector = type(f"{task.class_prefix}VectorEnv", (BilliardsVectorEnv,),
+                  {**ns, "__doc__": spec + BilliardsVectorEnv.__doc__ + _COMMON_DOC})
+    _CLASSES[task.name] = (task, single, vector)
+    return single, vector
 
 
-class PotOneVectorEnv(BilliardsVectorEnv):
-    task = "pot_one"
-    __doc__ = _POT_ONE_DOC + BilliardsVectorEnv.__doc__ + _COMMON_DOC
+def __getattr__(name: str):
+    """The env classes of tasks registered after this module was imported
+    (what Gymnasium's ``entry_point`` strings resolve to)."""
+    for task in list(TASKS.values()):
+        if name in (f"{task.class_prefix}Env", f"{task.class_prefix}VectorEnv"):
+            single, vector = env_classes(task)
+            return single if name == single.__name__ else vector
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-class RunOutEnv(BilliardsEnv):
-    task = "run_out"
-    __doc__ = _RUN_OUT_DOC + _COMMON_DOC
-
-
-class RunOutVectorEnv(BilliardsVectorEnv):
-    task = "run_out"
-    __doc__ = _RUN_OUT_DOC + BilliardsVectorEnv.__doc__ + _COMMON_DOC
-
-
-class NineBallEnv(BilliardsEnv):
-    task = "nine_ball"
-    __doc__ = _NINE_BALL_DOC + _COMMON_DOC
-
-
-class NineBallVectorEnv(BilliardsVectorEnv):
-    task = "nine_ball"
-    __doc__ = _NINE_BALL_DOC + BilliardsVectorEnv.__doc__ + _COMMON_DOC
+for _task in list(TASKS.values()):  # the built-in tasks: PotOneEnv, PotOneVectorEnv, ...
+    for _cls in env_classes(_task):
+        globals()[_cls.__name__] = _cls
+del _task, _cls

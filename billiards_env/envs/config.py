@@ -4,21 +4,23 @@ A ``TaskConfig`` holds everything a task needs: table, physics preset,
 solver, ball count, shot limit, action mapping, reward weights
 (``RewardConfig``), shot noise (``NoiseConfig``) and physics effects
 (``Effects``). Unknown keys anywhere raise a ``ValueError`` naming them.
+The YAML files are the only source of defaults; checks that depend on the
+task (e.g. pot_one has one object ball) are the task's own ``validate``.
 """
 from __future__ import annotations
 
 import dataclasses
 import math
 from pathlib import Path
-from typing import Any
 
 import yaml
 
 from ..physics import Effects, PhysicsParams, Table
+from .tasks.base import CONFIG_DIR
+from .tasks.registry import get_task
 
 CONFIG_VERSION = 1
-TASKS = ("pot_one", "run_out", "nine_ball")
-CONFIG_DIR = Path(__file__).resolve().parents[2] / "configs" / "tasks"
+__all__ = ["TaskConfig", "RewardConfig", "NoiseConfig", "CONFIG_DIR", "CONFIG_VERSION", "check_keys"]
 
 
 def check_keys(cls, d: dict, where: str) -> None:
@@ -134,7 +136,7 @@ class NoiseConfig:
 class TaskConfig:
     """Everything that defines a task instance.
 
-    - ``task``: one of ``pot_one``, ``run_out``, ``nine_ball``;
+    - ``task``: a registered task name (``pot_one``, ``run_out``, ``nine_ball``, ...);
     - ``table``: ``pool`` (with ``table_size_ft`` 7, 8 or 9) or ``pocketless``;
     - ``physics``: a ``PhysicsParams`` preset name (``standard``, ``seed``);
     - ``solver``: ``event`` (exact) or ``step`` (fixed step ``dt`` seconds);
@@ -145,7 +147,7 @@ class TaskConfig:
     - ``min_draw``: cue draw (m) at a1 = -1 (small and positive so the cue ball moves);
     - ``margin``: clearance (m) between randomly placed balls and from the cushions;
     - ``break_speed``: nine_ball break-shot speed (m/s);
-    - ``effects``, ``reward``, ``noise``: nested configs.
+    - ``effects``, ``reward``, ``noise``: nested configs (``NESTED``).
     """
 
     task: str
@@ -168,8 +170,7 @@ class TaskConfig:
     def __post_init__(self):
         if self.version != CONFIG_VERSION:
             raise ValueError(f"config version {self.version!r} is not supported (expected {CONFIG_VERSION})")
-        if self.task not in TASKS:
-            raise ValueError(f"unknown task {self.task!r}; choose one of {TASKS}")
+        task = get_task(self.task)  # ValueError naming the registered tasks
         if self.table not in ("pool", "pocketless"):
             raise ValueError(f"table must be 'pool' or 'pocketless', got {self.table!r}")
         if self.solver not in ("event", "step"):
@@ -183,10 +184,6 @@ class TaskConfig:
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int) or v < 1:
                 raise ValueError(f"{name} must be a positive integer, got {v!r}")
-        if self.task == "pot_one" and self.n_balls != 1:
-            raise ValueError("pot_one uses exactly one object ball (n_balls: 1)")
-        if self.task == "nine_ball" and self.n_balls != 9:
-            raise ValueError("nine_ball uses exactly nine object balls (n_balls: 9)")
         if self.n_balls > 15:
             raise ValueError(f"n_balls must be at most 15, got {self.n_balls}")
         object.__setattr__(self, "min_draw", _number(self.min_draw, "min_draw"))
@@ -196,9 +193,10 @@ class TaskConfig:
             raise ValueError(f"min_draw must lie in (0, max_draw = {self.params().max_draw}), got {self.min_draw}")
         if not 0 < self.break_speed <= 2 * self.params().max_speed:
             raise ValueError(f"break_speed must be positive and plausible, got {self.break_speed}")
-        for name, cls in (("effects", Effects), ("reward", RewardConfig), ("noise", NoiseConfig)):
+        for name, (cls, _) in NESTED.items():
             if not isinstance(getattr(self, name), cls):
                 raise ValueError(f"{name} must be a {cls.__name__} (use TaskConfig.from_dict for mappings)")
+        task.validate(self)
 
     # --- construction -----------------------------------------------------
     @classmethod
@@ -207,12 +205,9 @@ class TaskConfig:
         check_keys(cls, d, "task config")
         if "task" not in d:
             raise ValueError("task config needs a 'task' key")
-        if "effects" in d and not isinstance(d["effects"], Effects):
-            d["effects"] = Effects.from_dict(d["effects"])
-        if "reward" in d and not isinstance(d["reward"], RewardConfig):
-            d["reward"] = RewardConfig.from_dict(d["reward"])
-        if "noise" in d:
-            d["noise"] = NoiseConfig.from_any(d["noise"])
+        for name, (sub, build) in NESTED.items():
+            if name in d and not isinstance(d[name], sub):
+                d[name] = build(d[name])
         return cls(**d)
 
     @classmethod
@@ -227,18 +222,20 @@ class TaskConfig:
 
     @classmethod
     def default(cls, task: str, **overrides) -> "TaskConfig":
-        """The task's shipped configuration ``configs/tasks/<task>.yaml``
-        (built-in defaults, identical to the file, when the file is absent)."""
-        path = CONFIG_DIR / f"{task}.yaml"
-        if path.exists():
-            return cls.from_yaml(path, **overrides)
-        return cls.from_dict(BUILTIN_DEFAULTS[task], **overrides)
+        """The task's shipped configuration (``configs/tasks/<task>.yaml``, or
+        the task's own ``config_path``), the single source of its defaults."""
+        path = get_task(task).default_config_path
+        if not path.exists():
+            raise FileNotFoundError(
+                f"no default configuration for task {task!r}: {path} does not exist. The task YAML files "
+                f"live in configs/tasks/ at the top of the repository (beside the package, not inside it); "
+                f"run from a source checkout or pass config=<path to a YAML file or a TaskConfig>")
+        return cls.from_yaml(path, **overrides)
 
     def to_dict(self) -> dict:
         d = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
-        d["effects"] = self.effects.to_dict()
-        d["reward"] = self.reward.to_dict()
-        d["noise"] = self.noise.to_dict()
+        for name in NESTED:
+            d[name] = d[name].to_dict()
         return d
 
     def to_yaml(self, path) -> None:
@@ -253,15 +250,11 @@ class TaskConfig:
         return Table.pool(self.table_size_ft) if self.table == "pool" else Table.pocketless()
 
 
-_EFFECTS_ALL = Effects().to_dict()
-BUILTIN_DEFAULTS: dict[str, dict[str, Any]] = {
-    "pot_one": dict(task="pot_one", version=1, n_balls=1, max_shots=1, effects=_EFFECTS_ALL,
-                    reward=dict(pocket=1.0, scratch=-1.0, foul=-0.5, contact=0.1, success=0.0,
-                                shaping=0.5, gamma=0.99), noise="none"),
-    "run_out": dict(task="run_out", version=1, n_balls=5, max_shots=10, effects=_EFFECTS_ALL,
-                    reward=dict(pocket=1.0, scratch=-1.0, foul=-0.5, contact=0.1, success=1.0,
-                                shaping=0.5, gamma=0.99), noise="none"),
-    "nine_ball": dict(task="nine_ball", version=1, n_balls=9, max_shots=20, effects=_EFFECTS_ALL,
-                      reward=dict(pocket=1.0, scratch=-1.0, foul=-1.0, contact=0.1, success=5.0,
-                                  shaping=0.5, gamma=0.99), noise="none"),
+
+# Nested configs of TaskConfig: field -> (class, builder from YAML data). A new
+# nested config is one TaskConfig field plus one line here.
+NESTED = {
+    "effects": (Effects, Effects.from_dict),
+    "reward": (RewardConfig, RewardConfig.from_dict),
+    "noise": (NoiseConfig, NoiseConfig.from_any),
 }

@@ -1,20 +1,18 @@
 """Registration of the Billiards tasks with Gymnasium (also the
-``gymnasium.envs`` entry point declared in pyproject.toml)."""
+``gymnasium.envs`` entry point declared in pyproject.toml).
+
+The ids come from the task registry (``envs/tasks/``): registering a task
+registers its id, so ``register_envs`` only makes sure every registered
+task's id is known to Gymnasium (idempotent).
+"""
 from __future__ import annotations
 
-ENV_IDS = {
-    "Billiards-PotOne-v0": ("PotOneEnv", "PotOneVectorEnv"),
-    "Billiards-RunOut-v0": ("RunOutEnv", "RunOutVectorEnv"),
-    "Billiards-NineBall-v0": ("NineBallEnv", "NineBallVectorEnv"),
-}
+from .tasks import TASKS, register_gym_ids
+
+# The built-in ids and their (single-table, vector) class names, as registered at import.
+ENV_IDS = {t.env_id: (f"{t.class_prefix}Env", f"{t.class_prefix}VectorEnv") for t in TASKS.values()}
 
 
 def register_envs() -> None:
-    """Register every task (idempotent)."""
-    from gymnasium.envs.registration import register, registry
-
-    for env_id, (single, vector) in ENV_IDS.items():
-        if env_id in registry:
-            continue
-        register(id=env_id, entry_point=f"billiards_env.envs.billiards:{single}",
-                 vector_entry_point=f"billiards_env.envs.billiards:{vector}")
+    """Register every task's Gymnasium id (idempotent)."""
+    register_gym_ids()

@@ -15,9 +15,11 @@ table's key. Keys are SplitMix64 hashes of the integer seeds (taken modulo
 2**64). Uniforms keep the top 53 bits (floats in [0, 1)); normals come from
 pairs of uniforms by the Box-Muller transform.
 
-The placement and respot kernels of the environments live here too: numba's
-disk cache checks only a cached function's own file, so a kernel cached in
-another file would keep stale code of the stream functions it calls.
+Placement (``place_balls``) feeds the shared rejection sampler of
+``physics.state`` with candidates drawn from the tables' streams and then
+advances each stream by exactly the candidates used. No kernel here calls a
+kernel of another file (numba's disk cache checks only a cached function's
+own file, so such a kernel would keep stale code of its callee).
 """
 from __future__ import annotations
 
@@ -25,6 +27,8 @@ import math
 
 import numba
 import numpy as np
+
+from ..physics.state import place_many
 
 _GAMMA = np.uint64(0x9E3779B97F4A7C15)  # SplitMix64 increment (odd; 2**64 / golden ratio)
 _M1 = np.uint64(0xBF58476D1CE4E5B9)
@@ -127,95 +131,32 @@ class TableStreams:
         return out
 
 
-# ----------------------------------------------------- placement kernels --
-@_jit
-def _in_pocket(x, y, pockets):
-    """True if (x, y) lies in a pocket capture circle (squared distance <= r**2)."""
-    for p in range(pockets.shape[0]):
-        dx, dy = x - pockets[p, 0], y - pockets[p, 1]
-        if dx * dx + dy * dy <= pockets[p, 2] * pockets[p, 2]:
-            return True
-    return False
-
-
-@_jit
-def place_balls(keys, counters, idx, B, lo_x, lo_y, hi_x, hi_y, pockets, min_dist, max_tries, out):
-    """Rejection-sample ``B`` ball centres per table ``idx[j]`` into ``out[j]``.
-
-    Candidates are uniform in the box [lo, hi] (two draws each, from the
-    table's stream); a candidate is rejected inside a pocket capture circle
-    (squared distance <= r**2) or closer than ``min_dist`` to a ball already
-    placed on that table. Returns a bool per table: all ``B`` placed within
-    ``max_tries`` candidates."""
+# ------------------------------------------------------------ placement --
+def place_balls(streams: TableStreams, idx, B, lo_x, lo_y, hi_x, hi_y, pockets, min_dist, max_tries, out):
+    """Rejection-sample ``B`` ball centres per table ``idx[j]`` into ``out[j]``
+    (``physics.state.place_from_candidates``: candidates uniform in the box
+    [lo, hi], two draws each from the table's stream, rejected inside a
+    pocket capture circle or closer than ``min_dist`` to a ball already
+    placed on that table). Each stream advances by two draws per candidate
+    used, so a table's result does not depend on the other tables. Returns
+    a bool per table: all ``B`` placed within ``max_tries`` candidates."""
+    idx = np.ascontiguousarray(idx, dtype=np.int64)
     n = len(idx)
-    ok = np.ones(n, dtype=np.bool_)
-    d2min = min_dist * min_dist
-    for j in range(n):
-        k = idx[j]
-        key, c = keys[k], counters[k]
-        placed = 0
-        tries = 0
-        while placed < B:
-            if tries >= max_tries:
-                ok[j] = False
-                break
-            tries += 1
-            x = lo_x + (hi_x - lo_x) * _next_uniform(key, c + _ONE)
-            y = lo_y + (hi_y - lo_y) * _next_uniform(key, c + _ONE + _ONE)
-            c += _ONE + _ONE
-            good = not _in_pocket(x, y, pockets)
-            if good:
-                for q in range(placed):
-                    dx, dy = x - out[j, q, 0], y - out[j, q, 1]
-                    if dx * dx + dy * dy < d2min:
-                        good = False
-                        break
-            if good:
-                out[j, placed, 0] = x
-                out[j, placed, 1] = y
-                placed += 1
-        counters[k] = c
+    start = streams.counters[idx].copy()
+    used = np.empty(n, dtype=np.int64)
+    k = min(B + 2, max_tries)  # candidates per table in the first round: enough for most tables
+    place_many(streams.uniform(idx, 2 * k).reshape(n, k, 2), B, lo_x, lo_y, hi_x, hi_y, pockets, min_dist,
+               out, used)
+    while not (used >= 0).all() and k < max_tries:  # the rest: again from their first draw, with more
+        k = min(4 * k, max_tries)
+        todo = np.nonzero(used < 0)[0]
+        streams.counters[idx[todo]] = start[todo]
+        sub = np.empty((len(todo), B, 2))
+        got = np.empty(len(todo), dtype=np.int64)
+        place_many(streams.uniform(idx[todo], 2 * k).reshape(len(todo), k, 2), B, lo_x, lo_y, hi_x, hi_y,
+                   pockets, min_dist, sub, got)
+        out[todo] = sub
+        used[todo] = got
+    ok = used >= 0
+    streams.counters[idx] = start + (2 * np.where(ok, used, max_tries)).astype(np.uint64)
     return ok
-
-
-@_jit
-def _spot_free(x, y, pos, on, width, length, R, pockets, min_dist):
-    edge = R + 1e-4
-    if x < edge or x > width - edge or y < edge or y > length - edge:
-        return False
-    if _in_pocket(x, y, pockets):
-        return False
-    for q in range(pos.shape[0]):
-        if on[q]:
-            dx, dy = x - pos[q, 0], y - pos[q, 1]
-            if math.sqrt(dx * dx + dy * dy) < min_dist:
-                return False
-    return True
-
-
-@_jit
-def free_spot(pos, on, px, py, dx, dy, width, length, R, pockets):
-    """First free point in the respot search order: the preferred spot
-    (px, py); then +-k steps along the unit direction (dx, dy), k = 1..59; then
-    sideways offsets j = 1..19 steps (both sides) each walked k = 0..29 steps
-    along (dx, dy). Step 2R + 1e-3. Free: inside the rectangle inset by
-    R + 1e-4, outside every pocket capture circle, and at least 2R + 1e-6
-    from every ball with ``on`` set. Returns (x, y, found)."""
-    step = 2 * R + 1e-3
-    md = 2 * R + 1e-6
-    if _spot_free(px, py, pos, on, width, length, R, pockets, md):
-        return px, py, True
-    for k in range(1, 60):
-        for s in (1.0, -1.0):
-            x, y = px + s * k * step * dx, py + s * k * step * dy
-            if _spot_free(x, y, pos, on, width, length, R, pockets, md):
-                return x, y, True
-    qx, qy = -dy, dx
-    for j in range(1, 20):
-        for k in range(0, 30):
-            for s in (1.0, -1.0):
-                x = px + s * j * step * qx + k * step * dx
-                y = py + s * j * step * qy + k * step * dy
-                if _spot_free(x, y, pos, on, width, length, R, pockets, md):
-                    return x, y, True
-    return px, py, False

@@ -1,14 +1,23 @@
-"""Ball state as a struct of arrays batched over environments, and racks.
+"""Ball state as a struct of arrays batched over environments, racks and
+random placement.
 
 ``pos [E, B, 2]`` and ``vel [E, B, 2]`` (m, m/s), ``omega [E, B, 3]`` (rad/s,
 about the table's x, y, z axes), ``pocket [E, B]`` (-1 on the table, else the
 pocket id). Ball 0 is the cue ball.
+
+Placement and respotting are written once here, as numba kernels that take
+their random numbers from the caller (``place_from_candidates``: rejection
+sampling over a sequence of uniform candidates; ``free_spot``: the respot
+search), so each caller keeps its own random stream: ``random_placement``
+(a ``numpy.random.Generator``) and the environments (per-table counter-based
+streams, ``envs/streams.py``).
 """
 from __future__ import annotations
 
 import dataclasses
 import math
 
+import numba
 import numpy as np
 
 from .table import Table
@@ -126,27 +135,133 @@ def rack(table: Table, params, layout: str = "nine", n_envs: int = 1, *, gap: fl
     return BallState.from_positions(pos)
 
 
+# ------------------------------------------------------------ placement --
+_jit = numba.njit(cache=True, nogil=True)
+
+SPOT_EDGE = 1e-4      # m: a respotted ball keeps this clear of the R-inset rectangle's edge
+SPOT_GAP = 1e-3       # m: step of the respot search beyond 2R (neighbouring candidates do not touch)
+SPOT_CLEAR = 1e-6     # m: a respotted ball's least gap to any ball (no exact contact)
+
+
+@_jit
+def in_pocket(x, y, pockets):
+    """True if (x, y) lies in a pocket capture circle (squared distance <= r**2)."""
+    for p in range(pockets.shape[0]):
+        dx, dy = x - pockets[p, 0], y - pockets[p, 1]
+        if dx * dx + dy * dy <= pockets[p, 2] * pockets[p, 2]:
+            return True
+    return False
+
+
+@_jit
+def place_from_candidates(u, B, lo_x, lo_y, hi_x, hi_y, pockets, min_dist, out):
+    """Rejection-sample ``B`` ball centres of one table into ``out`` [B, 2]
+    from the candidate uniforms ``u`` [T, 2] (in [0, 1), taken in order).
+
+    Candidate i is (lo + (hi - lo) * u[i]) in the box [lo, hi]; it is
+    rejected inside a pocket capture circle (squared distance <= r**2) or
+    closer than ``min_dist`` to a ball already placed. Returns how many
+    candidates were used, or -1 if ``B`` balls were not placed from the T
+    given (the caller draws more and tries again)."""
+    d2min = min_dist * min_dist
+    placed = 0
+    for i in range(u.shape[0]):
+        if placed == B:
+            return i
+        x = lo_x + (hi_x - lo_x) * u[i, 0]
+        y = lo_y + (hi_y - lo_y) * u[i, 1]
+        if in_pocket(x, y, pockets):
+            continue
+        good = True
+        for q in range(placed):
+            dx, dy = x - out[q, 0], y - out[q, 1]
+            if dx * dx + dy * dy < d2min:
+                good = False
+                break
+        if good:
+            out[placed, 0] = x
+            out[placed, 1] = y
+            placed += 1
+    return u.shape[0] if placed == B else -1
+
+
+@_jit
+def place_many(u, B, lo_x, lo_y, hi_x, hi_y, pockets, min_dist, out, used):
+    """``place_from_candidates`` for many tables: table j from ``u[j]`` into
+    ``out[j]``, candidates used (or -1) into ``used[j]``."""
+    for j in range(u.shape[0]):
+        used[j] = place_from_candidates(u[j], B, lo_x, lo_y, hi_x, hi_y, pockets, min_dist, out[j])
+
+
+@_jit
+def spot_free(x, y, pos, on, width, length, edge, pockets, min_dist):
+    """Whether a ball centred at (x, y) fits: inside the rectangle inset by
+    ``edge``, outside every pocket capture circle, and at least ``min_dist``
+    from every ball with ``on`` set."""
+    if x < edge or x > width - edge or y < edge or y > length - edge:
+        return False
+    if in_pocket(x, y, pockets):
+        return False
+    for q in range(pos.shape[0]):
+        if on[q]:
+            dx, dy = x - pos[q, 0], y - pos[q, 1]
+            if math.sqrt(dx * dx + dy * dy) < min_dist:
+                return False
+    return True
+
+
+@_jit
+def free_spot(pos, on, px, py, dx, dy, width, length, R, pockets):
+    """First free point in the respot search order: the preferred spot
+    (px, py); then +-k steps along the unit direction (dx, dy), k = 1..59; then
+    sideways offsets j = 1..19 steps (both sides) each walked k = 0..29 steps
+    along (dx, dy). Step 2R + SPOT_GAP. Free: ``spot_free`` with edge
+    R + SPOT_EDGE and min_dist 2R + SPOT_CLEAR. Returns (x, y, found)."""
+    step = 2 * R + SPOT_GAP
+    md = 2 * R + SPOT_CLEAR
+    edge = R + SPOT_EDGE
+    if spot_free(px, py, pos, on, width, length, edge, pockets, md):
+        return px, py, True
+    for k in range(1, 60):
+        for s in (1.0, -1.0):
+            x, y = px + s * k * step * dx, py + s * k * step * dy
+            if spot_free(x, y, pos, on, width, length, edge, pockets, md):
+                return x, y, True
+    qx, qy = -dy, dx
+    for j in range(1, 20):
+        for k in range(0, 30):
+            for s in (1.0, -1.0):
+                x = px + s * j * step * qx + k * step * dx
+                y = py + s * j * step * qy + k * step * dy
+                if spot_free(x, y, pos, on, width, length, edge, pockets, md):
+                    return x, y, True
+    return px, py, False
+
+
 def random_placement(table: Table, params, n_balls: int, n_envs: int = 1, *, seed=None,
                      margin: float = 0.0, max_tries: int = 10_000) -> BallState:
     """``n_balls`` balls at uniformly random positions without overlap, at
-    least ``margin`` clear of each other and of the cushions; seeded."""
+    least ``margin`` clear of each other and of the cushions and outside
+    every pocket's capture circle; seeded (``place_from_candidates`` fed by
+    the generator, which advances by exactly the candidates used)."""
     rng = _rng(seed)
     R = params.R
     lo = np.array([R + margin, R + margin])
     hi = np.array([table.width - R - margin, table.length - R - margin])
+    pockets = np.ascontiguousarray(table.geometry(True)[3], dtype=np.float64)
     pos = np.empty((n_envs, n_balls, 2))
     for e in range(n_envs):
-        placed = 0
-        tries = 0
-        while placed < n_balls:
-            tries += 1
-            if tries > max_tries:
-                raise ValueError(f"could not place {n_balls} balls without overlap on {table.name}")
-            p = rng.uniform(lo, hi)
-            if placed and np.min(np.hypot(*(pos[e, :placed] - p).T)) < 2 * R + margin:
-                continue
-            if not table.contains(p[None], R + margin, 0.0)[0]:
-                continue
-            pos[e, placed] = p
-            placed += 1
+        chunk = 4 * n_balls + 16
+        while True:
+            saved = rng.bit_generator.state
+            u = rng.random((min(chunk, max_tries), 2))
+            used = place_from_candidates(u, n_balls, lo[0], lo[1], hi[0], hi[1], pockets, 2 * R + margin, pos[e])
+            if used >= 0 or chunk >= max_tries:
+                break
+            rng.bit_generator.state = saved  # draw the same candidates again, and more
+            chunk *= 4
+        if used < 0:
+            raise ValueError(f"could not place {n_balls} balls without overlap on {table.name}")
+        rng.bit_generator.state = saved
+        rng.random((used, 2))  # advance the generator by exactly the candidates used
     return BallState.from_positions(pos)

@@ -10,11 +10,55 @@ squirt). b = 2/5 gives natural roll; b < 0 draw; a > 0 right english.
 """
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from .params import PhysicsParams
 from .state import BallState
 from .validation import as_batch_vector, check_finite
+
+
+def draw_to_speed(draw, params: PhysicsParams):
+    """Cue-ball speed (m/s) of a cue drawn back ``draw`` metres: v = k dt x / m
+    (Hooke's law impulse, see the module docstring). Scalars or arrays."""
+    return params.k * params.contact_time * draw / params.m
+
+
+def speed_to_draw(speed, params: PhysicsParams):
+    """Inverse of ``draw_to_speed``: the cue draw (m) giving cue-ball speed
+    ``speed`` (m/s), x = v m / (k dt). Not clipped to [0, max_draw]."""
+    return speed * params.m / (params.k * params.contact_time)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Shots:
+    """A batch of cue strikes, the arguments of ``strike_velocity``: float64
+    arrays [N] of the aim ``phi`` (rad, counter-clockwise from +x), the
+    cue-ball ``speed`` (m/s) and the tip offsets ``a`` (side, + = right
+    english) and ``b`` (height, + = follow) in units of R. Scalars and
+    arrays are broadcast to one shape; ``phi, speed, a, b = shots`` unpacks."""
+
+    phi: np.ndarray
+    speed: np.ndarray
+    a: np.ndarray
+    b: np.ndarray
+
+    def __post_init__(self):
+        arrays = np.broadcast_arrays(*(np.atleast_1d(np.asarray(getattr(self, f), dtype=np.float64))
+                                       for f in ("phi", "speed", "a", "b")))
+        for f, v in zip(("phi", "speed", "a", "b"), arrays):
+            object.__setattr__(self, f, np.array(v))  # own, writable copies
+
+    def __len__(self) -> int:
+        return len(self.phi)
+
+    def __iter__(self):
+        return iter((self.phi, self.speed, self.a, self.b))
+
+    def take(self, idx) -> "Shots":
+        """The shots at ``idx`` (an index array or mask)."""
+        return Shots(self.phi[idx], self.speed[idx], self.a[idx], self.b[idx])
 
 
 def strike(state: BallState, phi, draw, a=0.0, b=0.0, params: PhysicsParams | None = None) -> BallState:
@@ -39,12 +83,12 @@ def strike(state: BallState, phi, draw, a=0.0, b=0.0, params: PhysicsParams | No
                          f"miscue limit {params.miscue_limit} R")
     if np.any(state.pocket[:, 0] >= 0):
         raise ValueError("the cue ball is pocketed in some environment; place it on the table before striking")
-    speed = params.k * params.contact_time * draw / params.m
-    return strike_velocity(state, phi, speed, a, b, params)
+    return strike_velocity(state, phi, draw_to_speed(draw, params), a, b, params)
 
 
 def strike_velocity(state: BallState, phi, speed, a=0.0, b=0.0, params: PhysicsParams | None = None) -> BallState:
-    """As ``strike`` but with the cue-ball speed (m/s) given directly."""
+    """As ``strike`` but with the cue-ball speed (m/s) given directly
+    (``strike_velocity(state, *shots, params=params)`` strikes ``Shots``)."""
     params = params or PhysicsParams.standard()
     E = state.n_envs
     phi = as_batch_vector(phi, E, "phi")

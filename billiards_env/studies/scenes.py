@@ -9,6 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from billiards_env.physics import BallState, PhysicsParams, Table, rack, random_placement, simulate, strike_velocity
+from billiards_env.physics.state import spot_free
 
 MAX_OFFSET = 0.45  # |(a, b)| of random spin offsets, inside the 0.5 R miscue limit
 
@@ -51,10 +52,13 @@ def breaks(table: Table, params: PhysicsParams, n: int, seed: int = 1, speed: fl
 def respot_cue(state: BallState, table: Table, params: PhysicsParams) -> BallState:
     """Put a pocketed cue ball back on the table: on the head spot if free,
     else the nearest free point found along the head string (then further up
-    the table). Returns a new state at rest."""
+    the table). Free: ``physics.state.spot_free`` (the respot rule the
+    environments use) with a clearance of 1e-6 m from the cushions' R-inset
+    rectangle and from every ball. Returns a new state at rest."""
     out = BallState(state.pos.copy(), np.zeros_like(state.vel), np.zeros_like(state.omega), state.pocket.copy())
     R = params.R
     w, l = table.width, table.length
+    pockets = np.ascontiguousarray(table.geometry(True)[3], dtype=np.float64)
     cands = [(w / 2, l / 4)]
     for k in range(1, 200):
         for sgn in (1, -1):
@@ -64,13 +68,9 @@ def respot_cue(state: BallState, table: Table, params: PhysicsParams) -> BallSta
     for e in np.nonzero(out.pocket[:, 0] >= 0)[0]:
         on = (out.pocket[e] < 0)
         on[0] = False
-        others = out.pos[e, on]
-        for c in cands:
-            c = np.array(c)
-            if not table.contains(c[None], R + 1e-6, 0.0)[0]:
-                continue
-            if len(others) == 0 or np.min(np.hypot(*(others - c).T)) > 2 * R + 1e-6:
-                out.pos[e, 0] = c
+        for x, y in cands:
+            if spot_free(x, y, out.pos[e], on, w, l, R + 1e-6, pockets, 2 * R + 1e-6):
+                out.pos[e, 0] = (x, y)
                 out.pocket[e, 0] = -1
                 break
         else:

@@ -1,0 +1,82 @@
+"""Billiards-NineBall-v0: simplified single-player 9-ball after a seeded break."""
+from __future__ import annotations
+
+import numpy as np
+
+from ...physics import BallState, strike_velocity
+from ...physics.state import diamond_slots, free_spot
+from .base import Judgement, ShotOutcome, Task
+
+
+class NineBall(Task):
+    """Billiards-NineBall-v0: simplified single-player 9-ball.
+
+    Rules:
+
+    1. Each episode starts from a seeded 9-ball rack (1 on the foot spot, 9 in
+       the centre, others shuffled) broken from the head-spot area at
+       ~``break_speed`` (8 m/s) with small seeded variation of position, aim,
+       speed and tip offset. A cue ball pocketed on the break is respotted on
+       the head spot (or the nearest free spot behind it); a 9 pocketed on
+       the break is respotted on the foot spot (or the nearest free spot).
+    2. The legal target is the lowest-numbered ball on the table; the cue
+       ball must hit it first.
+    3. A wrong first contact (another ball, or none) is a foul; a pocketed
+       cue ball is a scratch. Either ends the episode (terminated).
+    4. Balls pocketed on a legal shot stay down (+``pocket`` each); pocketing
+       the 9 on a legal shot (directly or by combination) wins: success,
+       episode terminated. A 9 pocketed on a foul or scratch ends the episode
+       without success.
+    5. A legal shot that pockets nothing is a miss: the player shoots again
+       from where the balls lie (no turn passes). The episode is truncated
+       after ``max_shots`` shots (default 20).
+"""
+
+    name = "nine_ball"
+    env_id = "Billiards-NineBall-v0"
+    class_prefix = "NineBall"
+
+    def validate(self, cfg) -> None:
+        if cfg.n_balls != 9:
+            raise ValueError("nine_ball uses exactly nine object balls (n_balls: 9)")
+
+    def reset(self, core, idx) -> BallState:
+        """Seeded 9-ball rack and break: cue ball near the head spot, struck at
+        ~break_speed towards the 1-ball with small random variation; a 9 or
+        cue ball pocketed on the break is respotted (foot / head spot)."""
+        t, p = core.table, core.params
+        n = len(idx)
+        u = core.streams.uniform(idx, 12)  # 7 rack shuffle, 2 cue position, speed, 2 offsets
+        z = core.streams.normal(idx, 1)[:, 0]  # aim
+        diamond = diamond_slots(t, p.R)  # slot 0 apex, 4 centre
+        pos = np.empty((n, 10, 2))
+        pos[:, 1] = diamond[0]  # apex: the 1-ball on the foot spot
+        pos[:, 9] = diamond[4]  # centre: the 9-ball
+        others = diamond[[1, 2, 3, 5, 6, 7, 8]]
+        pos[np.arange(n)[:, None], 2 + np.argsort(u[:, :7], axis=1)] = others  # balls 2..8 shuffled
+        pos[:, 0, 0] = t.width / 2 + (-0.15 + 0.3 * u[:, 7])
+        pos[:, 0, 1] = 0.25 * t.length + (-0.03 + 0.06 * u[:, 8])
+        d = pos[:, 1] - pos[:, 0]
+        phi = np.arctan2(d[:, 1], d[:, 0]) + np.radians(0.3 * z)
+        speed = core.cfg.break_speed * (1.0 + (-0.05 + 0.1 * u[:, 9]))
+        a = -0.05 + 0.1 * u[:, 10]
+        b = -0.1 + 0.15 * u[:, 11]
+        res = core.simulate(strike_velocity(BallState.from_positions(pos), phi, speed, a, b, p))
+        out = core.at_rest(res.state)
+        foot, head = (t.width / 2, 0.75 * t.length), (t.width / 2, 0.25 * t.length)
+        for e in np.nonzero((out.pocket[:, 9] >= 0) | (out.pocket[:, 0] >= 0))[0]:
+            for ball, spot, dy in ((9, foot, 1.0), (0, head, -1.0)):
+                if out.pocket[e, ball] >= 0:  # respot the 9 (foot spot) or the cue ball (head spot)
+                    x, y, found = free_spot(out.pos[e], out.pocket[e] < 0, spot[0], spot[1], 0.0, dy,
+                                            t.width, t.length, p.R, core.pockets)
+                    if not found:
+                        raise RuntimeError("no free spot on the table to respot a ball")
+                    out.pos[e, ball] = (x, y)
+                    out.pocket[e, ball] = -1
+        return out
+
+    def judge(self, shot: ShotOutcome) -> Judgement:
+        foul = ~shot.contact
+        nine = shot.pocketed[:, 9]
+        scratch = shot.scratch
+        return Judgement(foul=foul, success=~foul & ~scratch & nine, terminated=scratch | foul | nine)
