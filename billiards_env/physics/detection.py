@@ -115,11 +115,12 @@ def _circle_time(px, py, vx, vy, ax, ay, cx, cy, r, H, f_tol, f_floor):
 
 
 @njit
-def boundary_time(pos, vel, st, e, i, ax, ay, H, p, segs, norms, tips, pockets, quadratic):
+def boundary_time(pos, vel, st, e, i, ax, ay, H, p, geo, quadratic):
     """Earliest contact of ball i, moving with acceleration (ax, ay), with a
-    cushion segment, a jaw tip or a pocket within H. Returns (time, kind,
-    index). With ``quadratic`` the ball moves in a straight line (step
-    solver; pass ax = ay = 0)."""
+    cushion segment, a jaw tip or a pocket of ``geo`` (layout.Geometry)
+    within H. Returns (time, kind, index). With ``quadratic`` the ball moves
+    in a straight line (step solver; pass ax = ay = 0)."""
+    segs, norms, tips, pockets = geo.segs, geo.norms, geo.tips, geo.pockets
     best = math.inf
     kind = -1
     idx = -1
