@@ -1,4 +1,4 @@
-"""Effects switch physics on and off (issue 8): each changes outcomes where
+"""Effects switch physics on and off: each changes outcomes where
 it matters and not where it cannot, and every combination compiles its own
 kernel."""
 import dataclasses
@@ -7,8 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from billiards_env.physics import BallState, Effects, PhysicsParams, Table, random_placement, simulate, strike_velocity
-from billiards_env.physics import Models
+from billiards_env.physics import BallState, Effects, Models, PhysicsParams, Table, random_placement, simulate, strike_velocity
 from billiards_env.physics.kernels import make_kernel
 
 ALL = Effects()
