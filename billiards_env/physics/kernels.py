@@ -42,6 +42,30 @@ def _source_tag() -> str:
 SOURCE_TAG = _source_tag()
 
 
+def _code_tag(*functions) -> str:
+    """Hash of the code of the chosen model functions and of every jitted
+    function they close over (a friction law inside the Coulomb model): a
+    model registered from outside this package (e.g. by a test) is not
+    covered by SOURCE_TAG."""
+    h = hashlib.sha256()
+    todo = list(functions)
+    while todo:
+        f = getattr(todo.pop(), "py_func", None)
+        if f is None:
+            continue
+        codes = [f.__code__]
+        while codes:
+            code = codes.pop()
+            h.update(code.co_code)
+            for c in code.co_consts:
+                if isinstance(c, type(code)):
+                    codes.append(c)
+                else:
+                    h.update(repr(c).encode())
+        todo += [c.cell_contents for c in f.__closure__ or ()]
+    return h.hexdigest()[:16]
+
+
 def make_kernel(kind: str, effects: Effects, models: Models, diagnostics: bool = False):
     """The compiled kernel of solver ``kind`` ("event" or "step")."""
     if kind not in KINDS:
@@ -50,11 +74,11 @@ def make_kernel(kind: str, effects: Effects, models: Models, diagnostics: bool =
     bb_name, cu_name = models.resolved(n)
     key = (kind, n.spin, n.sliding, n.vertical_spin, bb_name, cu_name, bool(diagnostics))
     if key not in _kernels:
-        impacts = make_impacts(n.spin, n.sliding, n.vertical_spin, bool(diagnostics),
-                               ball_ball.resolver(n.ball_friction, models.ball_ball_friction),
-                               cushion.resolver(n.cushion_friction, models.cushion))
+        bb = ball_ball.resolver(n.ball_friction, models.ball_ball_friction)
+        cu = cushion.resolver(n.cushion_friction, models.cushion)
+        impacts = make_impacts(n.spin, n.sliding, n.vertical_spin, bool(diagnostics), bb, cu)
         solver = event_solver if kind == "event" else step_solver
         run = solver.make_run(n.spin, n.vertical_spin, bool(diagnostics), impacts)
-        tag = f"{SOURCE_TAG}/{'/'.join(map(str, key))}"
+        tag = f"{SOURCE_TAG}/{'/'.join(map(str, key))}/{_code_tag(bb, cu)}"
         _kernels[key] = cached_kernel(run, tag, parallel=True)
     return _kernels[key]
