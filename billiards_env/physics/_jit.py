@@ -10,12 +10,35 @@ afterwards. A cached kernel holds its callees' code, so helpers need no
 cache of their own.
 """
 import hashlib
+import re
 
 import numba
 from numba.core.caching import FunctionCache
 
 JIT = dict(cache=False, nogil=True, fastmath=False, error_model="numpy")
 njit = numba.njit(**JIT)
+
+
+def name_of(function) -> str:
+    """Module-qualified name of a jitted (or plain) function."""
+    f = getattr(function, "py_func", function)
+    return f"{f.__module__}.{f.__qualname__}"
+
+
+def variant_njit(*choices):
+    """``njit`` for a function a factory builds per variant (effect flags,
+    models): its name gets a tag of ``choices``. numba names a compiled
+    function by its qualified name and a per-process counter, and links the
+    functions of a kernel loaded from the disk cache as one-definition
+    symbols: two cached variants of one closure can get the same name in
+    different processes, and once both are loaded, one kernel would run the
+    other's code. The tag keeps the names apart."""
+    tag = hashlib.sha256(repr(choices).encode()).hexdigest()[:12]
+
+    def decorate(function):
+        function.__qualname__ = f"{re.sub(r'[^0-9A-Za-z_]', '_', function.__qualname__)}_{tag}"
+        return njit(function)
+    return decorate
 
 
 class _TaggedCache(FunctionCache):
@@ -38,7 +61,9 @@ class _TaggedCache(FunctionCache):
 
 def cached_kernel(py_func, tag: str, **options):
     """Compile ``py_func`` with the JIT flags and ``options`` (e.g.
-    parallel=True), cached on disk under ``tag``."""
+    parallel=True), cached on disk under ``tag`` (its name tagged as in
+    ``variant_njit``)."""
+    py_func.__qualname__ = f"{re.sub(r'[^0-9A-Za-z_]', '_', py_func.__qualname__)}_{hashlib.sha256(tag.encode()).hexdigest()[:12]}"
     kernel = numba.njit(**JIT, **options)(py_func)
     kernel._cache = _TaggedCache(py_func, tag)  # what njit(cache=True) sets, with our key
     return kernel

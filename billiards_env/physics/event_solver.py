@@ -14,7 +14,7 @@ import numpy as np
 
 from . import constants as C
 from . import diagnostics, event_log
-from ._jit import njit
+from ._jit import njit, variant_njit
 from .detection import boundary_time, pair_time, sweep_path
 from .layout import impact_scratch
 from .motion import acceleration, apply_transition, classify, evolve, transition_time
@@ -100,7 +100,7 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
     prepare, resolve_boundary = impacts.prepare, impacts.resolve_boundary
     resolve_impact_set = impacts.resolve_impact_set
 
-    @njit
+    @variant_njit(__name__, spin_on, zspin_on, diag_on, *impacts.choices)
     def table(balls, geo, p, scr, out, log, max_events, e):
         """Simulate table e to rest."""
         B = balls.pos.shape[1]

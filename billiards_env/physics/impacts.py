@@ -18,7 +18,7 @@ import numpy as np
 
 from . import constants as C
 from . import event_log
-from ._jit import njit
+from ._jit import name_of, njit, variant_njit
 from .ball_ball.contact import rest_contact
 from .cushion.contact import make_resolve as make_cushion
 from .motion import classify, end_slide, energy
@@ -75,9 +75,11 @@ def _impact_sums(balls, e, imp, nb, p):
 def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion):
     """The impact functions for one effect set, with ball-ball model
     ``ball_ball`` and cushion model ``cushion`` (see their packages)."""
+    choices = (spin_on, slide_on, zspin_on, diag_on, name_of(ball_ball), name_of(cushion))
+    variant = variant_njit("impacts", *choices)
     resolve_cushion = make_cushion(cushion, spin_on)
 
-    @njit
+    @variant
     def settle(balls, e, i, p):
         """New motion state of ball i after its velocities changed, under
         the effects: no vertical spin, or no sliding (a slide ends at once)."""
@@ -90,7 +92,7 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion):
             end_slide(vel, om, e, i, R)
             classify(vel, om, st, e, i, R, spin_on)
 
-    @njit
+    @variant
     def prepare(balls, e, p):
         """Initial motion states of table e (pocketed balls stay out)."""
         for i in range(balls.pos.shape[1]):
@@ -101,7 +103,7 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion):
                 continue
             settle(balls, e, i, p)
 
-    @njit
+    @variant
     def resolve_boundary(balls, geo, e, kind, a, b, p, out):
         """Ball a meets boundary b: drops into pocket b, or rebounds from
         cushion segment b or jaw tip b."""
@@ -119,7 +121,7 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion):
             out.diag[e, 0] = max(out.diag[e, 0], energy(balls.vel, balls.om, balls.st, e, a, p) - e0)
         out.cush[e, a] += 1
 
-    @njit
+    @variant
     def impulses(balls, e, imp, ns, nb, p):
         """Impulses of a set of simultaneous ball-ball impacts. One impact:
         resolved directly. Several: resolved in index order and in reverse
@@ -148,7 +150,7 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion):
             om[e, bq, 1] = 0.5 * (om[e, bq, 1] + buf2[q, 3])
             om[e, bq, 2] = 0.5 * (om[e, bq, 2] + buf2[q, 4])
 
-    @njit
+    @variant
     def resolve_impact_set(balls, e, t, imp, ns, p, out, log):
         """Everything a set of ns simultaneous ball-ball impacts (pairs
         imp.i, imp.j) does: impulses, diagnostics of that impulse set
@@ -178,4 +180,4 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion):
         return nb
 
     return types.SimpleNamespace(settle=settle, prepare=prepare, resolve_boundary=resolve_boundary,
-                                 resolve_impact_set=resolve_impact_set)
+                                 resolve_impact_set=resolve_impact_set, choices=choices)

@@ -22,13 +22,14 @@ mu_b).
 import math
 
 from .. import constants as C
-from .._jit import njit
+from .._jit import name_of, variant_njit
 from . import contact
 
 
 def make_resolve(friction_coefficient):
     """Coulomb-friction impact resolver for the friction law
     ``friction_coefficient(slip_speed, p)``."""
+    njit = variant_njit("coulomb", name_of(friction_coefficient))
 
     @njit
     def friction(vel, om, e, i, j, nx, ny, jn, p):

@@ -16,15 +16,16 @@ felt pressing the ball into the cushion), are resting contacts: restitution
 0, the slide ends at once, no normal velocity into the cushion remains.
 """
 from .. import constants as C
-from .._jit import njit
+from .._jit import name_of, njit, variant_njit
 from ..motion import end_slide
 from ..vec import norm
 
 
 def make_resolve(model, spin_on):
     """Resolve an impact of ball i with a cushion by ``model``."""
+    variant = variant_njit("cushion", name_of(model), spin_on)
 
-    @njit
+    @variant
     def resolve(vel, om, e, i, rx, ry, p):
         """Ball i of table e meets a cushion. (rx, ry) is the contact normal,
         pointing into the table, exactly as the detector formed it (the unit
