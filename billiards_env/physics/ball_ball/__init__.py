@@ -8,11 +8,14 @@ when ``Effects.ball_friction`` is off, else ``coulomb`` with the friction law
 ``Models.ball_ball_friction`` names in ``FRICTION_LAWS``: a module with a
 jitted ``friction_coefficient(slip_speed, p) -> mu``.
 """
-from . import constant, coulomb, frictionless
+import importlib
 
-FRICTION_LAWS = {
-    "constant": constant,
-}
+from . import coulomb, frictionless
+
+# name -> module ball_ball/<name>.py; a new law is one more line here
+FRICTION_LAWS = {name: importlib.import_module(f"{__name__}.{name}") for name in (
+    "constant",
+)}
 
 _coulomb = {}
 

@@ -6,11 +6,14 @@ approach test and resting contacts). ``reflection`` is used when
 ``Effects.cushion_friction`` is off, else the model ``Models.cushion`` names
 in ``MODELS``.
 """
-from . import han2005, reflection
+import importlib
 
-MODELS = {
-    "han2005": han2005,
-}
+from . import reflection
+
+# name -> module cushion/<name>.py; a new model is one more line here
+MODELS = {name: importlib.import_module(f"{__name__}.{name}") for name in (
+    "han2005",
+)}
 
 
 def resolver(friction: bool, name: str):
