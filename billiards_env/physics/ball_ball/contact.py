@@ -54,6 +54,16 @@ def push_apart(vel, e, i, j, nx, ny, jn):
 
 
 @njit
+def _rolling_or_rest(vel, e, i, p):
+    """Felt acceleration of ball i after a resting contact: rolling, or
+    none if it moves slower than SPEED_EPS (at rest, as ``classify`` will
+    find it)."""
+    if norm(vel[e, i, 0], vel[e, i, 1]) <= C.SPEED_EPS:
+        return 0.0, 0.0
+    return rolling_acceleration(vel[e, i, 0], vel[e, i, 1], p)
+
+
+@njit
 def rest_contact(pos, vel, om, e, i, j, p, spin_on):
     """Resting contact after an impact slower than ZENO_SPEED (or a contact
     without approach, pressed by the felt): end both slides; if the rolling
@@ -78,9 +88,9 @@ def rest_contact(pos, vel, om, e, i, j, p, spin_on):
         jn = 0.5 * k * wr / d
         push_apart(vel, e, i, j, nx, ny, jn)
         k *= 2.0
-    # both balls now roll (or rest): the felt's rolling law
-    aix, aiy = rolling_acceleration(vel[e, i, 0], vel[e, i, 1], p)
-    ajx, ajy = rolling_acceleration(vel[e, j, 0], vel[e, j, 1], p)
+    # both balls now roll, or rest: the felt's rolling law
+    aix, aiy = _rolling_or_rest(vel, e, i, p)
+    ajx, ajy = _rolling_or_rest(vel, e, j, p)
     dvx = vel[e, i, 0] - vel[e, j, 0]
     dvy = vel[e, i, 1] - vel[e, j, 1]
     # gap'' / 2 for |r_i - r_j|^2 with r_i - r_j = -d n
