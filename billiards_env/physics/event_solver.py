@@ -29,7 +29,7 @@ def refresh(balls, scr, geo, e, i, t, p):
     that event refreshes the ball again, so pair checks read them instead
     of recomputing them for the other ball of every pair."""
     pos, vel, om, st = balls.pos, balls.vel, balls.om, balls.st
-    tt, tb, tpair = scr.tt, scr.tb, scr.tpair
+    tt, tb, tpair, paths = scr.tt, scr.tb, scr.tpair, scr.paths  # fields read once, not per pair
     B = pos.shape[1]
     if st[e, i] == C.POCKETED:
         tt[e, i] = math.inf; tb[e, i] = math.inf
@@ -45,12 +45,12 @@ def refresh(balls, scr, geo, e, i, t, p):
     # ball (transition or boundary): that event refreshes the ball and so
     # recomputes the pair. Short horizons keep the broad phase tight.
     next_i = min(tt[e, i], tb[e, i])
-    sweep_path(pos, vel, st, e, i, ax, ay, next_i - t, scr.paths)
+    sweep_path(pos, vel, st, e, i, ax, ay, next_i - t, paths)
     for j in range(B):
         if j == i:
             continue
         hj = min(next_i, tt[e, j], tb[e, j]) - t
-        tij = t + pair_time(pos, vel, st, scr.paths, e, i, j, hj, p)
+        tij = t + pair_time(pos, vel, st, paths, e, i, j, hj, p)
         tpair[e, i, j] = tij; tpair[e, j, i] = tij
 
 
@@ -80,17 +80,18 @@ def next_event(scr, e, B):
     """Earliest event of table e: (time, kind, a, b); kind -2 is a motion
     transition of ball a. Ties go to the first found (pairs, then
     boundaries, then transitions), a fixed deterministic order."""
+    tpair, tb, tt, bkind, bidx = scr.tpair, scr.tb, scr.tt, scr.bkind, scr.bidx
     tmin = math.inf; kind = -1; a = -1; b = -1
     for i in range(B):
         for j in range(i + 1, B):
-            if scr.tpair[e, i, j] < tmin:
-                tmin = scr.tpair[e, i, j]; kind = C.EV_BALL_BALL; a = i; b = j
+            if tpair[e, i, j] < tmin:
+                tmin = tpair[e, i, j]; kind = C.EV_BALL_BALL; a = i; b = j
     for i in range(B):
-        if scr.tb[e, i] < tmin:
-            tmin = scr.tb[e, i]; kind = scr.bkind[e, i]; a = i; b = scr.bidx[e, i]
+        if tb[e, i] < tmin:
+            tmin = tb[e, i]; kind = bkind[e, i]; a = i; b = bidx[e, i]
     for i in range(B):
-        if scr.tt[e, i] < tmin:
-            tmin = scr.tt[e, i]; kind = -2; a = i; b = -1
+        if tt[e, i] < tmin:
+            tmin = tt[e, i]; kind = -2; a = i; b = -1
     return tmin, kind, a, b
 
 
@@ -103,12 +104,13 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
     @variant_njit(__name__, spin_on, zspin_on, diag_on, *impacts.choices)
     def table(balls, geo, p, scr, out, log, max_events, e):
         """Simulate table e to rest."""
-        B = balls.pos.shape[1]
+        pos, vel, om, st, tpair = balls.pos, balls.vel, balls.om, balls.st, scr.tpair  # once, not per event
+        B = pos.shape[1]
         prepare(balls, e, p)
         t = 0.0
         event_log.record_start(log, balls, e)
         for i in range(B):
-            scr.tpair[e, i, i] = math.inf
+            tpair[e, i, i] = math.inf
             refresh(balls, scr, geo, e, i, 0.0, p)
         en_prev = 0.0
         if diag_on:
@@ -116,6 +118,7 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
         out.first[e] = -1
         nev = 0
         imp = impact_scratch()
+        sim_i, sim_j = imp.i, imp.j
         stuck = np.zeros(B, dtype=np.bool_)  # balls of the events at the current instant
         n_stuck = 0  # events since time last advanced
         rounds = 0  # collapse rounds at the current instant
@@ -135,7 +138,7 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
                 stuck[:] = False
             n_stuck += 1
             for i in range(B):
-                evolve(balls.pos, balls.vel, balls.om, balls.st, e, i, dt, p, zspin_on, spin_on)
+                evolve(pos, vel, om, st, e, i, dt, p, zspin_on, spin_on)
             t = tmin
             nev += 1
             if kind == C.EV_BALL_BALL:
@@ -143,15 +146,16 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
                 ns = 0
                 for i in range(B):
                     for j in range(i + 1, B):
-                        if scr.tpair[e, i, j] <= tmin + C.SIMULTANEOUS_TIME and ns < C.MAX_SIMULTANEOUS:
-                            imp.i[ns] = i; imp.j[ns] = j; ns += 1
+                        if tpair[e, i, j] <= tmin + C.SIMULTANEOUS_TIME and ns < C.MAX_SIMULTANEOUS:
+                            sim_i[ns] = i; sim_j[ns] = j; ns += 1
                 nb = resolve_impact_set(balls, e, t, imp, ns, p, out, log)
+                involved = imp.balls
                 for q in range(nb):
-                    stuck[imp.balls[q]] = True
-                    refresh(balls, scr, geo, e, imp.balls[q], t, p)
+                    stuck[involved[q]] = True
+                    refresh(balls, scr, geo, e, involved[q], t, p)
             else:
                 if kind == -2:
-                    kind = apply_transition(balls.vel, balls.om, balls.st, e, a, p)
+                    kind = apply_transition(vel, om, st, e, a, p)
                     b = -1
                 else:
                     resolve_boundary(balls, geo, e, kind, a, b, p, out)

@@ -50,15 +50,16 @@ def _load(vel, om, st, e, i, buf, k):
 @njit
 def _balls_of(imp, ns):
     """Distinct balls of the impact set, into ``imp.balls``; returns how many."""
+    sim_i, sim_j, balls = imp.i, imp.j, imp.balls
     nb = 0
     for s in range(ns):
-        for bb in (imp.i[s], imp.j[s]):
+        for bb in (sim_i[s], sim_j[s]):
             seen = False
             for q in range(nb):
-                if imp.balls[q] == bb:
+                if balls[q] == bb:
                     seen = True
             if not seen:
-                imp.balls[nb] = bb; nb += 1
+                balls[nb] = bb; nb += 1
     return nb
 
 
@@ -95,11 +96,12 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion):
     @variant
     def prepare(balls, e, p):
         """Initial motion states of table e (pocketed balls stay out)."""
-        for i in range(balls.pos.shape[1]):
-            if balls.pocket[e, i] >= 0:
-                balls.st[e, i] = C.POCKETED
-                balls.vel[e, i, 0] = 0.0; balls.vel[e, i, 1] = 0.0
-                balls.om[e, i, 0] = 0.0; balls.om[e, i, 1] = 0.0; balls.om[e, i, 2] = 0.0
+        vel, om, st, pocket = balls.vel, balls.om, balls.st, balls.pocket
+        for i in range(vel.shape[1]):
+            if pocket[e, i] >= 0:
+                st[e, i] = C.POCKETED
+                vel[e, i, 0] = 0.0; vel[e, i, 1] = 0.0
+                om[e, i, 0] = 0.0; om[e, i, 1] = 0.0; om[e, i, 2] = 0.0
                 continue
             settle(balls, e, i, p)
 
@@ -128,22 +130,23 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion):
         order from the same state, and the two results averaged (module
         docstring). imp.w receives each impact's approach speed."""
         pos, vel, om, st = balls.pos, balls.vel, balls.om, balls.st
+        sim_i, sim_j, sim_w, bs = imp.i, imp.j, imp.w, imp.balls
         if ns == 1:
-            imp.w[0] = ball_ball(pos, vel, om, e, imp.i[0], imp.j[0], p)
+            sim_w[0] = ball_ball(pos, vel, om, e, sim_i[0], sim_j[0], p)
             return
         buf, buf2 = imp.saved, imp.swapped
         for q in range(nb):
-            _save(vel, om, st, e, imp.balls[q], buf, q)
+            _save(vel, om, st, e, bs[q], buf, q)
         for s in range(ns):
-            imp.w[s] = ball_ball(pos, vel, om, e, imp.i[s], imp.j[s], p)
+            sim_w[s] = ball_ball(pos, vel, om, e, sim_i[s], sim_j[s], p)
         for q in range(nb):
-            _save(vel, om, st, e, imp.balls[q], buf2, q)
-            _load(vel, om, st, e, imp.balls[q], buf, q)
+            _save(vel, om, st, e, bs[q], buf2, q)
+            _load(vel, om, st, e, bs[q], buf, q)
         for s in range(ns - 1, -1, -1):
-            w2 = ball_ball(pos, vel, om, e, imp.i[s], imp.j[s], p)
-            imp.w[s] = min(imp.w[s], w2)
+            w2 = ball_ball(pos, vel, om, e, sim_i[s], sim_j[s], p)
+            sim_w[s] = min(sim_w[s], w2)
         for q in range(nb):
-            bq = imp.balls[q]
+            bq = bs[q]
             vel[e, bq, 0] = 0.5 * (vel[e, bq, 0] + buf2[q, 0])
             vel[e, bq, 1] = 0.5 * (vel[e, bq, 1] + buf2[q, 1])
             om[e, bq, 0] = 0.5 * (om[e, bq, 0] + buf2[q, 2])
@@ -166,13 +169,14 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion):
             e1, px1, py1 = _impact_sums(balls, e, imp, nb, p)
             out.diag[e, 0] = max(out.diag[e, 0], e1 - e0)
             out.diag[e, 1] = max(out.diag[e, 1], math.hypot(px1 - px0, py1 - py0) * p[C.P_M])
+        sim_i, sim_j, sim_w = imp.i, imp.j, imp.w
         for s in range(ns):
-            if imp.w[s] < C.ZENO_SPEED:
-                rest_contact(balls.pos, balls.vel, balls.om, e, imp.i[s], imp.j[s], p, spin_on)
+            if sim_w[s] < C.ZENO_SPEED:
+                rest_contact(balls.pos, balls.vel, balls.om, e, sim_i[s], sim_j[s], p, spin_on)
         for q in range(nb):
             settle(balls, e, imp.balls[q], p)
         for s in range(ns):
-            i, j = imp.i[s], imp.j[s]
+            i, j = sim_i[s], sim_j[s]
             if out.first[e] == -1 and (i == 0 or j == 0):
                 out.first[e] = j if i == 0 else i
             if log.on:

@@ -44,14 +44,15 @@ def touching_set(balls, e, imp, a, b, p):
     """Every pair touching and closing now, into imp (one simultaneous set,
     resolved by the event solver's policy); returns how many."""
     pos, vel, st = balls.pos, balls.vel, balls.st
+    sim_i, sim_j = imp.i, imp.j
     B = pos.shape[1]
     ns = 0
     for i in range(B):
         for j in range(i + 1, B):
             if ns < C.MAX_SIMULTANEOUS and pair_time_linear(pos, vel, st, e, i, j, C.SIMULTANEOUS_TIME, p) <= C.SIMULTANEOUS_TIME:
-                imp.i[ns] = i; imp.j[ns] = j; ns += 1
+                sim_i[ns] = i; sim_j[ns] = j; ns += 1
     if ns == 0:  # rounding moved the pair off contact: resolve it alone
-        imp.i[0] = a; imp.j[0] = b; ns = 1
+        sim_i[0] = a; sim_j[0] = b; ns = 1
     return ns
 
 
@@ -73,7 +74,8 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
     @variant_njit(__name__, spin_on, zspin_on, diag_on, *impacts.choices)
     def table(balls, geo, p, out, log, max_events, dt, max_steps, e):
         """Simulate table e to rest."""
-        B = balls.pos.shape[1]
+        pos, vel, om, st = balls.pos, balls.vel, balls.om, balls.st  # once, not per step
+        B = pos.shape[1]
         prepare(balls, e, p)
         event_log.record_start(log, balls, e)
         en_prev = 0.0
@@ -85,7 +87,7 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
         steps = 0
         imp = impact_scratch()
         while True:
-            if not moving(balls.st, e):
+            if not moving(st, e):
                 break
             if steps >= max_steps or nev >= max_events:
                 out.trunc[e] = True
@@ -96,9 +98,9 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
                 tmin, kind, a, b = earliest_contact(balls, geo, e, rem, p)
                 adv = min(tmin, rem)
                 for i in range(B):
-                    if balls.st[e, i] == C.SLIDING or balls.st[e, i] == C.ROLLING:
-                        balls.pos[e, i, 0] += balls.vel[e, i, 0] * adv
-                        balls.pos[e, i, 1] += balls.vel[e, i, 1] * adv
+                    if st[e, i] == C.SLIDING or st[e, i] == C.ROLLING:
+                        pos[e, i, 0] += vel[e, i, 0] * adv
+                        pos[e, i, 1] += vel[e, i, 1] * adv
                 rem -= adv
                 if kind < 0:
                     break
@@ -114,8 +116,8 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
                 if log.on and kind != C.EV_BALL_BALL:
                     event_log.record(log, balls, e, tev, kind, a, b)
             for i in range(B):
-                if balls.st[e, i] != C.STATIONARY and balls.st[e, i] != C.POCKETED:
-                    friction_step(balls.vel, balls.om, balls.st, e, i, dt, p, zspin_on, spin_on)
+                if st[e, i] != C.STATIONARY and st[e, i] != C.POCKETED:
+                    friction_step(vel, om, st, e, i, dt, p, zspin_on, spin_on)
             t += dt
             if diag_on:
                 diagnostics.check_geometry(balls, geo, e, p, out.diag)
