@@ -80,18 +80,19 @@ def next_event(scr, e, B):
     """Earliest event of table e: (time, kind, a, b); kind -2 is a motion
     transition of ball a. Ties go to the first found (pairs, then
     boundaries, then transitions), a fixed deterministic order."""
-    tpair, tb, tt, bkind, bidx = scr.tpair, scr.tb, scr.tt, scr.bkind, scr.bidx
+    # fields read where used: no call in between, so numba drops the
+    # reference counting of each read
     tmin = math.inf; kind = -1; a = -1; b = -1
     for i in range(B):
         for j in range(i + 1, B):
-            if tpair[e, i, j] < tmin:
-                tmin = tpair[e, i, j]; kind = C.EV_BALL_BALL; a = i; b = j
+            if scr.tpair[e, i, j] < tmin:
+                tmin = scr.tpair[e, i, j]; kind = C.EV_BALL_BALL; a = i; b = j
     for i in range(B):
-        if tb[e, i] < tmin:
-            tmin = tb[e, i]; kind = bkind[e, i]; a = i; b = bidx[e, i]
+        if scr.tb[e, i] < tmin:
+            tmin = scr.tb[e, i]; kind = scr.bkind[e, i]; a = i; b = scr.bidx[e, i]
     for i in range(B):
-        if tt[e, i] < tmin:
-            tmin = tt[e, i]; kind = -2; a = i; b = -1
+        if scr.tt[e, i] < tmin:
+            tmin = scr.tt[e, i]; kind = -2; a = i; b = -1
     return tmin, kind, a, b
 
 
