@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from billiards_env.physics import BallState, Effects, PhysicsParams, Table, random_placement, simulate, strike_velocity
-from billiards_env.physics.solvers import make_solver
+from billiards_env.physics import BallState, Effects, Models, PhysicsParams, Table, random_placement, simulate, strike_velocity
+from billiards_env.physics.kernels import make_kernel
 
 ALL = Effects()
 
@@ -118,10 +118,10 @@ def test_pockets_do_not_matter_far_from_them(params, pool):
 
 
 def test_each_effect_set_compiles_its_own_kernel():
-    k1 = make_solver("event", Effects().key())
-    k2 = make_solver("event", Effects.minimal().key())
+    k1 = make_kernel("event", Effects(), Models())
+    k2 = make_kernel("event", Effects.minimal(), Models())
     assert k1 is not k2
-    assert make_solver("event", Effects().key()) is k1  # memoised
+    assert make_kernel("event", Effects(), Models()) is k1  # memoised
     # equivalent settings share one kernel
     assert Effects(spin=False).key() == Effects(spin=False, ball_friction=False).key()
 

@@ -1,15 +1,69 @@
 """JIT settings in one place: every kernel is compiled with these flags.
 
-Only the top-level solver kernels are cached on disk (KERNEL_JIT), keyed by
-the source hash they capture (solvers.SOURCE_TAG). Helpers are NOT cached:
-numba checks only a cached function's own file, so a helper cached in an
-unchanged file (e.g. detection.pair_time) would keep the old code of a callee
-edited in another file (e.g. roots.first_entry) and link it into every kernel
-compiled afterwards. A cached kernel holds its callees' code, so helpers need
-no cache of their own.
+Only the top-level solver kernels are cached on disk (``cached_kernel``),
+under a tag that names the physics sources' hash and the variant (effects,
+models, diagnostics). Helpers are NOT cached: numba checks only a cached
+function's own file, so a helper cached in an unchanged file (e.g.
+detection.pair_time) would keep the old code of a callee edited in another
+file (e.g. roots.first_entry) and link it into every kernel compiled
+afterwards. A cached kernel holds its callees' code, so helpers need no
+cache of their own.
 """
+import hashlib
+import re
+
 import numba
+from numba.core.caching import FunctionCache
 
 JIT = dict(cache=False, nogil=True, fastmath=False, error_model="numpy")
-KERNEL_JIT = dict(JIT, cache=True)
 njit = numba.njit(**JIT)
+
+
+def name_of(function) -> str:
+    """Module-qualified name of a jitted (or plain) function."""
+    f = getattr(function, "py_func", function)
+    return f"{f.__module__}.{f.__qualname__}"
+
+
+def variant_njit(*choices):
+    """``njit`` for a function a factory builds per variant (effect flags,
+    models): its name gets a tag of ``choices``. numba names a compiled
+    function by its qualified name and a per-process counter, and links the
+    functions of a kernel loaded from the disk cache as one-definition
+    symbols: two cached variants of one closure can get the same name in
+    different processes, and once both are loaded, one kernel would run the
+    other's code. The tag keeps the names apart."""
+    tag = hashlib.sha256(repr(choices).encode()).hexdigest()[:12]
+
+    def decorate(function):
+        function.__qualname__ = f"{re.sub(r'[^0-9A-Za-z_]', '_', function.__qualname__)}_{tag}"
+        return njit(function)
+    return decorate
+
+
+class _TaggedCache(FunctionCache):
+    """numba's on-disk function cache, keyed on a tag instead of the
+    closure's variables. numba keys a closure's cache entry on a pickle of
+    its captured values; a captured jitted function pickles with a random
+    per-process id, so a kernel that closes over its model functions would
+    never find its cache entry again. The tag names everything the kernel's
+    code depends on (the sources' hash and the variant)."""
+
+    def __init__(self, py_func, tag: str):
+        super().__init__(py_func)
+        self._tag = tag
+
+    def _index_key(self, sig, codegen):
+        digest = lambda b: hashlib.sha256(b).hexdigest()
+        return (sig, codegen.magic_tuple(),
+                (digest(self._py_func.__code__.co_code), digest(self._tag.encode())))
+
+
+def cached_kernel(py_func, tag: str, **options):
+    """Compile ``py_func`` with the JIT flags and ``options`` (e.g.
+    parallel=True), cached on disk under ``tag`` (its name tagged as in
+    ``variant_njit``)."""
+    py_func.__qualname__ = f"{re.sub(r'[^0-9A-Za-z_]', '_', py_func.__qualname__)}_{hashlib.sha256(tag.encode()).hexdigest()[:12]}"
+    kernel = numba.njit(**JIT, **options)(py_func)
+    kernel._cache = _TaggedCache(py_func, tag)  # what njit(cache=True) sets, with our key
+    return kernel

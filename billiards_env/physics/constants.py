@@ -43,6 +43,17 @@ ZENO_FREEZE_SPEED = 1e-3
 # Fixed steps per table before the step solver flags truncation (600 s of
 # simulated time at dt = 1e-5 would be 6e7 steps: far beyond any shot).
 MAX_STEPS = 100_000_000
+# Ball-ball impacts closer in time than this are one simultaneous impact:
+# 1e-12 s is a femtometre of travel at 1 m/s.
+SIMULTANEOUS_TIME = 1e-12
+# At most this many ball-ball impacts are resolved as one simultaneous set.
+MAX_SIMULTANEOUS = 4
+# Diagnostics and invariants: a ball counts as off the table if it is outside
+# the rails by more than OFF_TABLE_TOL (m; as OVERLAP_TOL, far above rounding
+# at table scale) and not within POCKET_REGION (m) of a pocket centre (a
+# ball dropping into a pocket crosses the rail line).
+OFF_TABLE_TOL = 1e-9
+POCKET_REGION = 0.15
 # Root polishing: bisection/Newton stops when the bracket is below this (s);
 # 1e-15 s at 10 m/s is 1e-14 m.
 ROOT_TIME_TOL = 1e-15

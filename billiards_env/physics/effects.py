@@ -1,11 +1,12 @@
 """Which physical effects a scene simulates.
 
-Each combination compiles its own kernel: the flags are compile-time
-constants of a numba closure. Branches on them in the kernel are pruned when
-it compiles; the helpers it calls get them as constant arguments, which LLVM
-folds where it inlines a helper. An effect that is off is never executed; at
-most a branch on a constant remains. A new combination compiles once and is
-cached on disk.
+Each combination compiles its own kernel (``kernels.make_kernel``): the
+flags are compile-time constants of numba closures, and ``ball_friction`` /
+``cushion_friction`` pick the frictionless or the chosen ``Models`` model.
+Branches on the flags are pruned when the kernel compiles, so an effect that
+is off is never executed. ``pockets`` needs no flag in the kernel (the table's
+geometry then has no pockets or jaws), so it shares the kernel of the same
+effects with pockets. A new combination compiles once and is cached on disk.
 """
 from __future__ import annotations
 
@@ -24,9 +25,11 @@ class Effects:
       (same final velocity by conservation of angular momentum about the
       contact point, zero slide time and distance).
     - ``vertical_spin``: spin about the vertical axis (side spin, english).
-    - ``ball_friction``: ball-ball friction (throw and spin transfer).
-    - ``cushion_friction``: cushion friction and spin (Han 2005); off: a
-      plain reflection with the cushion restitution.
+    - ``ball_friction``: ball-ball friction (throw and spin transfer; the
+      ``Models`` friction law, constant mu_b by default).
+    - ``cushion_friction``: cushion friction and spin (the ``Models``
+      cushion model, Han 2005 by default); off: a plain reflection with the
+      cushion restitution.
     - ``pockets``: six pockets with jaws; off: a closed box.
 
     Rolling resistance is always on: without it no ball ever stops.

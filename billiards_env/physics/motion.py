@@ -82,13 +82,18 @@ def acceleration(vel, om, st, e, i, p):
         a = p[C.P_MU_S] * g / n
         return -a * ux, -a * uy
     if s == C.ROLLING:
-        vx, vy = vel[e, i, 0], vel[e, i, 1]
-        n = norm(vx, vy)
-        if n == 0.0:  # reached its stop by rounding, a hair early
-            return 0.0, 0.0
-        a = p[C.P_MU_R] * g / n
-        return -a * vx, -a * vy
+        return rolling_acceleration(vel[e, i, 0], vel[e, i, 1], p)
     return 0.0, 0.0
+
+
+@njit
+def rolling_acceleration(vx, vy, p):
+    """Acceleration of a ball rolling at (vx, vy): -mu_r g v / |v|."""
+    n = norm(vx, vy)
+    if n == 0.0:  # reached its stop by rounding, a hair early
+        return 0.0, 0.0
+    a = p[C.P_MU_R] * p[C.P_G] / n
+    return -a * vx, -a * vy
 
 
 @njit
@@ -223,7 +228,14 @@ def energy(vel, om, st, e, i, p):
     """Kinetic plus rotational energy of ball i (J)."""
     if st[e, i] == C.POCKETED:
         return 0.0
+    return kinetic_energy(vel[e, i, 0], vel[e, i, 1], om[e, i, 0], om[e, i, 1], om[e, i, 2], p)
+
+
+@njit
+def kinetic_energy(vx, vy, wx, wy, wz, p):
+    """Translational plus rotational energy of a solid ball (J),
+    1/2 m |v|^2 + 1/2 (2/5 m R^2) |omega|^2. Plain arithmetic: its
+    ``py_func`` works on numpy arrays too (testing.initial_energy)."""
     m, R = p[C.P_M], p[C.P_R]
     I = 0.4 * m * R * R
-    return 0.5 * m * (vel[e, i, 0] ** 2 + vel[e, i, 1] ** 2) + 0.5 * I * (
-        om[e, i, 0] ** 2 + om[e, i, 1] ** 2 + om[e, i, 2] ** 2)
+    return 0.5 * m * (vx ** 2 + vy ** 2) + 0.5 * I * (wx ** 2 + wy ** 2 + wz ** 2)

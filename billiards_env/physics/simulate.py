@@ -9,7 +9,9 @@ import numpy as np
 from . import constants as C
 from .effects import Effects
 from .params import PhysicsParams
-from .solvers import make_solver
+from .kernels import make_kernel
+from .layout import Balls, EventScratch, Geometry, LogBuffers, Outputs
+from .models import Models
 from .state import BallState
 from .table import Table
 from .validation import check_arrays, check_finite, check_placement
@@ -55,11 +57,14 @@ class SimResult:
 
 def simulate(state: BallState, table: Table, params: PhysicsParams | None = None, solver: str = "event",
              dt: float | None = None, record: bool = False, effects: Effects | None = None,
-             max_events: int = C.MAX_EVENTS, diagnostics: bool = False, validate: bool = True) -> SimResult:
+             max_events: int = C.MAX_EVENTS, diagnostics: bool = False, validate: bool = True,
+             models: Models | dict | None = None) -> SimResult:
     """Simulate every table of the batch until all balls rest.
 
     ``solver="event"`` (exact, event-driven) or ``"step"`` (fixed step ``dt``).
-    ``effects`` selects the physics (default: all). ``record=True`` keeps
+    ``effects`` selects the physics (default: all), ``models`` the model of
+    each interaction (a ``Models`` or its dict; default: ``Models()``, see
+    docs/models.md). ``record=True`` keeps
     each table's event log. ``diagnostics=True`` compiles a checking variant
     that reports per table the largest energy gain and momentum error of any
     impact, the smallest gap between balls and the largest excursion off the
@@ -67,6 +72,9 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
     """
     params = params or PhysicsParams.standard()
     effects = effects or Effects()
+    models = Models.from_dict(models) if isinstance(models, dict) else (models or Models())
+    if not isinstance(models, Models):
+        raise TypeError(f"models must be a Models or a dict, got {type(models).__name__}")
     if solver not in SOLVERS:
         raise ValueError(f"unknown solver {solver!r}; choose one of {SOLVERS}")
     if solver == "step":
@@ -90,50 +98,42 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
                   np.ascontiguousarray(s.omega), np.ascontiguousarray(s.pocket, dtype=np.int64))
     E, B = s.pos.shape[:2]
     segs, norms, tips, pockets = (np.ascontiguousarray(a, dtype=np.float64) for a in table.geometry(effects.pockets))
+    geo = Geometry(segs, norms, tips, pockets, float(table.width), float(table.length))
+    balls = Balls(s.pos, s.vel, s.omega, np.zeros((E, B), dtype=np.int64), s.pocket)
     p = params.as_array()
-    kernel = make_solver(solver, effects.key(), diagnostics)
+    kernel = make_kernel(solver, effects, models, diagnostics)
 
-    out_time = np.zeros(E)
-    out_nev = np.zeros(E, dtype=np.int64)
-    out_first = np.full(E, -1, dtype=np.int64)
-    out_cush = np.zeros((E, B), dtype=np.int64)
-    out_trunc = np.zeros(E, dtype=np.bool_)
+    out = Outputs(time=np.zeros(E), nev=np.zeros(E, dtype=np.int64), first=np.full(E, -1, dtype=np.int64),
+                  cush=np.zeros((E, B), dtype=np.int64), trunc=np.zeros(E, dtype=np.bool_), diag=np.zeros((E, 4)))
     cap = RECORD_CAPACITY if record else 1
-    rec_n = np.zeros(E, dtype=np.int64)
-    rec_t = np.zeros((E if record else 1, cap))
-    rec_kind = np.zeros((E if record else 1, cap), dtype=np.int64)
-    rec_ij = np.zeros((E if record else 1, cap, 2), dtype=np.int64)
-    rec_state = np.zeros((E if record else 1, cap, 2, 8))
-    diag = np.zeros((E, 4))
-    st = np.zeros((E, B), dtype=np.int64)
-    common_in = (s.pos, s.vel, s.omega, s.pocket, p, segs, norms, tips, pockets, table.width, table.length,
-                 int(max_events), st)
-    outs = (out_time, out_nev, out_first, out_cush, out_trunc, record, rec_n, rec_t, rec_kind, rec_ij, rec_state, diag)
+    rows = E if record else 1
+    log = LogBuffers(on=bool(record), n=np.zeros(E, dtype=np.int64), t=np.zeros((rows, cap)),
+                     kind=np.zeros((rows, cap), dtype=np.int64), ij=np.zeros((rows, cap, 2), dtype=np.int64),
+                     state=np.zeros((rows, cap, 2, 8)))
     # Waking worker threads costs more than a small batch takes: use no more
     # threads than tables (results do not depend on the thread count).
     threads = numba.get_num_threads()
     numba.set_num_threads(max(1, min(threads, E)))
     try:
         if solver == "event":
-            tt = np.zeros((E, B)); tb = np.zeros((E, B))
-            bkind = np.zeros((E, B), dtype=np.int64); bidx = np.zeros((E, B), dtype=np.int64)
-            tpair = np.zeros((E, B, B))
-            paths = np.zeros((E, B, 6))
-            kernel(*common_in, tt, tb, bkind, bidx, tpair, paths, *outs)
+            scr = EventScratch(tt=np.zeros((E, B)), tb=np.zeros((E, B)), bkind=np.zeros((E, B), dtype=np.int64),
+                               bidx=np.zeros((E, B), dtype=np.int64), tpair=np.zeros((E, B, B)),
+                               paths=np.zeros((E, B, 6)))
+            kernel(balls, geo, p, scr, out, log, int(max_events))
         else:
-            kernel(*common_in, float(dt), int(C.MAX_STEPS), *outs)
+            kernel(balls, geo, p, out, log, int(max_events), float(dt), int(C.MAX_STEPS))
     finally:
         numba.set_num_threads(threads)
 
     events = None
     if record:
-        if np.any(rec_n > cap):
-            raise RuntimeError(f"event log overflow: a table had {rec_n.max()} events, more than the "
+        if np.any(log.n > cap):
+            raise RuntimeError(f"event log overflow: a table had {log.n.max()} events, more than the "
                                f"record capacity {cap}")
-        events = [EventLog(rec_t[e, :rec_n[e]].copy(), rec_kind[e, :rec_n[e]].copy(),
-                           rec_ij[e, :rec_n[e]].copy(), rec_state[e, :rec_n[e]].copy()) for e in range(E)]
-    return SimResult(s, out_time, out_nev, out_first, out_cush, out_trunc, events,
-                     diag if diagnostics else None)
+        events = [EventLog(log.t[e, :log.n[e]].copy(), log.kind[e, :log.n[e]].copy(),
+                           log.ij[e, :log.n[e]].copy(), log.state[e, :log.n[e]].copy()) for e in range(E)]
+    return SimResult(s, out.time, out.nev, out.first, out.cush, out.trunc, events,
+                     out.diag if diagnostics else None)
 
 
 def set_num_threads(n: int) -> None:

@@ -10,12 +10,13 @@ import time
 
 import numpy as np
 
-from billiards_env.physics import Effects, simulate
+from billiards_env.physics import Effects, Models, simulate
 from billiards_env.physics import constants as C
-from billiards_env.physics.solvers import make_solver
+from billiards_env.physics.kernels import make_kernel
+from billiards_env.physics.motion import kinetic_energy
 
-OVERLAP_TOL = 1e-9       # m: no two balls may overlap by more than this
-OFF_TABLE_TOL = 1e-9     # m: no ball may leave the table except into a pocket
+# Balls may overlap by at most C.OVERLAP_TOL and leave the table (except
+# into a pocket) by at most C.OFF_TABLE_TOL (m): the kernels' own tolerances.
 ENERGY_TOL_ABS = 1e-12   # J: rounding of a sum of energies of order 10 J is ~1e-15 J
 ENERGY_TOL_REL = 1e-12   # relative to the initial energy
 MOMENTUM_TOL = 1e-12     # kg m/s per impact (momenta are of order 1)
@@ -23,11 +24,11 @@ MAX_WALL_S = 20.0        # s of wall time per simulate call (after compilation)
 
 
 def initial_energy(state, params) -> np.ndarray:
-    m, R = params.m, params.R
-    I = 0.4 * m * R * R
-    on = state.pocket < 0
-    e = 0.5 * m * (state.vel ** 2).sum(-1) + 0.5 * I * (state.omega ** 2).sum(-1)
-    return (e * on).sum(-1)
+    """Total energy per table of the balls on the table (J), by the kernels'
+    own formula (motion.kinetic_energy, on numpy arrays)."""
+    v, w = state.vel, state.omega
+    e = kinetic_energy.py_func(v[..., 0], v[..., 1], w[..., 0], w[..., 1], w[..., 2], params.as_array())
+    return (e * (state.pocket < 0)).sum(-1)
 
 
 def check_invariants(result, initial, table, params, *, max_events=None, pockets=True):
@@ -61,20 +62,20 @@ def check_invariants(result, initial, table, params, *, max_events=None, pockets
                 bad.append(f"energy increased by {d[0]:.3e} J (> {tol:.1e})")
             if d[1] > MOMENTUM_TOL:
                 bad.append(f"ball-ball impact momentum error {d[1]:.3e} kg m/s")
-            if d[2] < -OVERLAP_TOL:
+            if d[2] < -C.OVERLAP_TOL:
                 bad.append(f"balls overlapped by {-d[2]:.3e} m")
-            if d[3] > OFF_TABLE_TOL:
+            if d[3] > C.OFF_TABLE_TOL:
                 bad.append(f"a ball left the table by {d[3]:.3e} m")
         # final state, independently of the kernel's diagnostics
         pos = s.pos[e][on]
         if len(pos):
             if np.all(np.isfinite(pos)):
-                ok = table.contains(pos, R, OFF_TABLE_TOL, pockets)
+                ok = table.contains(pos, R, C.OFF_TABLE_TOL, pockets)
                 if not ok.all():
                     bad.append(f"final ball position(s) off the table: {pos[~ok].tolist()}")
             dd = np.hypot(*(pos[:, None, :] - pos[None, :, :]).transpose(2, 0, 1))
             dd[np.diag_indices(len(pos))] = np.inf
-            if dd.min() < 2 * R - OVERLAP_TOL:
+            if dd.min() < 2 * R - C.OVERLAP_TOL:
                 bad.append(f"final overlap {2 * R - dd.min():.3e} m")
     return out
 
@@ -91,16 +92,17 @@ def assert_invariants(result, initial, table, params, *, wall=None, max_events=N
 
 
 def run_checked(state, table, params, solver, *, dt=1e-3, effects=None, max_events=None,
-                record=False):
+                record=False, models=None):
     """Simulate with diagnostics, assert the invariants, return the result."""
     kw = {} if solver == "event" else {"dt": dt}
     effects = effects or Effects.all()
+    models = models or Models()
     # the wall-time bound is for the simulation, not for compiling (or
     # loading from cache) a kernel variant on its first call in this process
-    compiled = bool(make_solver(solver, effects.key(), True).signatures)
+    compiled = bool(make_kernel(solver, effects, models, True).signatures)
     t0 = time.perf_counter()
     res = simulate(state, table, params, solver=solver, effects=effects, diagnostics=True,
-                   record=record, **kw)
+                   record=record, models=models, **kw)
     wall = time.perf_counter() - t0 if compiled else None
     assert_invariants(res, state, table, params, wall=wall, max_events=max_events, pockets=effects.pockets)
     return res

@@ -1,0 +1,181 @@
+"""Event solver: exact event-driven simulation (Leckie & Greenspan 2006; the
+scheme of pooltool): jump to the earliest of all ball-ball, ball-cushion,
+ball-pocket and motion-transition times; after an event only the times of the
+balls it changed are recomputed.
+
+``make_run`` returns the kernel's Python function for one effect set and
+impact functions (``impacts.make_impacts``); ``kernels`` compiles it,
+parallel over tables (prange).
+"""
+import math
+
+import numba
+import numpy as np
+
+from . import constants as C
+from . import diagnostics, event_log
+from ._jit import njit, variant_njit
+from .detection import boundary_time, pair_time, sweep_path
+from .layout import impact_scratch
+from .motion import acceleration, apply_transition, classify, evolve, transition_time
+from .vec import norm
+
+
+@njit
+def refresh(balls, scr, geo, e, i, t, p):
+    """Recompute every event time that involves ball i (absolute times),
+    and ball i's entry in ``scr.paths``: its acceleration and the box its
+    path sweeps until its next transition or boundary event. Both hold until
+    that event refreshes the ball again, so pair checks read them instead
+    of recomputing them for the other ball of every pair."""
+    pos, vel, om, st = balls.pos, balls.vel, balls.om, balls.st
+    tt, tb, tpair, paths = scr.tt, scr.tb, scr.tpair, scr.paths  # fields read once, not per pair
+    B = pos.shape[1]
+    if st[e, i] == C.POCKETED:
+        tt[e, i] = math.inf; tb[e, i] = math.inf
+        for j in range(B):
+            tpair[e, i, j] = math.inf; tpair[e, j, i] = math.inf
+        return
+    tt[e, i] = t + transition_time(vel, om, st, e, i, p)
+    h = tt[e, i] - t
+    ax, ay = acceleration(vel, om, st, e, i, p)
+    tb_rel, k, idx = boundary_time(pos, vel, st, e, i, ax, ay, h, p, geo, False)
+    tb[e, i] = t + tb_rel; scr.bkind[e, i] = k; scr.bidx[e, i] = idx
+    # A pair needs looking at only until the first known event of either
+    # ball (transition or boundary): that event refreshes the ball and so
+    # recomputes the pair. Short horizons keep the broad phase tight.
+    next_i = min(tt[e, i], tb[e, i])
+    sweep_path(pos, vel, st, e, i, ax, ay, next_i - t, paths)
+    for j in range(B):
+        if j == i:
+            continue
+        hj = min(next_i, tt[e, j], tb[e, j]) - t
+        tij = t + pair_time(pos, vel, st, paths, e, i, j, hj, p)
+        tpair[e, i, j] = tij; tpair[e, j, i] = tij
+
+
+@njit
+def break_collapse(balls, scr, geo, e, t, p, stuck, rounds, spin_on):
+    """Stop the translation and rolling of the slow balls of an inelastic
+    collapse (constants.ZENO_EVENTS; the speed limit doubles with each
+    earlier round at this instant) and recompute their events."""
+    vel, om, st = balls.vel, balls.om, balls.st
+    R = p[C.P_R]
+    limit = C.ZENO_FREEZE_SPEED * 2.0 ** rounds
+    for i in range(vel.shape[1]):
+        if not stuck[i] or st[e, i] == C.POCKETED:
+            continue
+        contact = norm(vel[e, i, 0], vel[e, i, 1]) + R * norm(om[e, i, 0], om[e, i, 1])
+        if contact < limit:
+            vel[e, i, 0] = 0.0; vel[e, i, 1] = 0.0
+            om[e, i, 0] = 0.0; om[e, i, 1] = 0.0
+            classify(vel, om, st, e, i, R, spin_on)  # SPINNING or STATIONARY
+    for i in range(vel.shape[1]):
+        if stuck[i]:
+            refresh(balls, scr, geo, e, i, t, p)
+
+
+@njit
+def next_event(scr, e, B):
+    """Earliest event of table e: (time, kind, a, b); kind -2 is a motion
+    transition of ball a. Ties go to the first found (pairs, then
+    boundaries, then transitions), a fixed deterministic order."""
+    # fields read where used: no call in between, so numba drops the
+    # reference counting of each read
+    tmin = math.inf; kind = -1; a = -1; b = -1
+    for i in range(B):
+        for j in range(i + 1, B):
+            if scr.tpair[e, i, j] < tmin:
+                tmin = scr.tpair[e, i, j]; kind = C.EV_BALL_BALL; a = i; b = j
+    for i in range(B):
+        if scr.tb[e, i] < tmin:
+            tmin = scr.tb[e, i]; kind = scr.bkind[e, i]; a = i; b = scr.bidx[e, i]
+    for i in range(B):
+        if scr.tt[e, i] < tmin:
+            tmin = scr.tt[e, i]; kind = -2; a = i; b = -1
+    return tmin, kind, a, b
+
+
+def make_run(spin_on, zspin_on, diag_on, impacts):
+    """The event kernel's Python function:
+    ``run(balls, geo, p, scr, out, log, max_events)``."""
+    prepare, resolve_boundary = impacts.prepare, impacts.resolve_boundary
+    resolve_impact_set = impacts.resolve_impact_set
+
+    @variant_njit(__name__, spin_on, zspin_on, diag_on, *impacts.choices)
+    def table(balls, geo, p, scr, out, log, max_events, e):
+        """Simulate table e to rest."""
+        pos, vel, om, st, tpair = balls.pos, balls.vel, balls.om, balls.st, scr.tpair  # once, not per event
+        B = pos.shape[1]
+        prepare(balls, e, p)
+        t = 0.0
+        event_log.record_start(log, balls, e)
+        for i in range(B):
+            tpair[e, i, i] = math.inf
+            refresh(balls, scr, geo, e, i, 0.0, p)
+        en_prev = 0.0
+        if diag_on:
+            en_prev = diagnostics.start(balls, geo, e, p, out.diag)
+        out.first[e] = -1
+        nev = 0
+        imp = impact_scratch()
+        sim_i, sim_j = imp.i, imp.j
+        stuck = np.zeros(B, dtype=np.bool_)  # balls of the events at the current instant
+        n_stuck = 0  # events since time last advanced
+        rounds = 0  # collapse rounds at the current instant
+        while True:
+            tmin, kind, a, b = next_event(scr, e, B)
+            if tmin == math.inf:
+                break
+            if nev >= max_events:
+                out.trunc[e] = True
+                break
+            if tmin < t:
+                tmin = t
+            dt = tmin - t
+            if dt > C.SIMULTANEOUS_TIME:
+                n_stuck = 0
+                rounds = 0
+                stuck[:] = False
+            n_stuck += 1
+            for i in range(B):
+                evolve(pos, vel, om, st, e, i, dt, p, zspin_on, spin_on)
+            t = tmin
+            nev += 1
+            if kind == C.EV_BALL_BALL:
+                # gather simultaneous impacts
+                ns = 0
+                for i in range(B):
+                    for j in range(i + 1, B):
+                        if tpair[e, i, j] <= tmin + C.SIMULTANEOUS_TIME and ns < C.MAX_SIMULTANEOUS:
+                            sim_i[ns] = i; sim_j[ns] = j; ns += 1
+                nb = resolve_impact_set(balls, e, t, imp, ns, p, out, log)
+                involved = imp.balls
+                for q in range(nb):
+                    stuck[involved[q]] = True
+                    refresh(balls, scr, geo, e, involved[q], t, p)
+            else:
+                if kind == -2:
+                    kind = apply_transition(vel, om, st, e, a, p)
+                    b = -1
+                else:
+                    resolve_boundary(balls, geo, e, kind, a, b, p, out)
+                if log.on:
+                    event_log.record(log, balls, e, t, kind, a, b)
+                stuck[a] = True
+                refresh(balls, scr, geo, e, a, t, p)
+            if n_stuck > C.ZENO_EVENTS:
+                break_collapse(balls, scr, geo, e, t, p, stuck, rounds, spin_on)
+                n_stuck = 0
+                rounds += 1
+            if diag_on:
+                diagnostics.check_geometry(balls, geo, e, p, out.diag)
+                en_prev = diagnostics.energy_step(balls, e, p, out.diag, en_prev)
+        out.time[e] = t
+        out.nev[e] = nev
+
+    def run(balls, geo, p, scr, out, log, max_events):
+        for e in numba.prange(balls.pos.shape[0]):
+            table(balls, geo, p, scr, out, log, max_events, e)
+
+    return run

@@ -1,0 +1,44 @@
+"""Named structures the kernels take (numba namedtuples of arrays).
+
+``simulate`` builds them by name; a kernel or helper takes a few of them
+instead of dozens of arrays in an order two files must agree on. Fields are
+per table ``e`` of the batch (first axis E) and ball ``i`` (axis B).
+"""
+from collections import namedtuple
+
+import numpy as np
+
+from . import constants as C
+from ._jit import njit
+
+# pos [E, B, 2], vel [E, B, 2], om [E, B, 3], st [E, B] motion state
+# (constants.STATIONARY ...), pocket [E, B] pocket index or -1
+Balls = namedtuple("Balls", "pos vel om st pocket")
+# segs [S, 4] cushion segments (x0, y0, x1, y1), norms [S, 2] their unit
+# normals into the table, tips [T, 2] jaw tips, pockets [K, 3] (x, y, r);
+# width, length of the bed (m)
+Geometry = namedtuple("Geometry", "segs norms tips pockets width length")
+# Event solver scratch: per ball the absolute time of its next transition
+# (tt) and boundary event (tb, of kind bkind with boundary index bidx), per
+# pair the contact time (tpair [E, B, B]), per ball its acceleration and swept
+# box (paths [E, B, 6], detection.sweep_path)
+EventScratch = namedtuple("EventScratch", "tt tb bkind bidx tpair paths")
+# Per table: simulated time, events, first ball the cue ball touched (-1),
+# cushion hits per ball [E, B], truncated flag, diagnostics [E, 4]
+# (simulate.SimResult.diagnostics)
+Outputs = namedtuple("Outputs", "time nev first cush trunc diag")
+# Event log buffers: on (record at all), n [E] events so far, t [E, N],
+# kind [E, N], ij [E, N, 2], state [E, N, 2, 8] (simulate.EventLog)
+LogBuffers = namedtuple("LogBuffers", "on n t kind ij state")
+# One table's scratch for a set of simultaneous ball-ball impacts: pair ids
+# (i, j), approach speeds (w), distinct balls and two state copies (saved,
+# swapped) for the two resolution orders (impacts.resolve_impact_set)
+ImpactScratch = namedtuple("ImpactScratch", "i j w balls saved swapped")
+
+
+@njit
+def impact_scratch():
+    """Fresh ``ImpactScratch`` for one table."""
+    return ImpactScratch(np.empty(C.MAX_SIMULTANEOUS, dtype=np.int64), np.empty(C.MAX_SIMULTANEOUS, dtype=np.int64),
+                         np.empty(C.MAX_SIMULTANEOUS), np.empty(2 * C.MAX_SIMULTANEOUS, dtype=np.int64),
+                         np.empty((2 * C.MAX_SIMULTANEOUS, 6)), np.empty((2 * C.MAX_SIMULTANEOUS, 6)))

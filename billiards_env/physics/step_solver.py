@@ -1,0 +1,132 @@
+"""Step solver: the write-up's algorithm: fixed time step dt; within a step
+balls move in straight lines, the earliest collision in the step is found from
+the quadratic, balls are advanced to it and it is resolved, until the step is
+used up; then felt friction updates the velocities for the step (clamped so
+it never reverses a velocity).
+
+``make_run`` returns the kernel's Python function for one effect set and
+impact functions (``impacts.make_impacts``); ``kernels`` compiles it,
+parallel over tables (prange).
+"""
+import math
+
+import numba
+
+from . import constants as C
+from . import diagnostics, event_log
+from ._jit import njit, variant_njit
+from .detection import boundary_time, pair_time_linear
+from .layout import impact_scratch
+from .motion import friction_step
+
+
+@njit
+def earliest_contact(balls, geo, e, rem, p):
+    """Earliest contact of table e within rem (s), balls moving in straight
+    lines: (time, kind, a, b), kind -1 if none."""
+    pos, vel, st = balls.pos, balls.vel, balls.st
+    B = pos.shape[1]
+    tmin = math.inf; kind = -1; a = -1; b = -1
+    for i in range(B):
+        for j in range(i + 1, B):
+            tij = pair_time_linear(pos, vel, st, e, i, j, min(rem, tmin), p)
+            if tij < tmin:
+                tmin = tij; kind = C.EV_BALL_BALL; a = i; b = j
+    for i in range(B):
+        tbi, k, idx = boundary_time(pos, vel, st, e, i, 0.0, 0.0, min(rem, tmin), p, geo, True)
+        if tbi < tmin:
+            tmin = tbi; kind = k; a = i; b = idx
+    return tmin, kind, a, b
+
+
+@njit
+def touching_set(balls, e, imp, a, b, p):
+    """Every pair touching and closing now, into imp (one simultaneous set,
+    resolved by the event solver's policy); returns how many."""
+    pos, vel, st = balls.pos, balls.vel, balls.st
+    sim_i, sim_j = imp.i, imp.j
+    B = pos.shape[1]
+    ns = 0
+    for i in range(B):
+        for j in range(i + 1, B):
+            if ns < C.MAX_SIMULTANEOUS and pair_time_linear(pos, vel, st, e, i, j, C.SIMULTANEOUS_TIME, p) <= C.SIMULTANEOUS_TIME:
+                sim_i[ns] = i; sim_j[ns] = j; ns += 1
+    if ns == 0:  # rounding moved the pair off contact: resolve it alone
+        sim_i[0] = a; sim_j[0] = b; ns = 1
+    return ns
+
+
+@njit
+def moving(st, e):
+    """True if a ball of table e still moves or spins."""
+    for i in range(st.shape[1]):
+        if st[e, i] != C.STATIONARY and st[e, i] != C.POCKETED:
+            return True
+    return False
+
+
+def make_run(spin_on, zspin_on, diag_on, impacts):
+    """The step kernel's Python function:
+    ``run(balls, geo, p, out, log, max_events, dt, max_steps)``."""
+    prepare, resolve_boundary = impacts.prepare, impacts.resolve_boundary
+    resolve_impact_set = impacts.resolve_impact_set
+
+    @variant_njit(__name__, spin_on, zspin_on, diag_on, *impacts.choices)
+    def table(balls, geo, p, out, log, max_events, dt, max_steps, e):
+        """Simulate table e to rest."""
+        pos, vel, om, st = balls.pos, balls.vel, balls.om, balls.st  # once, not per step
+        B = pos.shape[1]
+        prepare(balls, e, p)
+        event_log.record_start(log, balls, e)
+        en_prev = 0.0
+        if diag_on:
+            en_prev = diagnostics.start(balls, geo, e, p, out.diag)
+        out.first[e] = -1
+        t = 0.0
+        nev = 0
+        steps = 0
+        imp = impact_scratch()
+        while True:
+            if not moving(st, e):
+                break
+            if steps >= max_steps or nev >= max_events:
+                out.trunc[e] = True
+                break
+            steps += 1
+            rem = dt
+            while rem > 0.0 and nev < max_events:
+                tmin, kind, a, b = earliest_contact(balls, geo, e, rem, p)
+                adv = min(tmin, rem)
+                for i in range(B):
+                    if st[e, i] == C.SLIDING or st[e, i] == C.ROLLING:
+                        pos[e, i, 0] += vel[e, i, 0] * adv
+                        pos[e, i, 1] += vel[e, i, 1] * adv
+                rem -= adv
+                if kind < 0:
+                    break
+                nev += 1
+                tev = t + (dt - rem)
+                if kind == C.EV_BALL_BALL:
+                    ns = touching_set(balls, e, imp, a, b, p)
+                    resolve_impact_set(balls, e, tev, imp, ns, p, out, log)
+                else:
+                    resolve_boundary(balls, geo, e, kind, a, b, p, out)
+                if diag_on:
+                    en_prev = diagnostics.energy_step(balls, e, p, out.diag, en_prev)
+                if log.on and kind != C.EV_BALL_BALL:
+                    event_log.record(log, balls, e, tev, kind, a, b)
+            for i in range(B):
+                if st[e, i] != C.STATIONARY and st[e, i] != C.POCKETED:
+                    friction_step(vel, om, st, e, i, dt, p, zspin_on, spin_on)
+            t += dt
+            if diag_on:
+                diagnostics.check_geometry(balls, geo, e, p, out.diag)
+                en_prev = diagnostics.energy_step(balls, e, p, out.diag, en_prev)
+        out.time[e] = t
+        out.nev[e] = nev
+
+    def run(balls, geo, p, out, log, max_events, dt, max_steps):
+        for e in numba.prange(balls.pos.shape[0]):
+            table(balls, geo, p, out, log, max_events, dt, max_steps, e)
+
+    return run
