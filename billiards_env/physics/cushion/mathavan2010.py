@@ -74,8 +74,8 @@ IMPULSE_STEPS = 200
 # Bound on the steps of one phase, in units of IMPULSE_STEPS: with both
 # frictions <= 0.5 and h = 7R/5 the normal velocity still falls at >= 0.28 / m
 # per unit impulse (0.92 / m without friction), so a phase takes under 3.5
-# units; only
-# larger frictions (which can stall the normal velocity) reach the bound.
+# units; only larger frictions (which can stall the normal velocity) reach
+# the bound.
 MAX_PHASE_FACTOR = 20
 
 
