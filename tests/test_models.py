@@ -106,6 +106,6 @@ def test_cushion_models_share_one_interface(params):
     spin."""
     p = params.as_array()
     for resolve in [m.resolve for m in cushion.MODELS.values()] + [cushion.reflection.resolve]:
-        vx, vy, wx, wy, wz = resolve(0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.5, p)
+        vx, vy, wx, wy, wz = resolve(0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.5, p)
         assert vy == pytest.approx(0.5, rel=1e-12) if resolve is cushion.reflection.resolve else vy > 0.0
         assert abs(vx) < 1e-12 and wz == 0.0

@@ -14,7 +14,12 @@ from billiards_env.physics import constants as C
 from billiards_env.physics.ball_ball import alciatore
 from billiards_env.physics.ball_ball.alciatore import friction_coefficient
 from billiards_env.physics.cushion import mathavan2010
-from billiards_env.physics.cushion.mathavan2010 import resolve
+
+
+def resolve(vx, vy, wx, wy, wz, nx, ny, e_c, p):
+    """The model through its interface, with the approach speed -v.n the
+    cushion contact measures."""
+    return mathavan2010.resolve(vx, vy, wx, wy, wz, nx, ny, -(vx * nx + vy * ny), e_c, p)
 
 P = PhysicsParams.standard()
 PV = P.as_array()

@@ -15,6 +15,7 @@ from . import coulomb, frictionless
 # name -> module ball_ball/<name>.py; a new law is one more line here
 FRICTION_LAWS = {name: importlib.import_module(f"{__name__}.{name}") for name in (
     "constant",
+    "alciatore",
 )}
 
 _coulomb = {}

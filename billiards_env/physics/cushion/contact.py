@@ -4,12 +4,15 @@ contacts.
 
 A cushion model is a jitted function
 
-    resolve(vx, vy, wx, wy, wz, nx, ny, e_c, p) -> (vx, vy, wx, wy, wz)
+    resolve(vx, vy, wx, wy, wz, nx, ny, approach, e_c, p) -> (vx, vy, wx, wy, wz)
 
 in the table's frame: the ball's velocity (m/s) and spin (rad/s) before and
 after the impact, (nx, ny) the unit contact normal pointing into the table,
-e_c the restitution to use (0 for a resting contact) and p the parameter
-vector (constants.P_*). ``make_resolve`` wraps one.
+``approach`` the normal approach speed (m/s, > 0) exactly as the approach
+test measured it (a model that uses it, rather than recomputing -v.n from
+the unit normal, agrees with that test to the last bit), e_c the restitution
+to use (0 for a resting contact) and p the parameter vector (constants.P_*).
+``make_resolve`` wraps one.
 
 Impacts slower than ZENO_SPEED, and contacts reported without approach (the
 felt pressing the ball into the cushion), are resting contacts: restitution
@@ -45,7 +48,7 @@ def make_resolve(model, spin_on):
             return w
         e_c = 0.0 if resting else p[C.P_E_C]
         vel[e, i, 0], vel[e, i, 1], om[e, i, 0], om[e, i, 1], om[e, i, 2] = model(
-            vel[e, i, 0], vel[e, i, 1], om[e, i, 0], om[e, i, 1], om[e, i, 2], rx / d, ry / d, e_c, p)
+            vel[e, i, 0], vel[e, i, 1], om[e, i, 0], om[e, i, 1], om[e, i, 2], rx / d, ry / d, w, e_c, p)
         if resting:
             if spin_on:  # by the slip after the impulse, not the stale st
                 end_slide(vel, om, e, i, p[C.P_R])

@@ -26,7 +26,7 @@ from ..vec import norm
 
 
 @njit
-def resolve(vx, vy, wx, wy, wz, nx, ny, e_c, p):
+def resolve(vx, vy, wx, wy, wz, nx, ny, approach, e_c, p):
     """Cushion model (``contact`` describes the interface)."""
     R, m = p[C.P_R], p[C.P_M]
     # cushion frame: X into the cushion (-n), Y = Z x X, Z up

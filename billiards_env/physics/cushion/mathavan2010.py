@@ -243,9 +243,11 @@ def _resolve_steps(vx, vy, wx, wy, wz, nx, ny, e_c, p, steps):
 
 
 @njit
-def resolve(vx, vy, wx, wy, wz, nx, ny, e_c, p):
+def resolve(vx, vy, wx, wy, wz, nx, ny, approach, e_c, p):
     """Outgoing (vx, vy, wx, wy, wz), world frame, of a ball hitting a
     cushion whose unit normal (nx, ny) points from the cushion to the ball's
     centre, with restitution e_c (0 for a resting contact). Reads m, R,
-    h_c, mu_s and f_c from the parameter vector p."""
+    h_c, mu_s and f_c from the parameter vector p. The integration starts
+    from the ball's own velocity; ``approach`` (the interface's measured
+    approach speed) is not needed."""
     return _resolve_steps(vx, vy, wx, wy, wz, nx, ny, e_c, p, IMPULSE_STEPS)
