@@ -5,6 +5,7 @@ JSON regression cases (replayed by tests/test_regressions.py).
     python scripts/fuzz.py --shots 1000000 --solver event
     python scripts/fuzz.py --shots 20000 --solver step --dt 1e-3
     python scripts/fuzz.py --shots 1000000 --effects each   # every effect set
+    python scripts/fuzz.py --shots 200000 --effects each --models cushion=mathavan2010
 """
 from __future__ import annotations
 
@@ -16,7 +17,7 @@ import time
 import numpy as np
 from tqdm import tqdm
 
-from billiards_env.physics import Effects
+from billiards_env.physics import Effects, Models
 from billiards_env.testing import LAYOUTS, case_dict, random_batch, run_batch, save_case
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
@@ -30,6 +31,9 @@ def main(argv=None):
     ap.add_argument("--effects", default="all",
                     help="an effect set of Effects.each_off() ('all', 'no spin', ..., 'minimal'), "
                          "or 'each': a random one of them per batch")
+    ap.add_argument("--models", nargs="*", default=[], metavar="KEY=VALUE",
+                    help="model choices, e.g. ball_ball_friction=alciatore cushion=mathavan2010 "
+                         "(keys and names: billiards_env.physics.models.REGISTRIES; default: Models())")
     ap.add_argument("--batch", type=int, default=4096)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--regressions", type=pathlib.Path, default=ROOT / "tests" / "regressions")
@@ -41,6 +45,10 @@ def main(argv=None):
     if args.effects != "each" and args.effects not in effect_sets:
         ap.error(f"--effects must be 'each' or one of {sorted(effect_sets)}, got {args.effects!r}")
     names = sorted(effect_sets) if args.effects == "each" else [args.effects]
+    try:
+        models = Models.from_dict(dict(kv.split("=", 1) for kv in args.models))
+    except ValueError as exc:  # also a KEY=VALUE without '='
+        ap.error(f"--models: {exc}")
 
     rng = np.random.default_rng(args.seed)
     done = failures = events = 0
@@ -59,7 +67,8 @@ def main(argv=None):
             name = names[int(rng.integers(len(names)))] if len(names) > 1 else names[0]
             effects = effect_sets[name]
             state, table, params = random_batch(rng, n, layout, preset, pockets=effects.pockets)
-            res, viol = run_batch(state, table, params, args.solver, dt=args.dt, effects=effects)
+            res, viol = run_batch(state, table, params, args.solver, dt=args.dt, effects=effects,
+                                  models=models)
             per_set[name] = per_set.get(name, 0) + n
             events += int(res.n_events.sum())
             for e, v in enumerate(viol):
@@ -69,7 +78,7 @@ def main(argv=None):
                         kinds[m.split(" ")[0]] = kinds.get(m.split(" ")[0], 0) + 1
                     failures_per_set[name] = failures_per_set.get(name, 0) + 1
                     if failures <= 50:
-                        save_case(case_dict(state, e, params, args.solver, args.dt, v, effects),
+                        save_case(case_dict(state, e, params, args.solver, args.dt, v, effects, models),
                                   args.regressions, tag="fuzz")
             done += n
             bar.update(n)
@@ -81,6 +90,8 @@ def main(argv=None):
                    wall_s=round(wall, 1), shots_per_s=round(done / wall, 1), seed=args.seed,
                    effects=args.effects, shots_per_effect_set=per_set,
                    violations_per_effect_set=failures_per_set)
+    if args.models:  # runs with the default models keep their summary's keys
+        summary["models"] = models.to_dict()
     print(json.dumps(summary, indent=1))
     if args.summary:
         args.summary.parent.mkdir(parents=True, exist_ok=True)

@@ -5,7 +5,7 @@ import pathlib
 
 import pytest
 
-from billiards_env.physics import Effects
+from billiards_env.physics import Effects, Models
 
 from billiards_env.testing import load_case, run_checked
 
@@ -22,4 +22,4 @@ def test_regression_cases_exist():
 def test_regression_case(path):
     c, state, table, params = load_case(path)
     run_checked(state, table, params, c["solver"], dt=c.get("dt") or 1e-3,
-                effects=Effects.from_dict(c.get("effects")))
+                effects=Effects.from_dict(c.get("effects")), models=Models.from_dict(c.get("models")))

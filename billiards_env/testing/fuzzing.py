@@ -8,7 +8,7 @@ import time
 
 import numpy as np
 
-from billiards_env.physics import BallState, Effects, PhysicsParams, Table, rack, simulate, strike
+from billiards_env.physics import BallState, Effects, Models, PhysicsParams, Table, rack, simulate, strike
 from .invariants import check_invariants
 
 LAYOUTS = ("nine", "eight", "random")
@@ -51,21 +51,26 @@ def random_batch(rng, n_envs, layout, preset, n_balls=None, pockets=True):
     return s, table, params
 
 
-def run_batch(state, table, params, solver, dt=1e-3, effects=None):
-    """Simulate with diagnostics under ``effects`` (default: all) and check
-    every invariant; a closed box (pockets off) must keep every ball."""
+def run_batch(state, table, params, solver, dt=1e-3, effects=None, models=None):
+    """Simulate with diagnostics under ``effects`` (default: all) and
+    ``models`` (default: ``Models()``) and check every invariant; a closed
+    box (pockets off) must keep every ball."""
     effects = effects or Effects.all()
     kw = {} if solver == "event" else {"dt": dt}
-    res = simulate(state, table, params, solver=solver, effects=effects, diagnostics=True, **kw)
+    res = simulate(state, table, params, solver=solver, effects=effects, diagnostics=True,
+                   models=models or Models(), **kw)
     return res, check_invariants(res, state, table, params, pockets=effects.pockets)
 
 
-def case_dict(state, e, params, solver, dt, violations, effects=None):
-    return {"solver": solver, "dt": dt, "table": "pool9", "params": params.to_dict(),
+def case_dict(state, e, params, solver, dt, violations, effects=None, models=None):
+    case = {"solver": solver, "dt": dt, "table": "pool9", "params": params.to_dict(),
             "effects": (effects or Effects.all()).to_dict(),
             "pos": state.pos[e].tolist(), "vel": state.vel[e].tolist(),
             "omega": state.omega[e].tolist(), "pocket": state.pocket[e].tolist(),
             "violations": violations}
+    if models is not None and models != Models():
+        case["models"] = models.to_dict()
+    return case
 
 
 def save_case(case, directory, tag="fuzz"):
@@ -81,7 +86,8 @@ def save_case(case, directory, tag="fuzz"):
 def load_case(path):
     """A saved case: (case dict, state, table, params). Its effect set is
     ``Effects.from_dict(case.get("effects"))`` (cases saved before effects
-    existed ran with all of them)."""
+    existed ran with all of them), its models
+    ``Models.from_dict(case.get("models"))`` (absent: the default models)."""
     c = json.loads(pathlib.Path(path).read_text())
     params = PhysicsParams(**c["params"])
     table = Table.pool(9) if c["table"] == "pool9" else Table.pocketless(*c.get("size", (1.27, 2.54)))
