@@ -177,7 +177,8 @@ class SearchPolicy:
         for s0 in range(0, E * K, self.chunk):
             sl = slice(s0, min(E * K, s0 + self.chunk))
             sub = BallState(struck.pos[sl], struck.vel[sl], struck.omega[sl], struck.pocket[sl])
-            res = simulate(sub, env.table, env.params, effects=getattr(env, "effects", None), validate=False)
+            res = simulate(sub, env.table, env.params, effects=getattr(env, "effects", None),
+                           models=getattr(env, "models", None), validate=False)
             before = big.pocket[sl] >= 0
             after = res.state.pocket >= 0
             newly = after & ~before

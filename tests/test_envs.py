@@ -14,6 +14,7 @@ import billiards_env  # noqa: F401  (registers the tasks)
 from billiards_env.envs import (ENV_IDS, BilliardsVectorEnv, NineBallEnv, PotOneEnv, RunOutVectorEnv,
                                 TaskConfig, register_envs)
 from billiards_env.envs.config import CONFIG_DIR, NoiseConfig
+from billiards_env.physics import Models
 from billiards_env.physics.strike import draw_to_speed, speed_to_draw
 
 IDS = list(ENV_IDS)
@@ -183,6 +184,27 @@ def test_config_yaml_and_overrides(tmp_path):
     assert env.single_observation_space.shape == (17,) and not env.effects.spin
     with pytest.raises(ValueError, match="task"):
         PotOneEnv(config=p)
+
+
+def test_models_config(tmp_path):
+    """``models:`` reaches every simulation of the env and round-trips."""
+    cfg = TaskConfig.default("pot_one", models={"cushion": "mathavan2010"})
+    assert cfg.models == Models(cushion="mathavan2010") and TaskConfig.default("pot_one").models == Models()
+    p = tmp_path / "m.yaml"
+    cfg.to_yaml(p)
+    assert TaskConfig.from_yaml(p) == cfg and TaskConfig.from_dict(cfg.to_dict()) == cfg
+    action = np.array([0.0, 1.0, 0.0, 0.0], np.float32)  # full speed: many cushion impacts
+    final = {}
+    for name, env in (("han2005", PotOneEnv()), ("mathavan2010", PotOneEnv(config=p))):
+        assert env.models.cushion == name
+        env.reset(seed=3)
+        assert np.all(np.isfinite(env.step(action)[0]))
+        final[name] = env.state.pos
+    assert not np.array_equal(final["han2005"], final["mathavan2010"])  # the cushion model was used
+    with pytest.raises(ValueError, match="unknown cushion model 'nope'"):
+        TaskConfig.default("pot_one", models={"cushion": "nope"})
+    with pytest.raises(ValueError, match="unknown model interactions.*'bumper'"):
+        PotOneEnv(models={"bumper": "han2005"})
 
 
 def test_step_solver_runs():

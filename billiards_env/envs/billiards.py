@@ -167,6 +167,7 @@ class BilliardsEnv(gym.Env):
     table = property(lambda self: self._core.table)
     params = property(lambda self: self._core.params)
     effects = property(lambda self: self._core.effects)
+    models = property(lambda self: self._core.models)
     state = property(lambda self: self._core.state)
     last_events = property(lambda self: self._core.last_events[0])
     last_start = property(lambda self: self._core.last_start[0])
@@ -306,6 +307,7 @@ class BilliardsVectorEnv(VectorEnv):
     table = property(lambda self: self._core.table)
     params = property(lambda self: self._core.params)
     effects = property(lambda self: self._core.effects)
+    models = property(lambda self: self._core.models)
     state = property(lambda self: self._core.state)
     last_events = property(lambda self: self._core.last_events)
 

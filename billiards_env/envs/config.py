@@ -2,8 +2,8 @@
 
 A ``TaskConfig`` holds everything a task needs: table, physics preset,
 solver, ball count, shot limit, action mapping, reward weights
-(``RewardConfig``), shot noise (``NoiseConfig``) and physics effects
-(``Effects``). Unknown keys anywhere raise a ``ValueError`` naming them.
+(``RewardConfig``), shot noise (``NoiseConfig``), physics effects
+(``Effects``) and the model of each interaction (``Models``). Unknown keys anywhere raise a ``ValueError`` naming them.
 The YAML files are the only source of defaults; checks that depend on the
 task (e.g. pot_one has one object ball) are the task's own ``validate``.
 """
@@ -15,7 +15,7 @@ from pathlib import Path
 
 import yaml
 
-from ..physics import Effects, PhysicsParams, Table
+from ..physics import Effects, Models, PhysicsParams, Table
 from .tasks.base import CONFIG_DIR
 from .tasks.registry import get_task
 
@@ -147,7 +147,9 @@ class TaskConfig:
     - ``min_draw``: cue draw (m) at a1 = -1 (small and positive so the cue ball moves);
     - ``margin``: clearance (m) between randomly placed balls and from the cushions;
     - ``break_speed``: nine_ball break-shot speed (m/s);
-    - ``effects``, ``reward``, ``noise``: nested configs (``NESTED``).
+    - ``effects``, ``models``, ``reward``, ``noise``: nested configs (``NESTED``);
+      ``models`` names the model of each interaction (docs/models.md), e.g.
+      ``models: {cushion: mathavan2010}``; unnamed interactions keep ``Models()``.
     """
 
     task: str
@@ -164,6 +166,7 @@ class TaskConfig:
     margin: float = 0.01
     break_speed: float = 8.0
     effects: Effects = dataclasses.field(default_factory=Effects)
+    models: Models = dataclasses.field(default_factory=Models)
     reward: RewardConfig = dataclasses.field(default_factory=RewardConfig)
     noise: NoiseConfig = dataclasses.field(default_factory=NoiseConfig)
 
@@ -255,6 +258,7 @@ class TaskConfig:
 # nested config is one TaskConfig field plus one line here.
 NESTED = {
     "effects": (Effects, Effects.from_dict),
+    "models": (Models, Models.from_dict),
     "reward": (RewardConfig, RewardConfig.from_dict),
     "noise": (NoiseConfig, NoiseConfig.from_any),
 }

@@ -131,6 +131,7 @@ class BilliardsCore:
         self.table = cfg.make_table()
         self.params = cfg.params()
         self.effects = cfg.effects
+        self.models = cfg.models
         self.record = record
         self.n_balls = cfg.n_balls + 1  # cue ball + object balls
         self.obs_dim = 4 * self.n_balls + 1
@@ -218,10 +219,11 @@ class BilliardsCore:
     def _simulate(self, state: BallState):
         c = self.cfg
         return simulate(state, self.table, self.params, solver=c.solver, dt=c.dt,
-                        record=self.record, effects=self.effects, validate=False)  # states are ours, already checked
+                        record=self.record, effects=self.effects, models=self.models,
+                        validate=False)  # states are ours, already checked
 
     def simulate(self, state: BallState):
-        """Simulate struck tables to rest with this env's table, physics, solver and effects."""
+        """Simulate struck tables to rest with this env's table, physics, solver, effects and models."""
         return self._simulate(state)
 
     @staticmethod
