@@ -8,6 +8,7 @@ the history of the headline figures (history.png).
     python scripts/benchmark.py                 # full run (a few minutes)
     python scripts/benchmark.py --quick         # smaller batches, fewer repeats
     python scripts/benchmark.py --only solver --against HEAD~1 --quick
+    python scripts/benchmark.py --only models   # each non-default model (models.md)
     python scripts/benchmark.py --history       # only redraw history.png
 
 ``--against REV`` checks REV out in a temporary git worktree, warms both
@@ -36,8 +37,9 @@ from pathlib import Path
 import numba
 import numpy as np
 
-from billiards_env.physics import (BallState, Effects, PhysicsParams, Table, rack, set_num_threads, simulate,
-                                   strike_velocity)
+from billiards_env.physics import (BallState, Effects, Models, PhysicsParams, Table, rack, set_num_threads,
+                                   simulate, strike_velocity)
+from billiards_env.physics.models import REGISTRIES
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -123,11 +125,21 @@ def solver_rows(args, P, T):
 EFFECT_SETS = {("all (= default)" if k == "all" else k): v for k, v in Effects.each_off().items()}
 
 
-def effects_rows(args, P, T):
-    """Each effect switched off alone, and all at once, on the same shots.
-    Besides shots/s the rows give what explains them: events and simulated
-    seconds per shot (the physics of the set) and the cost of one event
-    (event solver) or one step (step solver) (the kernel's work)."""
+# every effect with each non-default model, against the default models
+MODEL_SETS = {"all (= default)": (Effects.all(), Models()),
+              **{f"all + {name}": (Effects.all(), Models(**{field: name}))
+                 for field, registry in REGISTRIES.items() for name in sorted(registry)
+                 if name != getattr(Models(), field)}}
+
+
+def effects_rows(args, P, T, sets=None, section="effects"):
+    """Each effect switched off alone, and all at once, on the same shots
+    (``sets``: label -> Effects, or label -> (Effects, Models); the first is
+    the baseline of the speed-up column). Besides shots/s the rows give what
+    explains them: events and simulated seconds per shot (the physics of the
+    set) and the cost of one event (event solver) or one step (step solver)
+    (the kernel's work)."""
+    sets = {k: v if isinstance(v, tuple) else (v, Models()) for k, v in (sets or EFFECT_SETS).items()}
     rows = []
     nt = numba.config.NUMBA_NUM_THREADS
     for scene in chosen_scenes(args, ("9-ball break (8 m/s)", "two-ball cut (2 m/s, top+side)")):
@@ -137,19 +149,20 @@ def effects_rows(args, P, T):
             s = SCENES[scene](n, P, T, np.random.default_rng(1))
             one = s.take([0])
             base = None
-            for label, eff in EFFECT_SETS.items():
-                run = lambda st=s, e=eff: simulate(st, T, P, solver=solver, dt=dt, effects=e)
+            for label, (eff, models) in sets.items():
+                run = lambda st=s, e=eff, m=models: simulate(st, T, P, solver=solver, dt=dt, effects=e, models=m)
                 res = run()
                 set_num_threads(1)
                 t1 = timeit(run, args.repeats)
                 set_num_threads(nt)
                 tall = timeit(run, args.repeats)
-                lat = timeit(lambda e=eff: simulate(one, T, P, solver=solver, dt=dt, effects=e), args.repeats * 3)
+                lat = timeit(lambda e=eff, m=models: simulate(one, T, P, solver=solver, dt=dt, effects=e, models=m),
+                             args.repeats * 3)
                 base = t1 if base is None else base
                 events = float(np.mean(res.n_events))
                 sim_s = float(np.mean(res.time))
                 units = events if dt is None else sim_s / dt  # events, or steps
-                rows.append(dict(section="effects", scene=scene, solver=solver if dt is None else f"step dt={dt:g}",
+                rows.append(dict(section=section, scene=scene, solver=solver if dt is None else f"step dt={dt:g}",
                                  effects=label, batch=n, events_per_shot=events, sim_seconds_per_shot=sim_s,
                                  us_per_unit=1e6 * t1 / n / units, shots_per_s_1t=n / t1,
                                  **{f"shots_per_s_{nt}t": n / tall},
@@ -241,7 +254,7 @@ def cold_start_rows():
     return rows
 
 
-SECTION_NAMES = {"solver": "solver", "effects": "effects", "env": "env", "cold": "cold start"}
+SECTION_NAMES = {"solver": "solver", "effects": "effects", "models": "models", "env": "env", "cold": "cold start"}
 
 
 def markdown(rows):
@@ -255,8 +268,9 @@ def markdown(rows):
             lines.append(f"| {r['scene']} | {r['solver']} | {r['events_per_shot']:.1f} | {r['shots_per_s_1t']:,.0f} | "
                          f"{r[f'shots_per_s_{nt}t']:,.0f} | {r['latency_ms']:.3f} |")
         lines.append("")
-    eff = [r for r in rows if r["section"] == "effects"]
-    if eff:
+    for eff in ([r for r in rows if r["section"] == k] for k in ("effects", "models")):
+        if not eff:
+            continue
         lines += ["| scene | solver | effects | events/shot | simulated s/shot | µs per event or step | "
                   f"shots/s, 1 thread | shots/s, {nt} threads | single-shot latency (ms) | speed-up vs all |",
                   "|---|---|---|---:|---:|---:|---:|---:|---:|---:|"]
@@ -289,6 +303,8 @@ def run_sections(args) -> list[dict]:
         print("solvers:"); rows += solver_rows(args, P, T)
     if "effects" in args.only:
         print("effects:"); rows += effects_rows(args, P, T)
+    if "models" in args.only:
+        print("models:"); rows += effects_rows(args, P, T, MODEL_SETS, "models")
     if "env" in args.only:
         print("environments:"); rows += env_rows(args)
     if "cold" in args.only:
@@ -390,6 +406,7 @@ def plot_history(out_dir: Path) -> Path | None:
 COMPARED = {
     "solver": (("shots_per_s_1t", "shots/s, 1 thread"), ("latency_ms", "single-table latency (ms)")),
     "effects": (("shots_per_s_1t", "shots/s, 1 thread"), ("latency_ms", "single-shot latency (ms)")),
+    "models": (("shots_per_s_1t", "shots/s, 1 thread"), ("latency_ms", "single-shot latency (ms)")),
     "env": (("env_steps_per_s", "env steps/s"),),
     "cold": (("seconds", "seconds"),),
 }
@@ -540,7 +557,9 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=None, help="timed repeats per figure (default 5, quick 2)")
     ap.add_argument("--quick", action="store_true", help="batch 64, 2 repeats, 4 env steps")
     ap.add_argument("--only", nargs="*", default=["solver", "effects", "env", "cold"],
-                    choices=["solver", "effects", "env", "cold"])
+                    choices=list(SECTION_NAMES),
+                    help="sections (default: all but models; models: every effect with each non-default "
+                         "model, written to models.md)")
     ap.add_argument("--scene", action="append", default=None,
                     help="keep only scenes (or env ids) containing this text (repeatable)")
     ap.add_argument("--out", type=Path, default=ROOT / "results" / "benchmark")

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings, strategies as st
 
-from billiards_env.physics import Effects
+from billiards_env.physics import Effects, Models
+from billiards_env.physics.models import REGISTRIES
 from billiards_env.testing import LAYOUTS, case_dict, random_batch, run_batch, save_case
 
 REGRESSIONS = pathlib.Path(__file__).parent / "regressions"
@@ -37,10 +38,27 @@ def test_random_shots_keep_invariants_under_every_effect_set(effects, seed, layo
     _check_batch(*random_batch(rng, 8, layout, "standard", pockets=eff.pockets), "event", eff)
 
 
-def _check_batch(state, table, params, solver, effects):
+# every non-default model alone, all effects on: the kernels
+# test_models.py checks, so no new compile
+NEW_MODELS = {name: Models(**{field: name}) for field, registry in REGISTRIES.items()
+              for name in sorted(registry) if name != getattr(Models(), field)}
+
+
+@pytest.mark.parametrize("model", sorted(NEW_MODELS))
+@settings(SETTINGS, max_examples=4)
+@given(seed=st.integers(0, 2**32 - 1), layout=st.sampled_from(LAYOUTS),
+       preset=st.sampled_from(["standard", "seed"]))
+def test_random_shots_keep_invariants_with_every_model(model, seed, layout, preset):
+    """Each registered model other than the defaults keeps the invariants
+    (event solver, all effects; 4 batches of 8 shots)."""
+    rng = np.random.default_rng(seed)
+    _check_batch(*random_batch(rng, 8, layout, preset), "event", Effects.all(), NEW_MODELS[model])
+
+
+def _check_batch(state, table, params, solver, effects, models=None):
     """Simulate, save every failing table as a regression case, and fail."""
-    _, viol = run_batch(state, table, params, solver, effects=effects)
+    _, viol = run_batch(state, table, params, solver, effects=effects, models=models)
     bad = [e for e, v in enumerate(viol) if v]
     for e in bad:
-        save_case(case_dict(state, e, params, solver, 1e-3, viol[e], effects), REGRESSIONS, tag="hyp")
+        save_case(case_dict(state, e, params, solver, 1e-3, viol[e], effects, models), REGRESSIONS, tag="hyp")
     assert not bad, {e: viol[e] for e in bad}

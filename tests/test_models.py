@@ -1,8 +1,8 @@
 """Model registry: every registered model is selectable and simulates
-clean shots under every effect set; unknown names fail clearly; a new
-friction law plugs in by one registry entry."""
-import itertools
-
+clean shots where it acts (all effects on; the default models under every
+effect set); with its own effect off it shares the frictionless kernel;
+unknown names fail clearly; a new friction law plugs in by one registry
+entry."""
 import numpy as np
 import pytest
 
@@ -13,9 +13,14 @@ from billiards_env.physics.kernels import make_kernel
 from billiards_env.physics.models import REGISTRIES
 from billiards_env.testing import random_batch, run_checked
 
-CHOICES = [Models(**dict(zip(REGISTRIES, names)))
-           for names in itertools.product(*(sorted(r) for r in REGISTRIES.values()))]
+# the default models and every other registered model alone (one kernel
+# variant each; the cross product of models would add kernels, not checks
+# of a model's own code)
+CHOICES = [Models()] + [Models(**{field: name}) for field, registry in REGISTRIES.items()
+                        for name in sorted(registry) if name != getattr(Models(), field)]
 EFFECTS = Effects.each_off()
+# the effect under which each interaction's model acts (off: frictionless)
+OWN_EFFECT = {"ball_ball_friction": "ball_friction", "cushion": "cushion_friction"}
 
 
 def _shots(n, seed, layout="nine", pockets=True):
@@ -65,9 +70,22 @@ def test_switched_off_effects_share_a_kernel_whatever_the_model():
     assert make_kernel("event", Effects.minimal(), Models()) is make_kernel("event", Effects.minimal(), Models())
 
 
-@pytest.mark.parametrize("models", CHOICES, ids=lambda m: "-".join(m.key()))
-@pytest.mark.parametrize("name", sorted(EFFECTS))
-def test_every_model_and_effect_set_runs_clean_shots(models, name):
+def test_a_model_with_its_effect_off_shares_the_frictionless_kernel():
+    """Where a model does not act its choice compiles nothing new: every
+    registered model, with its own effect off (alone or with spin off),
+    gets the default models' kernel."""
+    for field, registry in REGISTRIES.items():
+        for eff in (Effects(**{OWN_EFFECT[field]: False}), Effects(spin=False), Effects.minimal()):
+            for name in registry:
+                for kind in ("event", "step"):
+                    assert make_kernel(kind, eff, Models(**{field: name}), True) is make_kernel(kind, eff, Models(), True)
+
+
+CHECKED = [(m, "all") for m in CHOICES] + [(Models(), name) for name in sorted(EFFECTS) if name != "all"]
+
+
+@pytest.mark.parametrize("models, name", CHECKED, ids=[f"{name}-{'-'.join(m.key())}" for m, name in CHECKED])
+def test_every_model_runs_clean_shots_where_it_acts(models, name):
     eff = EFFECTS[name]
     for seed, layout in enumerate(("nine", "random")):
         s, table, p = _shots(8, seed, layout, eff.pockets)

@@ -12,8 +12,12 @@ diverges. Then the same for the event solver with physics effects switched
 off, and the event solver's own sensitivity to a 1e-6 rad aim or 1e-6 m/s
 speed perturbation: the floor any solver's error is read against.
 
-``run`` measures, ``write`` writes the tables (Markdown and CSV) and the plot;
-``scripts/accuracy_vs_time.py`` is the command line.
+``run_models`` compares, on the same shots, each non-default model choice
+(``MODEL_VARIANTS``, all effects on) with the default models.
+
+``run`` / ``run_models`` measure, ``write`` / ``write_models`` write the
+tables (Markdown and CSV) and the plot; ``scripts/accuracy_vs_time.py`` is
+the command line.
 """
 from __future__ import annotations
 
@@ -26,7 +30,8 @@ import time
 import numpy as np
 from tqdm import tqdm
 
-from billiards_env.physics import BallState, Effects, PhysicsParams, Table, simulate
+from billiards_env.physics import BallState, Effects, Models, PhysicsParams, Table, simulate
+from billiards_env.physics.models import REGISTRIES
 from billiards_env.physics.constants import EV_BALL_BALL, EV_CUSHION, EV_JAW_TIP, EV_POCKET
 from billiards_env.studies import scenes
 
@@ -37,6 +42,9 @@ SCENE_SEEDS = {"two_ball": 11, "break": 12, "post_break": 13}
 # each effect switched off alone, except pockets: a closed box has no
 # pocketed set to compare, so its outcomes are not comparable
 EFFECT_VARIANTS = {k: v for k, v in Effects.each_off().items() if k not in ("all", "no pockets", "minimal")}
+# each non-default model alone (the others default), all effects on
+MODEL_VARIANTS = {f"{field}: {name}": Models(**{field: name}) for field, registry in REGISTRIES.items()
+                  for name in sorted(registry) if name != getattr(Models(), field)}
 COLLISION_KINDS = (EV_BALL_BALL, EV_CUSHION, EV_JAW_TIP, EV_POCKET)
 SAME_TIME = 1e-9  # s: events closer than this count as simultaneous (order-free)
 
@@ -250,6 +258,42 @@ def run(shots: int = 200, dts=DTS, seed: int = 0, single: int = 5, budget: float
                 shots=n, dts=dts)
 
 
+def run_models(shots: int = 200, seed: int = 0, single: int = 20) -> dict:
+    """Each of ``MODEL_VARIANTS`` against the default models (event solver,
+    all effects) on the study's seeded shots: time per shot (batched and
+    ``single`` shots one table at a time), events per shot, final position
+    error and how often the outcome differs or the event order diverges
+    (the columns of the effects table)."""
+    if shots < 1:
+        raise ValueError("shots must be >= 1")
+    params, table, n = PhysicsParams.standard(), Table.pool(9), shots
+    k = min(single, n)
+    t_start = time.perf_counter()
+    batches = {name: scenes.build(name, table, params, n, seed=SCENE_SEEDS[name] + seed) for name in SCENE_NAMES}
+    variants = {"default (reference)": Models(), **MODEL_VARIANTS}
+    for models in variants.values():  # compile (or load) every variant before timing
+        one = batches[SCENE_NAMES[0]].take([0])
+        simulate(one, table, params, solver="event", models=models, record=True)
+        simulate(one, table, params, solver="event", models=models)
+    warm = time.perf_counter() - t_start
+    rows, idx = [], np.arange(n)
+    for name in SCENE_NAMES:
+        st = batches[name]
+        ref = simulate(st, table, params, solver="event", record=True)
+        t_ref = None
+        for label, models in variants.items():
+            res = simulate(st, table, params, solver="event", models=models, record=True)
+            tb = 1e3 * batch_time(st, table, params, solver="event", models=models) / n
+            t_ref = t_ref or tb
+            c = compare(ref, res, idx)
+            rows.append(dict(scene=name, models=label, time_batched_ms=tb,
+                             time_single_ms=1e3 * single_times(st, table, params, k, solver="event", models=models),
+                             speedup=t_ref / tb, events_per_shot=float(res.n_events.mean()),
+                             err_median_mm=_stat(c["err_mm"], 50), err_p95_mm=_stat(c["err_mm"], 95),
+                             outcome_differs=float(c["outcome"].mean()), order_diverges=float(c["order"].mean())))
+    return dict(models=rows, shots=n, warm=warm, total=time.perf_counter() - t_start)
+
+
 # ---------------------------------------------------------------- output --
 def write(out: dict, out_dir) -> list[pathlib.Path]:
     """Write a ``run`` result to ``out_dir``: accuracy.csv, effects.csv,
@@ -262,6 +306,29 @@ def write(out: dict, out_dir) -> list[pathlib.Path]:
     plot(out_dir / "accuracy.png", out)
     write_markdown(out_dir / "accuracy.md", out, "accuracy.png")
     return [out_dir / f for f in ("accuracy.md", "accuracy.csv", "effects.csv", "sensitivity.csv", "accuracy.png")]
+
+
+def write_models(out: dict, out_dir) -> list[pathlib.Path]:
+    """Write a ``run_models`` result to ``out_dir``: models.csv and models.md."""
+    out_dir = pathlib.Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    write_csv(out_dir / "models.csv", out["models"])
+    L = ["# Model choices against the default models", "",
+         f"{out['shots']} seeded shots per scene (the shots of accuracy.md), event solver, standard physics, all "
+         "effects on. Reference: the default models (`Models()`: constant ball-ball friction, han2005 cushion); "
+         "each row changes one model. Columns as in the physics-effects table of accuracy.md: speed-up = "
+         "reference time / row time (batched); *outcome differs*: set of pocketed balls or the cue ball's first "
+         "contact differs from the reference's.", "",
+         "| scene | models | time/shot batched (ms) | time/shot single (ms) | speed-up | events/shot | "
+         "pos. error median (mm) | pos. error p95 (mm) | outcome differs | order diverges |",
+         "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in out["models"]:
+        L.append(f"| {r['scene']} | {r['models']} | {_f(r['time_batched_ms'])} | {_f(r['time_single_ms'])} | "
+                 f"{r['speedup']:.2f}x | {_f(r['events_per_shot'])} | {_f(r['err_median_mm'])} | "
+                 f"{_f(r['err_p95_mm'])} | {_pct(r['outcome_differs'])} | {_pct(r['order_diverges'])} |")
+    L += ["", f"Run time: {out['total']:.0f} s including {out['warm']:.0f} s warm-up (compile or cache load).", ""]
+    (out_dir / "models.md").write_text("\n".join(L))
+    return [out_dir / "models.csv", out_dir / "models.md"]
 
 
 def write_csv(path, rows):
