@@ -45,6 +45,7 @@ EFFECT_VARIANTS = {k: v for k, v in Effects.each_off().items() if k not in ("all
 # each non-default model alone (the others default), all effects on
 MODEL_VARIANTS = {f"{field}: {name}": Models(**{field: name}) for field, registry in REGISTRIES.items()
                   for name in sorted(registry) if name != getattr(Models(), field)}
+MODEL_REPEATS = 20  # batched runs per model row (the fastest counts)
 COLLISION_KINDS = (EV_BALL_BALL, EV_CUSHION, EV_JAW_TIP, EV_POCKET)
 SAME_TIME = 1e-9  # s: events closer than this count as simultaneous (order-free)
 
@@ -283,7 +284,9 @@ def run_models(shots: int = 200, seed: int = 0, single: int = 20) -> dict:
         t_ref = None
         for label, models in variants.items():
             res = simulate(st, table, params, solver="event", models=models, record=True)
-            tb = 1e3 * batch_time(st, table, params, solver="event", models=models) / n
+            # fastest of MODEL_REPEATS: these runs take milliseconds, so a
+            # busy machine's noise would otherwise decide the speed-up
+            tb = 1e3 * batch_time(st, table, params, repeats=MODEL_REPEATS, solver="event", models=models) / n
             t_ref = t_ref or tb
             c = compare(ref, res, idx)
             rows.append(dict(scene=name, models=label, time_batched_ms=tb,
@@ -317,7 +320,7 @@ def write_models(out: dict, out_dir) -> list[pathlib.Path]:
          f"{out['shots']} seeded shots per scene (the shots of accuracy.md), event solver, standard physics, all "
          "effects on. Reference: the default models (`Models()`: constant ball-ball friction, han2005 cushion); "
          "each row changes one model. Columns as in the physics-effects table of accuracy.md: speed-up = "
-         "reference time / row time (batched); *outcome differs*: set of pocketed balls or the cue ball's first "
+         f"reference time / row time (batched, fastest of {MODEL_REPEATS} runs); *outcome differs*: set of pocketed balls or the cue ball's first "
          "contact differs from the reference's.", "",
          "| scene | models | time/shot batched (ms) | time/shot single (ms) | speed-up | events/shot | "
          "pos. error median (mm) | pos. error p95 (mm) | outcome differs | order diverges |",
