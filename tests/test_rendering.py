@@ -6,7 +6,7 @@ import pytest
 import billiards_env  # noqa: F401
 from billiards_env.envs import NineBallEnv, PotOneEnv, RunOutVectorEnv
 from billiards_env.rendering import FELT_COLOR, ball_color, ball_paths, image_size, save_shot_animation, world_to_pixel
-from billiards_env.rendering.draw import NUMBER_DISC_RADIUS, NUMBER_MIN_RADIUS
+from billiards_env.rendering.draw import NUMBER_DISC_RADIUS, NUMBER_MIN_RADIUS, PPM
 
 
 def ball_body_pixel(table, p, i, R, ppm):
@@ -20,7 +20,7 @@ def ball_body_pixel(table, p, i, R, ppm):
     return int(round(cx + dx)), int(round(cy))
 
 
-def _check_balls(img, env, state_pos, pocket, ppm=200):
+def _check_balls(img, env, state_pos, pocket, ppm=PPM):
     for i, (p, pk) in enumerate(zip(state_pos, pocket)):
         if pk >= 0:
             continue
@@ -32,7 +32,7 @@ def test_rgb_array_shape_and_balls_at_state_positions():
     env = NineBallEnv(render_mode="rgb_array")
     env.reset(seed=2)
     img = env.render()
-    assert img.dtype == np.uint8 and img.shape == image_size(env.table, 200) + (3,)
+    assert img.dtype == np.uint8 and img.shape == image_size(env.table, PPM) + (3,)
     _check_balls(img, env, env.state.pos[0], env.state.pocket[0])
     # a pocketed ball is not drawn
     s = env.state
@@ -40,7 +40,7 @@ def test_rgb_array_shape_and_balls_at_state_positions():
     from billiards_env.physics import BallState
     env.set_state(BallState(s.pos.copy(), s.vel, s.omega, pk))
     img = env.render()
-    c, r = ball_body_pixel(env.table, s.pos[0, 3], 3, env.params.R, 200)
+    c, r = ball_body_pixel(env.table, s.pos[0, 3], 3, env.params.R, PPM)
     assert tuple(img[r, c]) != ball_color(3)
     # the felt is drawn mid-table away from the balls
     empty = np.array([env.table.width / 2, 0.05 * env.table.length])

@@ -117,7 +117,8 @@ class _Renderer:
         if self.render_paths and core.last_events[k] is not None:
             paths = ball_paths(core.last_events[k], core.params, core.n_balls)
         s = core.state
-        return render_table(core.table, core.params, s.pos[k], s.pocket[k], paths=paths, ppm=self.render_ppm)
+        size = {} if self.render_ppm is None else {"ppm": self.render_ppm}  # None: the renderer's default
+        return render_table(core.table, core.params, s.pos[k], s.pocket[k], paths=paths, **size)
 
     def show(self, img: np.ndarray, fps: int) -> None:
         if not _has_display():
@@ -149,7 +150,7 @@ class BilliardsEnv(gym.Env):
     metadata = {"render_modes": ["rgb_array", "human"], "render_fps": 4}
     task: str = ""
 
-    def __init__(self, render_mode: str | None = None, config=None, render_ppm: int = 200,
+    def __init__(self, render_mode: str | None = None, config=None, render_ppm: float | None = None,
                  render_paths: bool = True, **overrides: Any):
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
             raise ValueError(f"render_mode must be one of {self.metadata['render_modes']} or None, got {render_mode!r}")
@@ -284,7 +285,7 @@ class BilliardsVectorEnv(VectorEnv):
     metadata = {"render_modes": ["rgb_array"], "render_fps": 4, "autoreset_mode": AutoresetMode.NEXT_STEP}
     task: str = ""
 
-    def __init__(self, num_envs: int = 1, render_mode: str | None = None, config=None, render_ppm: int = 200,
+    def __init__(self, num_envs: int = 1, render_mode: str | None = None, config=None, render_ppm: float | None = None,
                  render_paths: bool = True, autoreset_mode: str | AutoresetMode = AutoresetMode.NEXT_STEP,
                  **overrides: Any):
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:

@@ -27,6 +27,8 @@ BALL_COLORS = {
     5: (255, 120, 0), 6: (0, 150, 60), 7: (130, 20, 30), 8: (20, 20, 20),
 }
 BORDER = 0.08  # m of rail drawn around the playing surface
+# Default pixels per metre: a ball is 17 px across, its number legible.
+PPM = 300
 # Ball numbers: drawn from this ball radius (px) up (smaller balls have no
 # room for them), straight on the ball up to NUMBER_DISC_RADIUS, on a white
 # disc of NUMBER_DISC_FRACTION R from there. Digits are a 3 x 5 pixel font
@@ -44,12 +46,12 @@ def ball_color(i: int) -> tuple:
     return BALL_COLORS[i] if i <= 8 else BALL_COLORS[(i - 9) % 7 + 1]
 
 
-def image_size(table, ppm: float = 200, border: float = BORDER) -> tuple[int, int]:
+def image_size(table, ppm: float = PPM, border: float = BORDER) -> tuple[int, int]:
     """(height, width) in pixels."""
     return int(round((table.length + 2 * border) * ppm)), int(round((table.width + 2 * border) * ppm))
 
 
-def world_to_pixel(table, xy, ppm: float = 200, border: float = BORDER) -> np.ndarray:
+def world_to_pixel(table, xy, ppm: float = PPM, border: float = BORDER) -> np.ndarray:
     """Table coordinates [..., 2] (m) -> pixel (column, row) [..., 2] as floats."""
     xy = np.asarray(xy, dtype=np.float64)
     col = (xy[..., 0] + border) * ppm
@@ -111,7 +113,7 @@ def positions_at(log, params, n_balls: int, t: float, effects=None):
     return pos, on
 
 
-def render_table(table, params, pos, pocket=None, paths=None, ppm: float = 200,
+def render_table(table, params, pos, pocket=None, paths=None, ppm: float = PPM,
                  border: float = BORDER) -> np.ndarray:
     """RGB uint8 image [H, W, 3] (see ``image_size``) of the table with its
     cushions, pockets and the balls at ``pos [B, 2]`` (those with
@@ -201,7 +203,7 @@ def _check_suffix(path) -> Path:
     return path
 
 
-def save_shot_animation(path, table, params, log, n_balls: int, fps: int = 30, ppm: float = 150,
+def save_shot_animation(path, table, params, log, n_balls: int, fps: int = 30, ppm: float = PPM,
                         speedup: float = 1.0, max_seconds: float = 30.0, paths: bool = True,
                         effects=None) -> Path:
     """Write a recorded shot (an ``EventLog`` from ``simulate(..., record=True)``)
@@ -220,7 +222,7 @@ def save_shot_animation(path, table, params, log, n_balls: int, fps: int = 30, p
     return write_animation(path, np.stack(frames), fps)
 
 
-def save_replay_animation(path, replay, shots=None, fps: int = 30, ppm: float = 300, speedup: float = 1.0,
+def save_replay_animation(path, replay, shots=None, fps: int = 30, ppm: float = PPM, speedup: float = 1.0,
                           max_seconds: float = 60.0, paths: bool = True, hold: float = 0.5) -> Path:
     """Write the shots (default: all) of a ``Replay`` one after another as a
     GIF or MP4, holding each shot's last frame ``hold`` seconds of video.
