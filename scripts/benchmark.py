@@ -37,9 +37,8 @@ from pathlib import Path
 import numba
 import numpy as np
 
-from billiards_env.physics import (BallState, Effects, Models, PhysicsParams, Table, rack, set_num_threads,
-                                   simulate, strike_velocity)
-from billiards_env.physics.models import REGISTRIES
+from billiards_env.physics import (BallState, Effects, PhysicsParams, Table, rack, set_num_threads, simulate,
+                                   strike_velocity)
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -125,11 +124,16 @@ def solver_rows(args, P, T):
 EFFECT_SETS = {("all (= default)" if k == "all" else k): v for k, v in Effects.each_off().items()}
 
 
-# every effect with each non-default model, against the default models
-MODEL_SETS = {"all (= default)": (Effects.all(), Models()),
-              **{f"all + {name}": (Effects.all(), Models(**{field: name}))
-                 for field, registry in REGISTRIES.items() for name in sorted(registry)
-                 if name != getattr(Models(), field)}}
+def model_sets() -> dict:
+    """Every effect with each non-default model, against the default models
+    (built on demand: a revision older than the model registry, timed with
+    --against, has no Models and runs only the other sections)."""
+    from billiards_env.physics import Models
+    from billiards_env.physics.models import REGISTRIES
+    return {"all (= default)": (Effects.all(), Models()),
+            **{f"all + {name}": (Effects.all(), Models(**{field: name}))
+               for field, registry in REGISTRIES.items() for name in sorted(registry)
+               if name != getattr(Models(), field)}}
 
 
 def effects_rows(args, P, T, sets=None, section="effects"):
@@ -139,7 +143,7 @@ def effects_rows(args, P, T, sets=None, section="effects"):
     explains them: events and simulated seconds per shot (the physics of the
     set) and the cost of one event (event solver) or one step (step solver)
     (the kernel's work)."""
-    sets = {k: v if isinstance(v, tuple) else (v, Models()) for k, v in (sets or EFFECT_SETS).items()}
+    sets = {k: v if isinstance(v, tuple) else (v, None) for k, v in (sets or EFFECT_SETS).items()}
     rows = []
     nt = numba.config.NUMBA_NUM_THREADS
     for scene in chosen_scenes(args, ("9-ball break (8 m/s)", "two-ball cut (2 m/s, top+side)")):
@@ -150,13 +154,14 @@ def effects_rows(args, P, T, sets=None, section="effects"):
             one = s.take([0])
             base = None
             for label, (eff, models) in sets.items():
-                run = lambda st=s, e=eff, m=models: simulate(st, T, P, solver=solver, dt=dt, effects=e, models=m)
+                choice = {} if models is None else {"models": models}  # None: the simulator's default
+                run = lambda st=s, e=eff, m=choice: simulate(st, T, P, solver=solver, dt=dt, effects=e, **m)
                 res = run()
                 set_num_threads(1)
                 t1 = timeit(run, args.repeats)
                 set_num_threads(nt)
                 tall = timeit(run, args.repeats)
-                lat = timeit(lambda e=eff, m=models: simulate(one, T, P, solver=solver, dt=dt, effects=e, models=m),
+                lat = timeit(lambda e=eff, m=choice: simulate(one, T, P, solver=solver, dt=dt, effects=e, **m),
                              args.repeats * 3)
                 base = t1 if base is None else base
                 events = float(np.mean(res.n_events))
@@ -304,7 +309,7 @@ def run_sections(args) -> list[dict]:
     if "effects" in args.only:
         print("effects:"); rows += effects_rows(args, P, T)
     if "models" in args.only:
-        print("models:"); rows += effects_rows(args, P, T, MODEL_SETS, "models")
+        print("models:"); rows += effects_rows(args, P, T, model_sets(), "models")
     if "env" in args.only:
         print("environments:"); rows += env_rows(args)
     if "cold" in args.only:
