@@ -4,8 +4,8 @@ Event solver: within a motion state a ball's position is quadratic in time,
 r(t) = r0 + v t + a t^2 / 2, so the gap function of a ball pair is a quartic,
 of a ball and a cushion line a quadratic, of a ball and a jaw tip or pocket
 circle a quartic (Leckie & Greenspan 2006, "An event-based pool physics
-simulator"). Step solver: straight-line motion within a step, as in the
-write-up's stage 3, so every gap function is at most quadratic.
+simulator"). Step solver: straight-line motion within a step (a first-order
+scheme), so every gap function is at most quadratic.
 
 Gap functions are signed so that contact is f(t) = 0 and f > 0 is apart.
 """

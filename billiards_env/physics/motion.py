@@ -11,9 +11,9 @@ technical proofs on sliding and rolling; the same equations as pooltool's evolve
   in every state (clamped at zero; no event, since it does not move the ball)
   and, for a ball otherwise at rest, ends with a spin-stop event.
 
-The write-up's sign convention for the friction torque (r x F with r the
-radius to the contact point) is followed literally; its "perimeter velocity"
-is u above.
+The friction torque is r x F with r the radius from the centre to the
+contact point; u above is the velocity of that contact point (the ball's
+"perimeter velocity" at the cloth).
 """
 import math
 
@@ -183,8 +183,8 @@ def apply_transition(vel, om, st, e, i, p):
 
 @njit
 def friction_step(vel, om, st, e, i, dt, p, zspin_on, spin_on):
-    """Explicit (Euler) friction update over one fixed step, as in the
-    write-up's stage 2, clamped so that friction never reverses a velocity:
+    """Explicit (Euler) friction update over one fixed step, of the
+    fixed-step scheme, clamped so that friction never reverses a velocity:
     a slide that would end within the step ends in its rolling state, a roll
     that would end stops. Returns True if the ball's state changed kind."""
     R, g = p[C.P_R], p[C.P_G]

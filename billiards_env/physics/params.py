@@ -1,7 +1,7 @@
 """Physical parameters of balls, felt, cushions and cue (SI units).
 
 Presets:
-- ``seed``: exactly the constants of the project's physics write-up
+- ``seed``: the project's original constants, kept as a preset
   (m = 0.5 kg, k = 10 N/m, contact time 10 ms, mu_s 0.2, mu_r 0.01, mu_b 0.1,
   e = 1). They give cue-ball speeds of a few cm/s.
 - ``standard``: regulation pool. Ball mass and radius from the WPA
@@ -48,8 +48,8 @@ class PhysicsParams:
 
     @classmethod
     def seed(cls) -> "PhysicsParams":
-        # Exactly the write-up's constants; the cushion follows the write-up's
-        # "similar process": restitution e = 1 and the ball-ball friction.
+        # The original constants; the cushion treated like a ball-ball
+        # impact: restitution e = 1 and the ball-ball friction.
         return cls(m=0.5, R=0.028575, mu_s=0.2, mu_r=0.01, mu_sp=0.0127,
                    mu_b=0.1, e_b=1.0, e_c=1.0, f_c=0.1, h_c=1.4 * 0.028575,
                    k=10.0, contact_time=0.01, max_draw=0.3)
@@ -90,8 +90,8 @@ class PhysicsParams:
 
     @property
     def max_speed(self) -> float:
-        """Cue-ball speed of the longest draw, v = k dt x / m (Hooke's law impulse)."""
-        return self.k * self.contact_time * self.max_draw / self.m
+        """Cue-ball speed of the longest draw (``draw_to_speed``)."""
+        return draw_to_speed(self.max_draw, self)
 
     def as_array(self) -> np.ndarray:
         """Parameter vector in the layout the kernels read (constants.P_*)."""
@@ -121,3 +121,16 @@ class PhysicsParams:
         if unknown:
             raise ValueError(f"unknown PhysicsParams fields: {sorted(unknown)}")
         return dataclasses.replace(base, **{k: float(v) for k, v in d.items()})
+
+
+def draw_to_speed(draw, params: PhysicsParams):
+    """Cue-ball speed (m/s) of a cue drawn back ``draw`` metres: v = k dt x / m
+    (Hooke's law impulse J = k x dt, see ``strike``). Scalars or arrays. The
+    one definition of the cue's speed law (``strike`` re-exports it)."""
+    return params.k * params.contact_time * draw / params.m
+
+
+def speed_to_draw(speed, params: PhysicsParams):
+    """Inverse of ``draw_to_speed``: the cue draw (m) giving cue-ball speed
+    ``speed`` (m/s), x = v m / (k dt). Not clipped to [0, max_draw]."""
+    return speed * params.m / (params.k * params.contact_time)

@@ -1,4 +1,4 @@
-"""Step solver: the write-up's algorithm: fixed time step dt; within a step
+"""Step solver: the original fixed-step scheme: fixed time step dt; within a step
 balls move in straight lines, the earliest collision in the step is found from
 the quadratic, balls are advanced to it and it is resolved, until the step is
 used up; then felt friction updates the velocities for the step (clamped so

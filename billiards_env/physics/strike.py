@@ -1,4 +1,4 @@
-"""The cue strike (write-up stage 1).
+"""The cue strike.
 
 Hooke's law impulse: the cue drawn back a distance x gives the cue ball the
 impulse J = k x dt (dt the contact time), so v = k dt x / m along the aim.
@@ -14,21 +14,9 @@ import dataclasses
 
 import numpy as np
 
-from .params import PhysicsParams
+from .params import PhysicsParams, draw_to_speed, speed_to_draw  # noqa: F401 (the cue's speed law, re-exported)
 from .state import BallState
 from .validation import as_batch_vector, check_finite
-
-
-def draw_to_speed(draw, params: PhysicsParams):
-    """Cue-ball speed (m/s) of a cue drawn back ``draw`` metres: v = k dt x / m
-    (Hooke's law impulse, see the module docstring). Scalars or arrays."""
-    return params.k * params.contact_time * draw / params.m
-
-
-def speed_to_draw(speed, params: PhysicsParams):
-    """Inverse of ``draw_to_speed``: the cue draw (m) giving cue-ball speed
-    ``speed`` (m/s), x = v m / (k dt). Not clipped to [0, max_draw]."""
-    return speed * params.m / (params.k * params.contact_time)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

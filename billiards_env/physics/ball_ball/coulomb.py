@@ -1,10 +1,10 @@
 """Ball-ball impact with Coulomb friction (throw and spin transfer).
 
 Source: Alciatore's technical proofs on throw (the model of pooltool's
-"frictional inelastic" resolver; the write-up's stage 4 with its signs made
-consistent). The normal impulse jn gives restitution e_b along the line of
-centres (``contact.normal_impulse``). Friction acts against the slip u_t of
-the two contact points, u = v + omega x r with r = +R n on ball i and -R n on
+"frictional inelastic" resolver, with consistent signs). The normal impulse
+jn gives restitution e_b along the line of centres
+(``contact.normal_impulse``). Friction acts against the slip u_t of the two
+contact points, u = v + omega x r with r = +R n on ball i and -R n on
 ball j, with impulse
 
     J_t = -min(mu jn, |u_t| / 7) u_t / |u_t|        (per unit mass),
