@@ -216,15 +216,12 @@ class BilliardsCore:
         return Shots(phi, speed, a, b)
 
     # --- simulation -------------------------------------------------------
-    def _simulate(self, state: BallState):
+    def simulate(self, state: BallState):
+        """Simulate struck tables to rest with this env's table, physics, solver, effects and models."""
         c = self.cfg
         return simulate(state, self.table, self.params, solver=c.solver, dt=c.dt,
                         record=self.record, effects=self.effects, models=self.models,
                         validate=False)  # states are ours, already checked
-
-    def simulate(self, state: BallState):
-        """Simulate struck tables to rest with this env's table, physics, solver, effects and models."""
-        return self._simulate(state)
 
     @staticmethod
     def at_rest(s: BallState) -> BallState:
@@ -306,7 +303,7 @@ class BilliardsCore:
         ctx = self.shot_context()
         tgt, phi0 = ctx.target[sel], ctx.potential[sel]
         shots = self.apply_noise(self.actions_to_shots(actions, sel), idx)
-        res = self._simulate(strike_velocity(start, *shots, p))
+        res = self.simulate(strike_velocity(start, *shots, p))
         end = self.at_rest(res.state)
 
         shot = ShotOutcome(pocketed=(end.pocket >= 0) & (start.pocket < 0), pocket_after=end.pocket,
