@@ -9,7 +9,7 @@ from collections import namedtuple
 import numpy as np
 
 from . import constants as C
-from ._jit import njit
+from ._jit import njit_alloc
 
 # pos [E, B, 2], vel [E, B, 2], om [E, B, 3], st [E, B] motion state
 # (constants.STATIONARY ...), pocket [E, B] pocket index or -1
@@ -36,7 +36,7 @@ LogBuffers = namedtuple("LogBuffers", "on n t kind ij state")
 ImpactScratch = namedtuple("ImpactScratch", "i j w balls saved swapped")
 
 
-@njit
+@njit_alloc
 def impact_scratch():
     """Fresh ``ImpactScratch`` for one table."""
     return ImpactScratch(np.empty(C.MAX_SIMULTANEOUS, dtype=np.int64), np.empty(C.MAX_SIMULTANEOUS, dtype=np.int64),
