@@ -213,3 +213,12 @@ def load_config(path=None, env_id: str | None = None, overrides: list[str] | Non
 def save_config(cfg: TrainConfig, path) -> None:
     with open(path, "w") as f:
         yaml.safe_dump(cfg.to_dict(), f, sort_keys=False)
+
+
+def load_run_config(run_dir) -> TrainConfig:
+    """The resolved config a run saved beside its model (``<run>/config.yaml``)."""
+    path = Path(run_dir) / "config.yaml"
+    if not path.exists():
+        raise FileNotFoundError(f"{run_dir}: no config.yaml (is it a run directory of scripts/train.py?)")
+    with open(path) as f:
+        return TrainConfig.from_dict(yaml.safe_load(f))

@@ -3,9 +3,11 @@
 ``train(cfg, run_dir)`` builds the SB3 adapter (one batched simulator call
 per step for all ``n_envs`` tables), optional VecNormalize, the model, and
 trains with a progress bar, TensorBoard logging (when installed), a CSV log
-of episode statistics (for the learning curve), periodic checkpoints (model +
-VecNormalize stats) and the final model saved as ``<run>/model.zip`` with
-``<run>/vecnormalize.pkl`` and ``<run>/config.yaml``.
+of episode statistics (for the learning curve), periodic checkpoints
+(``agents.checkpoints``: model, normaliser statistics as plain arrays, step
+counter, random state) and the final model saved as ``<run>/model.zip`` with
+``<run>/vecnormalize.pkl`` and ``<run>/config.yaml``. ``train(cfg, run_dir,
+resume=True)`` continues a stopped or killed run from its newest checkpoint.
 
 ``train_and_evaluate(cfg, run_dir, command)`` (what ``scripts/train.py``
 runs) also plots the learning curve and evaluates the trained model against
@@ -21,7 +23,8 @@ from pathlib import Path
 import numpy as np
 from stable_baselines3.common.callbacks import BaseCallback
 
-from .config import TrainConfig, save_config
+from .checkpoints import last_logged_steps, latest_checkpoint, load_checkpoint, save_checkpoint
+from .config import TrainConfig, load_run_config, save_config
 from .sb3_vec_env import make_sb3_vec_env
 
 
@@ -64,24 +67,44 @@ class EpisodeLogger(BaseCallback):
     over each rollout, to ``progress.csv`` and to the SB3 logger
     (TensorBoard ``rollout/success_rate`` etc.); saves checkpoints."""
 
-    def __init__(self, run_dir: Path, checkpoint_every: int = 0, vecnorm=None):
+    FIELDS = ["timesteps", "time_s", "episodes", "success_rate", "mean_reward", "scratch_rate", "foul_rate",
+              "steps_per_s"]
+
+    def __init__(self, run_dir: Path, checkpoint_every: int = 0, vecnorm=None, start_steps: int = 0,
+                 start_elapsed_s: float = 0.0):
         super().__init__()
         self.run_dir = run_dir
         self.checkpoint_every = int(checkpoint_every)
         self.vecnorm = vecnorm
-        self._next_ckpt = self.checkpoint_every or None
+        self._next_ckpt = (start_steps // self.checkpoint_every + 1) * self.checkpoint_every \
+            if self.checkpoint_every else None
         self._buf = {"success": [], "reward": [], "scratch": [], "foul": []}
         self._ep_ret = None
-        self.t0 = time.perf_counter()
+        # a resumed run continues the clock and the log of its checkpoint
+        self.start_steps, self.start_elapsed_s = int(start_steps), float(start_elapsed_s)
+        self.t0 = time.perf_counter() - self.start_elapsed_s
         self.rows: list[dict] = []
         self._csv = None
 
     def _on_training_start(self) -> None:
         self._ep_ret = np.zeros(self.training_env.num_envs)
-        self._csv_f = open(self.run_dir / "progress.csv", "w", newline="")
-        self._csv = csv.DictWriter(self._csv_f, fieldnames=["timesteps", "time_s", "episodes", "success_rate",
-                                                            "mean_reward", "scratch_rate", "foul_rate", "steps_per_s"])
+        path = self.run_dir / "progress.csv"
+        kept = []
+        if self.start_steps and path.exists():  # keep the rows up to the checkpoint
+            with open(path, newline="") as f:
+                kept = [r for r in csv.DictReader(f) if int(r["timesteps"]) <= self.start_steps]
+        self._csv_f = open(path, "w", newline="")
+        self._csv = csv.DictWriter(self._csv_f, fieldnames=self.FIELDS)
         self._csv.writeheader()
+        self._csv.writerows(kept)
+
+    def _on_rollout_start(self) -> None:
+        # after the previous update and before new steps: the state a resumed
+        # run restarts from exactly (checkpoint steps are rollout boundaries)
+        if self._next_ckpt is not None and self.num_timesteps >= self._next_ckpt:
+            save_checkpoint(self.run_dir, self.model, self.vecnorm, time.perf_counter() - self.t0)
+            while self._next_ckpt <= self.num_timesteps:
+                self._next_ckpt += self.checkpoint_every
 
     def _on_step(self) -> bool:
         rewards = self.locals["rewards"]
@@ -98,13 +121,6 @@ class EpisodeLogger(BaseCallback):
             self._buf["foul"].append(float(bool(info.get("foul", False))))
             self._buf["reward"].append(float(self._ep_ret[i]))
             self._ep_ret[i] = 0.0
-        if self._next_ckpt is not None and self.num_timesteps >= self._next_ckpt:
-            ck = self.run_dir / "checkpoints"
-            ck.mkdir(exist_ok=True)
-            self.model.save(ck / f"model_{self.num_timesteps}_steps.zip")
-            if self.vecnorm is not None:
-                self.vecnorm.save(str(ck / f"model_{self.num_timesteps}_steps_vecnormalize.pkl"))
-            self._next_ckpt += self.checkpoint_every
         return True
 
     def _on_rollout_end(self) -> None:
@@ -157,26 +173,50 @@ def build_model(cfg: TrainConfig, env, tensorboard_log: str | None):
                device=cfg.train.device, tensorboard_log=tensorboard_log, verbose=0, **kw)
 
 
-def train(cfg: TrainConfig, run_dir, command: str = "") -> dict:
+def train(cfg: TrainConfig, run_dir, command: str = "", resume: bool = False) -> dict:
     """Train according to ``cfg``; everything is written to ``run_dir``.
-    Returns a summary dict (wall time, throughput, final training success)."""
+    Returns a summary dict (wall time, throughput, final training success).
+
+    ``resume``: continue the run in ``run_dir`` from its newest checkpoint
+    (``agents.checkpoints``) up to ``cfg.train.total_timesteps``; the summary's
+    ``resumed`` entry gives the checkpoint's step, the steps the stopped run
+    had logged past it (``steps_redone``) and the earlier training time."""
     import numba
     import torch
 
     run_dir = Path(run_dir)
     run_dir.mkdir(parents=True, exist_ok=True)
-    save_config(cfg, run_dir / "config.yaml")
-    (run_dir / "command.txt").write_text(command + "\n")
+    ck = latest_checkpoint(run_dir) if resume else None
+    if resume and ck is None:
+        raise FileNotFoundError(f"{run_dir}: no complete checkpoint to resume from")
+    if ck is None:
+        save_config(cfg, run_dir / "config.yaml")
+        (run_dir / "command.txt").write_text(command + "\n")
+    else:
+        with open(run_dir / "command.txt", "a") as f:
+            f.write(command + "\n")
     torch.set_num_threads(cfg.train.torch_threads)
     numba.set_num_threads(min(cfg.train.numba_threads, numba.config.NUMBA_NUM_THREADS))
 
     env, vecnorm = build_env(cfg, cfg.train.seed)
     tb = str(run_dir / "tb") if (cfg.train.tensorboard and _has_tensorboard()) else None
-    model = build_model(cfg, env, tb)
-    cb = EpisodeLogger(run_dir, cfg.train.checkpoint_every, vecnorm)
-    callbacks = [cb] + ([ProgressBar(cfg.train.total_timesteps)] if cfg.train.progress_bar else [])
+    resumed = None
+    if ck is None:
+        model = build_model(cfg, env, tb)
+        cb = EpisodeLogger(run_dir, cfg.train.checkpoint_every, vecnorm)
+    else:
+        logged = last_logged_steps(run_dir)
+        model = load_checkpoint(ck, cfg.algo, env, vecnorm, cfg.train.device, tb)
+        prev = ck.state()["elapsed_s"]
+        resumed = dict(checkpoint=str(ck.model_path.relative_to(run_dir)), from_step=ck.steps,
+                       steps_redone=max(0, logged - ck.steps), previous_train_wall_s=prev)
+        cb = EpisodeLogger(run_dir, cfg.train.checkpoint_every, vecnorm, ck.steps, prev)
+    start = int(model.num_timesteps)
+    remaining = max(cfg.train.total_timesteps - start, 0)
+    callbacks = [cb] + ([ProgressBar(remaining)] if cfg.train.progress_bar else [])
     t0 = time.perf_counter()
-    model.learn(total_timesteps=cfg.train.total_timesteps, callback=callbacks, tb_log_name=cfg.algo)
+    model.learn(total_timesteps=remaining, callback=callbacks, tb_log_name=cfg.algo,
+                reset_num_timesteps=ck is None)
     wall = time.perf_counter() - t0
     model.save(run_dir / "model.zip")
     if vecnorm is not None:
@@ -184,8 +224,10 @@ def train(cfg: TrainConfig, run_dir, command: str = "") -> dict:
     env.close()
     last = cb.rows[-5:]
     summary = dict(env_id=cfg.env_id, algo=cfg.algo, timesteps=int(model.num_timesteps), train_wall_s=wall,
-                   env_steps_per_s=model.num_timesteps / wall,
+                   env_steps_per_s=(model.num_timesteps - start) / wall,
                    final_train_success=float(np.mean([r["success_rate"] for r in last])) if last else None)
+    if resumed is not None:
+        summary["resumed"] = resumed
     (run_dir / "train_summary.json").write_text(json.dumps(summary, indent=2))
     return summary
 
@@ -213,16 +255,24 @@ def final_evaluation(cfg: TrainConfig, run_dir) -> list:
     return results
 
 
-def train_and_evaluate(cfg: TrainConfig, run_dir, command: str = "", t_start: float | None = None) -> dict:
+def train_and_evaluate(cfg: TrainConfig | None, run_dir, command: str = "", t_start: float | None = None,
+                       resume: bool = False) -> dict:
     """Train (``train``), plot ``learning_curve.png`` and run the final
     evaluation (``final_evaluation``, skipped when ``eval_episodes`` is 0);
     the summary, with the evaluation and the total wall time since
-    ``t_start`` (default: now), is written to ``train_summary.json``."""
+    ``t_start`` (default: now), is written to ``train_summary.json``.
+    ``resume``: continue the run in ``run_dir`` (``cfg`` None: its own
+    ``config.yaml``)."""
     from .plotting import plot_runs
 
     t_start = time.perf_counter() if t_start is None else t_start
     run_dir = Path(run_dir)
-    summary = train(cfg, run_dir, command)
+    if cfg is None:
+        cfg = load_run_config(run_dir)
+    summary = train(cfg, run_dir, command, resume=resume)
+    if "resumed" in summary:
+        r = summary["resumed"]
+        print(f"resumed from {r['checkpoint']} (step {r['from_step']}); {r['steps_redone']} steps redone")
     print(f"trained {summary['timesteps']} steps in {summary['train_wall_s']:.1f} s "
           f"({summary['env_steps_per_s']:.0f} env steps/s incl. updates); model: {run_dir / 'model.zip'}")
     plot_runs([run_dir], run_dir / "learning_curve.png")
