@@ -71,6 +71,11 @@ class TrainSettings:
     eval_baselines: tuple = ("random", "ghost", "search")
     search_k: int = 256
     eval_noise: tuple = ("none", "tournament")
+    # held-seed evaluations during training (``agents.training.HeldOutEvaluation``):
+    # every ``eval_every`` env steps (0: none), ``eval_every_episodes`` episodes
+    # of seed ``eval_seed`` without noise; their time is not training time
+    eval_every: int = 0
+    eval_every_episodes: int = 1000
     torch_threads: int = 1           # 1: PPO minibatches are small; a 2nd thread fights numba on 2 cores
     numba_threads: int = 2
     device: str = "cpu"

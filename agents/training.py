@@ -148,6 +148,97 @@ class EpisodeLogger(BaseCallback):
             self._csv_f.close()
 
 
+class HeldOutEvaluation(BaseCallback):
+    """Evaluates the policy on the held seeds (``agents.evaluation.evaluate``,
+    ``episodes`` tables of seed ``seed``, no noise) every ``every`` env steps,
+    at rollout boundaries, and once at the end. The clock of the training time
+    (``train_s``) stops while it evaluates. Rows (steps, train_s, success,
+    95% interval) go to ``<run>/evaluations.csv`` and ``self.rows``, the
+    first at step 0. The first row whose 95% interval lies above ``target``
+    (default: the ghost-ball baseline's success on the same tables, evaluated
+    once at the start) gives ``steps_to_target`` / ``time_to_target_s``: a
+    residual policy starts *at* the ghost-ball shot, so merely matching the
+    baseline says nothing. ``report(row)`` (optional) sees every row and may
+    return False to stop training (used for pruning)."""
+
+    FIELDS = ["timesteps", "train_s", "success_rate", "ci_low", "ci_high"]
+
+    def __init__(self, cfg: TrainConfig, run_dir: Path, every: int, episodes: int, seed: int,
+                 target: float | None = None, report=None):
+        super().__init__()
+        self.cfg, self.run_dir, self.every, self.episodes, self.seed = cfg, Path(run_dir), int(every), episodes, seed
+        self.target, self.report = target, report
+        self.rows: list[dict] = []
+        self.steps_to_target = self.time_to_target_s = None
+        self._next = self.every
+        self._eval_s = 0.0
+        self._t0 = None
+        self._stop = False
+
+    def _evaluate(self, policy) -> object:
+        from .evaluation import evaluate
+        return evaluate(policy, self.cfg.env_id, self.episodes, self.seed, "none",
+                        env_kwargs=self.cfg.env_kwargs, name=self.cfg.algo)
+
+    def _on_training_start(self) -> None:
+        from .baselines import GhostBallPolicy
+        t = time.perf_counter()
+        if self.target is None:
+            self.target = self._evaluate(lambda env: GhostBallPolicy(env)).success_rate
+        self._f = open(self.run_dir / "evaluations.csv", "w", newline="")
+        self._csv = csv.DictWriter(self._f, fieldnames=self.FIELDS)
+        self._csv.writeheader()
+        self._t0 = time.perf_counter()   # the baseline's evaluation ran before the clock started
+        self._run()
+
+    def _run(self) -> None:
+        from .baselines import SB3Policy
+        t = time.perf_counter()
+        train_s = t - self._t0 - self._eval_s
+        cfg = self.cfg
+        pol = SB3Policy(self.model, _find_vecnorm(self.training_env), cfg.algo, cfg.features, cfg.aim_scale,
+                        None, cfg.action_mode)
+        r = self._evaluate(lambda env: pol.bind(env))
+        row = dict(timesteps=int(self.num_timesteps), train_s=round(train_s, 3), success_rate=r.success_rate,
+                   ci_low=r.success_ci95[0], ci_high=r.success_ci95[1])
+        self.rows.append(row)
+        self._csv.writerow(row)
+        self._f.flush()
+        if self.steps_to_target is None and r.success_ci95[0] > self.target:
+            self.steps_to_target, self.time_to_target_s = row["timesteps"], row["train_s"]
+        if self.report is not None and self.report(row) is False:
+            self._stop = True
+        self._eval_s += time.perf_counter() - t
+
+    def _on_rollout_start(self) -> None:
+        if self.every and self.num_timesteps >= self._next:
+            self._run()
+            while self._next <= self.num_timesteps:
+                self._next += self.every
+
+    def _on_step(self) -> bool:
+        return not self._stop
+
+    def _on_training_end(self) -> None:
+        if not self.rows or self.rows[-1]["timesteps"] != self.num_timesteps:
+            self._run()
+        self._f.close()
+
+    def summary(self) -> dict:
+        return dict(ghost_target=self.target, steps_to_target=self.steps_to_target,
+                    time_to_target_s=self.time_to_target_s, train_s_excluding_evaluations=self.rows[-1]["train_s"],
+                    held_success=self.rows[-1]["success_rate"])
+
+
+def _find_vecnorm(env):
+    from stable_baselines3.common.vec_env import VecNormalize
+    while env is not None:
+        if isinstance(env, VecNormalize):
+            return env
+        env = getattr(env, "venv", None)
+    return None
+
+
 def build_env(cfg: TrainConfig, seed: int):
     from stable_baselines3.common.vec_env import VecNormalize
 
@@ -164,23 +255,41 @@ def build_env(cfg: TrainConfig, seed: int):
     return env, vecnorm
 
 
+def schedule(value):
+    """A constant, or ``"lin_<v>"``: linear from ``v`` at the start to 0 at
+    the end of the run (RL-Zoo's notation)."""
+    if isinstance(value, str):
+        if not value.startswith("lin_"):
+            raise ValueError(f"schedule {value!r}: expected a number or lin_<number>")
+        v0 = float(value[4:])
+        return lambda progress_remaining: progress_remaining * v0
+    return value
+
+
 def build_model(cfg: TrainConfig, env, tensorboard_log: str | None):
     from stable_baselines3 import PPO, SAC
 
     cls = {"ppo": PPO, "sac": SAC}[cfg.algo]
     kw = dict(cfg.algo_kwargs)
+    for key in ("learning_rate", "clip_range"):
+        if key in kw:
+            kw[key] = schedule(kw[key])
     return cls("MlpPolicy", env, policy_kwargs=cfg.policy.policy_kwargs(cfg.algo), seed=cfg.train.seed,
                device=cfg.train.device, tensorboard_log=tensorboard_log, verbose=0, **kw)
 
 
-def train(cfg: TrainConfig, run_dir, command: str = "", resume: bool = False) -> dict:
+def train(cfg: TrainConfig, run_dir, command: str = "", resume: bool = False, report=None) -> dict:
     """Train according to ``cfg``; everything is written to ``run_dir``.
     Returns a summary dict (wall time, throughput, final training success).
 
     ``resume``: continue the run in ``run_dir`` from its newest checkpoint
     (``agents.checkpoints``) up to ``cfg.train.total_timesteps``; the summary's
     ``resumed`` entry gives the checkpoint's step, the steps the stopped run
-    had logged past it (``steps_redone``) and the earlier training time."""
+    had logged past it (``steps_redone``) and the earlier training time.
+    With ``train.eval_every`` > 0 (or a ``report`` callable, see
+    ``HeldOutEvaluation``) the policy is evaluated on held seeds during
+    training; the summary then has ``held_out`` (time to the ghost-ball
+    baseline's success) and its throughput excludes the evaluations."""
     import numba
     import torch
 
@@ -214,10 +323,17 @@ def train(cfg: TrainConfig, run_dir, command: str = "", resume: bool = False) ->
     start = int(model.num_timesteps)
     remaining = max(cfg.train.total_timesteps - start, 0)
     callbacks = [cb] + ([ProgressBar(remaining)] if cfg.train.progress_bar else [])
+    held = None
+    if cfg.train.eval_every > 0 or report is not None:
+        held = HeldOutEvaluation(cfg, run_dir, cfg.train.eval_every, cfg.train.eval_every_episodes,
+                                 cfg.train.eval_seed, report=report)
+        callbacks.append(held)
     t0 = time.perf_counter()
     model.learn(total_timesteps=remaining, callback=callbacks, tb_log_name=cfg.algo,
                 reset_num_timesteps=ck is None)
     wall = time.perf_counter() - t0
+    if held is not None:
+        wall = held.rows[-1]["train_s"]
     model.save(run_dir / "model.zip")
     if vecnorm is not None:
         vecnorm.save(str(run_dir / "vecnormalize.pkl"))
@@ -228,6 +344,8 @@ def train(cfg: TrainConfig, run_dir, command: str = "", resume: bool = False) ->
                    final_train_success=float(np.mean([r["success_rate"] for r in last])) if last else None)
     if resumed is not None:
         summary["resumed"] = resumed
+    if held is not None:
+        summary["held_out"] = held.summary()
     (run_dir / "train_summary.json").write_text(json.dumps(summary, indent=2))
     return summary
 
