@@ -54,26 +54,32 @@ def run_one(env_id: str, algo: str, out_dir: Path, steps: int | None, episodes: 
                 budget_steps=s["timesteps"], config_budget_steps=int(cfg0.train.total_timesteps),
                 train_wall_s=s["train_wall_s"], env_steps_per_s=s["env_steps_per_s"],
                 ghost_success=held["ghost_target"], steps_to_beat_ghost=held["steps_to_target"],
-                time_to_beat_ghost_s=held["time_to_target_s"], curve=str(run_dir / "evaluations.csv"),
+                time_to_beat_ghost_s=held["time_to_target_s"], curve=str((run_dir / "evaluations.csv").relative_to(out_dir)),
                 eval=evals)
 
 
 def run_benchmark(out_dir, tasks=TASKS, algos=ALGOS, steps: int | None = None, episodes: int = 1000,
                   curve_points: int = 10, curve_episodes: int = 1000, extra: tuple = ()) -> list[dict]:
-    """Train and evaluate every configured (task, algo); returns the rows and
-    writes ``benchmark.json`` into ``out_dir``."""
+    """Train and evaluate every configured (task, algo) of ``tasks`` x
+    ``algos``; the rows replace those of the same (task, algo) in
+    ``out_dir/benchmark.json`` (the others are kept); returns all rows."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    rows = []
+    path = out_dir / "benchmark.json"
+    # rows of earlier invocations stay unless this one reruns their (task, algo)
+    rows = json.loads(path.read_text()) if path.exists() else []
     for env_id in tasks:
         for algo in algos:
             if not configured(algo, env_id):
                 print(f"skip {algo} on {env_id}: no block in configs/{algo}.yaml", flush=True)
                 continue
             t = time.perf_counter()
-            rows.append(run_one(env_id, algo, out_dir, steps, episodes, curve_points, curve_episodes, extra))
+            row = run_one(env_id, algo, out_dir, steps, episodes, curve_points, curve_episodes, extra)
+            rows = [r for r in rows if (r["env_id"], r["algo"]) != (env_id, algo)] + [row]
+            rows.sort(key=lambda r: (TASKS.index(r["env_id"]) if r["env_id"] in TASKS else len(TASKS),
+                                     ALGOS.index(r["algo"])))
             print(f"{algo} {env_id}: {time.perf_counter() - t:.0f} s", flush=True)
-            (out_dir / "benchmark.json").write_text(json.dumps(rows, indent=2))
+            path.write_text(json.dumps(rows, indent=2))
     return rows
 
 
@@ -101,7 +107,8 @@ def markdown_table(rows: list[dict]) -> str:
 
 def plot_curves(rows: list[dict], out) -> None:
     """Held-seed success against training time, one panel per task, with the
-    ghost-ball baseline's success as a dashed line."""
+    ghost-ball baseline's success as a dashed line (``out`` in the directory
+    the rows' curve paths are relative to)."""
     import csv
 
     import matplotlib
@@ -113,7 +120,7 @@ def plot_curves(rows: list[dict], out) -> None:
     fig, axes = plt.subplots(1, len(tasks), figsize=(4.5 * len(tasks), 3.6), squeeze=False)
     for ax, env_id in zip(axes[0], tasks):
         for r in (r for r in rows if r["env_id"] == env_id):
-            with open(r["curve"], newline="") as f:
+            with open(Path(out).parent / r["curve"], newline="") as f:
                 pts = list(csv.DictReader(f))
             ax.plot([float(p["train_s"]) for p in pts], [float(p["success_rate"]) for p in pts], marker="o",
                     ms=3, label=r["algo"].upper())

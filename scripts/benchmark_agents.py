@@ -10,7 +10,9 @@ records a held-seed learning curve, evaluates each final model on
 --episodes held tables without noise and with tournament noise, and writes
 <out>/benchmark.json, <out>/learning_curves.png and the Markdown table
 (between the markers of --doc; in quick mode into <out>/benchmark.md).
-Runs shorter than the config's budget are labelled as such in the table.
+A run replaces the row of its (task, algo) in <out>/benchmark.json and keeps
+the others, so the table can be filled one invocation at a time. Runs
+shorter than the config's budget are labelled as such in the table.
 """
 from __future__ import annotations
 

@@ -21,7 +21,7 @@ def test_quick_benchmark_writes_table_curves_and_json(tmp_path):
             e = r["eval"][nz]
             assert e["n_episodes"] == 20 and e["success_ci95"][0] <= e["success_rate"] <= e["success_ci95"][1]
         assert r["budget_steps"] >= 1024 and r["env_steps_per_s"] > 0
-        curve = Path(r["curve"]).read_text().splitlines()
+        curve = (tmp_path / r["curve"]).read_text().splitlines()
         assert curve[0].startswith("timesteps,train_s,success_rate") and len(curve) >= 3
     md = (tmp_path / "benchmark.md").read_text()
     assert md.count("| PotOne-v0 |") == 2 and "(short; config:" in md
