@@ -155,3 +155,21 @@ def last_logged_steps(run_dir) -> int:
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     return int(rows[-1]["timesteps"]) if rows else 0
+
+
+class ObsNormalizer:
+    """Observation normalisation from a checkpoint's statistics, as
+    VecNormalize applies it (``normalize_obs``), without its pickle."""
+
+    EPS = 1e-8  # VecNormalize's default epsilon under the square root
+
+    def __init__(self, mean: np.ndarray, var: np.ndarray, clip_obs: float):
+        self.mean, self.var, self.clip_obs = mean, var, float(clip_obs)
+
+    @classmethod
+    def from_npz(cls, path, clip_obs: float) -> "ObsNormalizer | None":
+        with np.load(path) as z:
+            return cls(z["obs_mean"].copy(), z["obs_var"].copy(), clip_obs) if "obs_mean" in z.files else None
+
+    def normalize_obs(self, obs: np.ndarray) -> np.ndarray:
+        return np.clip((obs - self.mean) / np.sqrt(self.var + self.EPS), -self.clip_obs, self.clip_obs)

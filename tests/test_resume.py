@@ -49,6 +49,12 @@ def test_killed_run_resumes_to_the_same_step_count(tmp_path):
     model = load_checkpoint(ck, cfg.algo, env, vecnorm)
     assert model.num_timesteps == ck.steps and ck.steps % (N_ENVS * N_STEPS) == 0
     assert vecnorm.obs_rms.count == saved_count and np.array_equal(vecnorm.obs_rms.mean, saved_mean)
+    # a checkpoint loaded for evaluation normalises like the restored VecNormalize
+    from agents.baselines import SB3Policy
+    pol = SB3Policy.load(ck.model_path)
+    obs = np.random.default_rng(0).random((5, vecnorm.obs_rms.mean.shape[0])).astype(np.float32)
+    vecnorm.training = False
+    assert np.allclose(pol.vecnormalize.normalize_obs(obs), vecnorm.normalize_obs(obs))
     env.close()
 
     out = subprocess.run(_script("--resume", str(run)), capture_output=True, text=True, timeout=300)
