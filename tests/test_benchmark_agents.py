@@ -4,9 +4,12 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
+@pytest.mark.slow  # several training runs in subprocesses: about a minute
 def test_quick_benchmark_writes_table_curves_and_json(tmp_path):
     cmd = [sys.executable, str(ROOT / "scripts" / "benchmark_agents.py"), "--quick", "--out", str(tmp_path),
            "--task", "Billiards-PotOne-v0", "--task", "Billiards-RunOut-v0"]

@@ -25,6 +25,7 @@ def _script(*args):
     return [sys.executable, str(ROOT / "scripts" / "train.py"), *args]
 
 
+@pytest.mark.slow  # several training runs in subprocesses: about a minute
 def test_killed_run_resumes_to_the_same_step_count(tmp_path):
     sets = [a for o in OVERRIDES for a in ("--set", o)]
     proc = subprocess.Popen(_script("--name", "run", "--runs-dir", str(tmp_path), *sets),

@@ -18,6 +18,7 @@ def _run(tmp_path, trials):
     return json.loads((tmp_path / "study" / "study_summary.json").read_text())
 
 
+@pytest.mark.slow  # several training runs in subprocesses: about a minute
 def test_quick_study_runs_and_resumes(tmp_path):
     import optuna
 
