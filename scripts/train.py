@@ -39,14 +39,14 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
 
     t_start = time.perf_counter()
-    command = "python " + " ".join(shlex.quote(a) for a in [sys.argv[0]] + list(argv if argv is not None else sys.argv[1:]))
-    if args.resume:
-        train_and_evaluate(None, args.resume, command, t_start, resume=True)
+    if args.resume:  # the run's own config.yaml; the command is appended to its command.txt
+        train_and_evaluate(None, args.resume, " ".join(map(shlex.quote, ["python", *sys.argv])), t_start, resume=True)
         return 0
     cfg = load_config(args.config, args.env, args.set)
     short = cfg.env_id.replace("Billiards-", "").replace("-v0", "").lower()
     name = args.name or f"{cfg.algo}_{short}_{time.strftime('%Y%m%d-%H%M%S')}"
     run_dir = Path(args.runs_dir) / name
+    command = "python " + " ".join(shlex.quote(a) for a in [sys.argv[0]] + list(argv if argv is not None else sys.argv[1:]))
     train_and_evaluate(cfg, run_dir, command, t_start)
     return 0
 
