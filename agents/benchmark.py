@@ -32,7 +32,7 @@ def configured(algo: str, env_id: str) -> bool:
 
 
 def run_one(env_id: str, algo: str, out_dir: Path, steps: int | None, episodes: int, curve_points: int,
-            curve_episodes: int, extra: tuple = ()) -> dict:
+            curve_episodes: int, extra: tuple = (), command: str = "") -> dict:
     from .baselines import SB3Policy
     from .evaluation import evaluate
     from .training import train
@@ -55,11 +55,12 @@ def run_one(env_id: str, algo: str, out_dir: Path, steps: int | None, episodes: 
                 train_wall_s=s["train_wall_s"], env_steps_per_s=s["env_steps_per_s"],
                 ghost_success=held["ghost_target"], steps_to_beat_ghost=held["steps_to_target"],
                 time_to_beat_ghost_s=held["time_to_target_s"], curve=str((run_dir / "evaluations.csv").relative_to(out_dir)),
-                eval=evals)
+                eval=evals, command=command)
 
 
 def run_benchmark(out_dir, tasks=TASKS, algos=ALGOS, steps: int | None = None, episodes: int = 1000,
-                  curve_points: int = 10, curve_episodes: int = 1000, extra: tuple = ()) -> list[dict]:
+                  curve_points: int = 10, curve_episodes: int = 1000, extra: tuple = (),
+                  command: str = "") -> list[dict]:
     """Train and evaluate every configured (task, algo) of ``tasks`` x
     ``algos``; the rows replace those of the same (task, algo) in
     ``out_dir/benchmark.json`` (the others are kept); returns all rows."""
@@ -74,7 +75,7 @@ def run_benchmark(out_dir, tasks=TASKS, algos=ALGOS, steps: int | None = None, e
                 print(f"skip {algo} on {env_id}: no block in configs/{algo}.yaml", flush=True)
                 continue
             t = time.perf_counter()
-            row = run_one(env_id, algo, out_dir, steps, episodes, curve_points, curve_episodes, extra)
+            row = run_one(env_id, algo, out_dir, steps, episodes, curve_points, curve_episodes, extra, command)
             rows = [r for r in rows if (r["env_id"], r["algo"]) != (env_id, algo)] + [row]
             rows.sort(key=lambda r: (TASKS.index(r["env_id"]) if r["env_id"] in TASKS else len(TASKS),
                                      ALGOS.index(r["algo"])))
@@ -102,6 +103,9 @@ def markdown_table(rows: list[dict]) -> str:
             r["env_id"].replace("Billiards-", ""), r["algo"].upper(), cfg, f"{r['budget_steps']:,}{short}",
             f"{r['train_wall_s']:.0f}", f"{r['env_steps_per_s']:,.0f}", ghost, _ci(e0), _ci(e1),
             f"{e0['mean_reward']:.3f}", f"{e0['balls_per_episode']:.2f}"]) + " |")
+    commands = list(dict.fromkeys(r.get("command", "") for r in rows if r.get("command")))
+    if commands:
+        lines += ["", "Commands that produced the rows:", "", "```bash", *commands, "```"]
     return "\n".join(lines)
 
 

@@ -17,6 +17,7 @@ shorter than the config's budget are labelled as such in the table.
 from __future__ import annotations
 
 import argparse
+import json
 import shlex
 import sys
 from pathlib import Path
@@ -43,17 +44,21 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default=str(ROOT / "results" / "agents" / "benchmark"))
     ap.add_argument("--doc", default=str(ROOT / "docs" / "agents_benchmark.md"))
     ap.add_argument("--quick", action="store_true", help="tiny runs (1,024 steps, 20 episodes) for the tests")
+    ap.add_argument("--table-only", action="store_true", help="rewrite the table and plot from <out>/benchmark.json")
     a = ap.parse_args(argv)
     extra = tuple(a.set)
     if a.quick:
         a.steps, a.episodes, a.curve_points, a.curve_episodes = 1024, 20, 2, 20
         extra = QUICK + extra
     out = Path(a.out)
-    rows = run_benchmark(out, a.task or TASKS, a.algo or ALGOS, a.steps, a.episodes, a.curve_points,
-                         a.curve_episodes, extra)
-    plot_curves(rows, out / "learning_curves.png")
     command = "python " + " ".join(shlex.quote(x) for x in [sys.argv[0]] + list(argv if argv is not None else sys.argv[1:]))
-    table = f"{BEGIN}\n{markdown_table(rows)}\n\nCommand: `{command}`\n{END}"
+    if a.table_only:
+        rows = json.loads((out / "benchmark.json").read_text())
+    else:
+        rows = run_benchmark(out, a.task or TASKS, a.algo or ALGOS, a.steps, a.episodes, a.curve_points,
+                             a.curve_episodes, extra, command)
+    plot_curves(rows, out / "learning_curves.png")
+    table = f"{BEGIN}\n{markdown_table(rows)}\n{END}"
     doc = out / "benchmark.md" if a.quick else Path(a.doc)
     text = doc.read_text() if doc.exists() else f"# Agents' benchmark\n\n{BEGIN}\n{END}\n"
     if BEGIN in text and END in text:
