@@ -274,23 +274,3 @@ class SB3Policy:
         return cls(model, vn, name=name or (algo or "model"), features=bool(meta.get("features", False)),
                    aim_scale=float(meta.get("aim_scale", 1.0)), env=env,
                    action_mode=meta.get("action_mode", "direct"))
-
-
-BASELINE_NAMES = ("random", "ghost", "lookahead")  # besides search<K>
-
-
-def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
-    """A baseline by name: ``random``, ``ghost``, ``search`` (``search<K>``
-    sets K, e.g. ``search64``), ``lookahead`` (``agents.lookahead``), or a
-    path to a saved model / run directory."""
-    if name == "random":
-        return RandomPolicy(env, seed=seed)
-    if name == "ghost":
-        return GhostBallPolicy(env)
-    if name == "lookahead":
-        from .lookahead import LookaheadPolicy
-        return LookaheadPolicy(env, seed=seed)
-    if name.startswith("search"):
-        kk = int(name[6:]) if name[6:] else k
-        return SearchPolicy(env, k=kk, seed=seed)
-    return SB3Policy.load(name, env=env)

@@ -176,7 +176,8 @@ def evaluate_policies(specs: list[str], env_id: str, n_episodes: int = 1000, see
     every noise setting of ``noises`` (default ``["none"]``) on the same
     seeded episodes, printing one line per result. ``names``: display names
     per spec (optional)."""
-    from .baselines import BASELINE_NAMES, SB3Policy, make_policy
+    from .baselines import SB3Policy
+    from .policies import BASELINE_NAMES, make_policy
 
     results = []
     for j, spec in enumerate(specs):

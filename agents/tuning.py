@@ -178,7 +178,7 @@ def plot_importance(imp: dict, out, title: str) -> None:
     names = list(imp)[::-1]
     fig, ax = plt.subplots(figsize=(6, 0.4 * len(names) + 1.2))
     ax.barh(names, [imp[n] for n in names])
-    ax.set_xlabel("importance (fANOVA)")
+    ax.set_xlabel("importance (Optuna's default evaluator)")
     ax.set_title(title)
     fig.tight_layout()
     fig.savefig(out, dpi=120)

@@ -30,7 +30,7 @@ def main(argv=None) -> int:
 
     import numpy as np
 
-    from agents.baselines import make_policy
+    from agents.policies import make_policy
     from agents.sb3_vec_env import make_sb3_vec_env
 
     warm = make_sb3_vec_env(a.env, 4, seed=a.seed)

@@ -4,7 +4,7 @@ import numpy as np
 
 import billiards_env  # noqa: F401
 from agents import geometry as G
-from agents.baselines import make_policy
+from agents.policies import make_policy
 from agents.evaluation import evaluate
 from agents.lookahead import LookaheadPolicy
 
