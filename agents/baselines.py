@@ -229,8 +229,9 @@ class SB3Policy:
 
     @classmethod
     def load(cls, path, env=None, name: str | None = None) -> "SB3Policy":
-        """Load ``<run>/model.zip`` (or a path to a .zip) and the VecNormalize
-        statistics saved beside it (``vecnormalize.pkl``), if any."""
+        """Load ``<run>/model.zip`` (or a path to a .zip, e.g. a checkpoint)
+        and the VecNormalize statistics saved beside it (``vecnormalize.pkl``,
+        or a checkpoint's ``_normalizer.npz``), if any."""
         import pickle
         from pathlib import Path
 
@@ -241,6 +242,8 @@ class SB3Policy:
         run_dir = zip_path.parent
         algo, meta = None, {}
         cfg = run_dir / "config.yaml"
+        if not cfg.exists() and run_dir.name == "checkpoints":
+            cfg = run_dir.parent / "config.yaml"
         if cfg.exists():
             import yaml
             meta = yaml.safe_load(cfg.read_text()) or {}
@@ -255,7 +258,13 @@ class SB3Policy:
             model = cls_.load(zip_path, device="cpu")
         vn = None
         stem = zip_path.stem
-        for cand in (run_dir / f"{stem}_vecnormalize.pkl", run_dir / "vecnormalize.pkl"):
+        npz = run_dir / f"{stem}_normalizer.npz"
+        if npz.exists():
+            from .checkpoints import ObsNormalizer
+            clip = float((meta.get("normalize") or {}).get("clip_obs", 10.0))
+            vn = ObsNormalizer.from_npz(npz, clip) if (meta.get("normalize") or {}).get("obs", True) else None
+        pickles = () if npz.exists() else (run_dir / f"{stem}_vecnormalize.pkl", run_dir / "vecnormalize.pkl")
+        for cand in pickles:
             if cand.exists():
                 with open(cand, "rb") as f:
                     vn = pickle.load(f)
@@ -265,16 +274,3 @@ class SB3Policy:
         return cls(model, vn, name=name or (algo or "model"), features=bool(meta.get("features", False)),
                    aim_scale=float(meta.get("aim_scale", 1.0)), env=env,
                    action_mode=meta.get("action_mode", "direct"))
-
-
-def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
-    """A baseline by name: ``random``, ``ghost``, ``search`` (``search<K>``
-    sets K, e.g. ``search64``), or a path to a saved model / run directory."""
-    if name == "random":
-        return RandomPolicy(env, seed=seed)
-    if name == "ghost":
-        return GhostBallPolicy(env)
-    if name.startswith("search"):
-        kk = int(name[6:]) if name[6:] else k
-        return SearchPolicy(env, k=kk, seed=seed)
-    return SB3Policy.load(name, env=env)

@@ -71,6 +71,11 @@ class TrainSettings:
     eval_baselines: tuple = ("random", "ghost", "search")
     search_k: int = 256
     eval_noise: tuple = ("none", "tournament")
+    # held-seed evaluations during training (``agents.training.HeldOutEvaluation``):
+    # every ``eval_every`` env steps (0: none), ``eval_every_episodes`` episodes
+    # of seed ``eval_seed`` without noise; their time is not training time
+    eval_every: int = 0
+    eval_every_episodes: int = 1000
     torch_threads: int = 1           # 1: PPO minibatches are small; a 2nd thread fights numba on 2 cores
     numba_threads: int = 2
     device: str = "cpu"
@@ -213,3 +218,12 @@ def load_config(path=None, env_id: str | None = None, overrides: list[str] | Non
 def save_config(cfg: TrainConfig, path) -> None:
     with open(path, "w") as f:
         yaml.safe_dump(cfg.to_dict(), f, sort_keys=False)
+
+
+def load_run_config(run_dir) -> TrainConfig:
+    """The resolved config a run saved beside its model (``<run>/config.yaml``)."""
+    path = Path(run_dir) / "config.yaml"
+    if not path.exists():
+        raise FileNotFoundError(f"{run_dir}: no config.yaml (is it a run directory of scripts/train.py?)")
+    with open(path) as f:
+        return TrainConfig.from_dict(yaml.safe_load(f))

@@ -172,16 +172,17 @@ def evaluate_policies(specs: list[str], env_id: str, n_episodes: int = 1000, see
                       noises: list | None = None, search_k: int = 256, batch_size: int = 1000,
                       names: list[str] | None = None) -> list[EvalResult]:
     """Evaluate every policy of ``specs`` (``random``, ``ghost``, ``search``
-    (K = ``search_k``), ``search<K>``, or a run directory / model .zip) under
+    (K = ``search_k``), ``search<K>``, ``lookahead``, or a run directory / model .zip) under
     every noise setting of ``noises`` (default ``["none"]``) on the same
     seeded episodes, printing one line per result. ``names``: display names
     per spec (optional)."""
-    from .baselines import SB3Policy, make_policy
+    from .baselines import SB3Policy
+    from .policies import BASELINE_NAMES, make_policy
 
     results = []
     for j, spec in enumerate(specs):
         display = names[j] if names and j < len(names) else None
-        if spec in ("random", "ghost") or spec.startswith("search"):
+        if spec in BASELINE_NAMES or spec.startswith("search"):
             if spec == "search":
                 spec = f"search{search_k}"
             fn = lambda env, s=spec: make_policy(s, env, seed=seed)  # noqa: E731

@@ -3,9 +3,11 @@
 ``train(cfg, run_dir)`` builds the SB3 adapter (one batched simulator call
 per step for all ``n_envs`` tables), optional VecNormalize, the model, and
 trains with a progress bar, TensorBoard logging (when installed), a CSV log
-of episode statistics (for the learning curve), periodic checkpoints (model +
-VecNormalize stats) and the final model saved as ``<run>/model.zip`` with
-``<run>/vecnormalize.pkl`` and ``<run>/config.yaml``.
+of episode statistics (for the learning curve), periodic checkpoints
+(``agents.checkpoints``: model, normaliser statistics as plain arrays, step
+counter, random state) and the final model saved as ``<run>/model.zip`` with
+``<run>/vecnormalize.pkl`` and ``<run>/config.yaml``. ``train(cfg, run_dir,
+resume=True)`` continues a stopped or killed run from its newest checkpoint.
 
 ``train_and_evaluate(cfg, run_dir, command)`` (what ``scripts/train.py``
 runs) also plots the learning curve and evaluates the trained model against
@@ -21,7 +23,8 @@ from pathlib import Path
 import numpy as np
 from stable_baselines3.common.callbacks import BaseCallback
 
-from .config import TrainConfig, save_config
+from .checkpoints import last_logged_steps, latest_checkpoint, load_checkpoint, save_checkpoint
+from .config import TrainConfig, load_run_config, save_config
 from .sb3_vec_env import make_sb3_vec_env
 
 
@@ -64,24 +67,44 @@ class EpisodeLogger(BaseCallback):
     over each rollout, to ``progress.csv`` and to the SB3 logger
     (TensorBoard ``rollout/success_rate`` etc.); saves checkpoints."""
 
-    def __init__(self, run_dir: Path, checkpoint_every: int = 0, vecnorm=None):
+    FIELDS = ["timesteps", "time_s", "episodes", "success_rate", "mean_reward", "scratch_rate", "foul_rate",
+              "steps_per_s"]
+
+    def __init__(self, run_dir: Path, checkpoint_every: int = 0, vecnorm=None, start_steps: int = 0,
+                 start_elapsed_s: float = 0.0):
         super().__init__()
         self.run_dir = run_dir
         self.checkpoint_every = int(checkpoint_every)
         self.vecnorm = vecnorm
-        self._next_ckpt = self.checkpoint_every or None
+        self._next_ckpt = (start_steps // self.checkpoint_every + 1) * self.checkpoint_every \
+            if self.checkpoint_every else None
         self._buf = {"success": [], "reward": [], "scratch": [], "foul": []}
         self._ep_ret = None
-        self.t0 = time.perf_counter()
+        # a resumed run continues the clock and the log of its checkpoint
+        self.start_steps, self.start_elapsed_s = int(start_steps), float(start_elapsed_s)
+        self.t0 = time.perf_counter() - self.start_elapsed_s
         self.rows: list[dict] = []
         self._csv = None
 
     def _on_training_start(self) -> None:
         self._ep_ret = np.zeros(self.training_env.num_envs)
-        self._csv_f = open(self.run_dir / "progress.csv", "w", newline="")
-        self._csv = csv.DictWriter(self._csv_f, fieldnames=["timesteps", "time_s", "episodes", "success_rate",
-                                                            "mean_reward", "scratch_rate", "foul_rate", "steps_per_s"])
+        path = self.run_dir / "progress.csv"
+        kept = []
+        if self.start_steps and path.exists():  # keep the rows up to the checkpoint
+            with open(path, newline="") as f:
+                kept = [r for r in csv.DictReader(f) if int(r["timesteps"]) <= self.start_steps]
+        self._csv_f = open(path, "w", newline="")
+        self._csv = csv.DictWriter(self._csv_f, fieldnames=self.FIELDS)
         self._csv.writeheader()
+        self._csv.writerows(kept)
+
+    def _on_rollout_start(self) -> None:
+        # after the previous update and before new steps: the state a resumed
+        # run restarts from exactly (checkpoint steps are rollout boundaries)
+        if self._next_ckpt is not None and self.num_timesteps >= self._next_ckpt:
+            save_checkpoint(self.run_dir, self.model, self.vecnorm, time.perf_counter() - self.t0)
+            while self._next_ckpt <= self.num_timesteps:
+                self._next_ckpt += self.checkpoint_every
 
     def _on_step(self) -> bool:
         rewards = self.locals["rewards"]
@@ -98,13 +121,6 @@ class EpisodeLogger(BaseCallback):
             self._buf["foul"].append(float(bool(info.get("foul", False))))
             self._buf["reward"].append(float(self._ep_ret[i]))
             self._ep_ret[i] = 0.0
-        if self._next_ckpt is not None and self.num_timesteps >= self._next_ckpt:
-            ck = self.run_dir / "checkpoints"
-            ck.mkdir(exist_ok=True)
-            self.model.save(ck / f"model_{self.num_timesteps}_steps.zip")
-            if self.vecnorm is not None:
-                self.vecnorm.save(str(ck / f"model_{self.num_timesteps}_steps_vecnormalize.pkl"))
-            self._next_ckpt += self.checkpoint_every
         return True
 
     def _on_rollout_end(self) -> None:
@@ -132,6 +148,97 @@ class EpisodeLogger(BaseCallback):
             self._csv_f.close()
 
 
+class HeldOutEvaluation(BaseCallback):
+    """Evaluates the policy on the held seeds (``agents.evaluation.evaluate``,
+    ``episodes`` tables of seed ``seed``, no noise) every ``every`` env steps,
+    at rollout boundaries, and once at the end. The clock of the training time
+    (``train_s``) stops while it evaluates. Rows (steps, train_s, success,
+    95% interval) go to ``<run>/evaluations.csv`` and ``self.rows``, the
+    first at step 0. The first row whose 95% interval lies above ``target``
+    (default: the ghost-ball baseline's success on the same tables, evaluated
+    once at the start) gives ``steps_to_target`` / ``time_to_target_s``: a
+    residual policy starts *at* the ghost-ball shot, so merely matching the
+    baseline says nothing. ``report(row)`` (optional) sees every row and may
+    return False to stop training (used for pruning)."""
+
+    FIELDS = ["timesteps", "train_s", "success_rate", "ci_low", "ci_high"]
+
+    def __init__(self, cfg: TrainConfig, run_dir: Path, every: int, episodes: int, seed: int,
+                 target: float | None = None, report=None):
+        super().__init__()
+        self.cfg, self.run_dir, self.every, self.episodes, self.seed = cfg, Path(run_dir), int(every), episodes, seed
+        self.target, self.report = target, report
+        self.rows: list[dict] = []
+        self.steps_to_target = self.time_to_target_s = None
+        self._next = self.every
+        self._eval_s = 0.0
+        self._t0 = None
+        self._stop = False
+
+    def _evaluate(self, policy) -> object:
+        from .evaluation import evaluate
+        return evaluate(policy, self.cfg.env_id, self.episodes, self.seed, "none",
+                        env_kwargs=self.cfg.env_kwargs, name=self.cfg.algo)
+
+    def _on_training_start(self) -> None:
+        from .baselines import GhostBallPolicy
+        t = time.perf_counter()
+        if self.target is None:
+            self.target = self._evaluate(lambda env: GhostBallPolicy(env)).success_rate
+        self._f = open(self.run_dir / "evaluations.csv", "w", newline="")
+        self._csv = csv.DictWriter(self._f, fieldnames=self.FIELDS)
+        self._csv.writeheader()
+        self._t0 = time.perf_counter()   # the baseline's evaluation ran before the clock started
+        self._run()
+
+    def _run(self) -> None:
+        from .baselines import SB3Policy
+        t = time.perf_counter()
+        train_s = t - self._t0 - self._eval_s
+        cfg = self.cfg
+        pol = SB3Policy(self.model, _find_vecnorm(self.training_env), cfg.algo, cfg.features, cfg.aim_scale,
+                        None, cfg.action_mode)
+        r = self._evaluate(lambda env: pol.bind(env))
+        row = dict(timesteps=int(self.num_timesteps), train_s=round(train_s, 3), success_rate=r.success_rate,
+                   ci_low=r.success_ci95[0], ci_high=r.success_ci95[1])
+        self.rows.append(row)
+        self._csv.writerow(row)
+        self._f.flush()
+        if self.steps_to_target is None and r.success_ci95[0] > self.target:
+            self.steps_to_target, self.time_to_target_s = row["timesteps"], row["train_s"]
+        if self.report is not None and self.report(row) is False:
+            self._stop = True
+        self._eval_s += time.perf_counter() - t
+
+    def _on_rollout_start(self) -> None:
+        if self.every and self.num_timesteps >= self._next:
+            self._run()
+            while self._next <= self.num_timesteps:
+                self._next += self.every
+
+    def _on_step(self) -> bool:
+        return not self._stop
+
+    def _on_training_end(self) -> None:
+        if not self.rows or self.rows[-1]["timesteps"] != self.num_timesteps:
+            self._run()
+        self._f.close()
+
+    def summary(self) -> dict:
+        return dict(ghost_target=self.target, steps_to_target=self.steps_to_target,
+                    time_to_target_s=self.time_to_target_s, train_s_excluding_evaluations=self.rows[-1]["train_s"],
+                    held_success=self.rows[-1]["success_rate"])
+
+
+def _find_vecnorm(env):
+    from stable_baselines3.common.vec_env import VecNormalize
+    while env is not None:
+        if isinstance(env, VecNormalize):
+            return env
+        env = getattr(env, "venv", None)
+    return None
+
+
 def build_env(cfg: TrainConfig, seed: int):
     from stable_baselines3.common.vec_env import VecNormalize
 
@@ -148,44 +255,97 @@ def build_env(cfg: TrainConfig, seed: int):
     return env, vecnorm
 
 
+def schedule(value):
+    """A constant, or ``"lin_<v>"``: linear from ``v`` at the start to 0 at
+    the end of the run (RL-Zoo's notation)."""
+    if isinstance(value, str):
+        if not value.startswith("lin_"):
+            raise ValueError(f"schedule {value!r}: expected a number or lin_<number>")
+        v0 = float(value[4:])
+        return lambda progress_remaining: progress_remaining * v0
+    return value
+
+
 def build_model(cfg: TrainConfig, env, tensorboard_log: str | None):
     from stable_baselines3 import PPO, SAC
 
     cls = {"ppo": PPO, "sac": SAC}[cfg.algo]
     kw = dict(cfg.algo_kwargs)
+    for key in ("learning_rate", "clip_range"):
+        if key in kw:
+            kw[key] = schedule(kw[key])
     return cls("MlpPolicy", env, policy_kwargs=cfg.policy.policy_kwargs(cfg.algo), seed=cfg.train.seed,
                device=cfg.train.device, tensorboard_log=tensorboard_log, verbose=0, **kw)
 
 
-def train(cfg: TrainConfig, run_dir, command: str = "") -> dict:
+def train(cfg: TrainConfig, run_dir, command: str = "", resume: bool = False, report=None) -> dict:
     """Train according to ``cfg``; everything is written to ``run_dir``.
-    Returns a summary dict (wall time, throughput, final training success)."""
+    Returns a summary dict (wall time, throughput, final training success).
+
+    ``resume``: continue the run in ``run_dir`` from its newest checkpoint
+    (``agents.checkpoints``) up to ``cfg.train.total_timesteps``; the summary's
+    ``resumed`` entry gives the checkpoint's step, the steps the stopped run
+    had logged past it (``steps_redone``) and the earlier training time.
+    With ``train.eval_every`` > 0 (or a ``report`` callable, see
+    ``HeldOutEvaluation``) the policy is evaluated on held seeds during
+    training; the summary then has ``held_out`` (time to the ghost-ball
+    baseline's success) and its throughput excludes the evaluations."""
     import numba
     import torch
 
     run_dir = Path(run_dir)
     run_dir.mkdir(parents=True, exist_ok=True)
-    save_config(cfg, run_dir / "config.yaml")
-    (run_dir / "command.txt").write_text(command + "\n")
+    ck = latest_checkpoint(run_dir) if resume else None
+    if resume and ck is None:
+        raise FileNotFoundError(f"{run_dir}: no complete checkpoint to resume from")
+    if ck is None:
+        save_config(cfg, run_dir / "config.yaml")
+        (run_dir / "command.txt").write_text(command + "\n")
+    else:
+        with open(run_dir / "command.txt", "a") as f:
+            f.write(command + "\n")
     torch.set_num_threads(cfg.train.torch_threads)
     numba.set_num_threads(min(cfg.train.numba_threads, numba.config.NUMBA_NUM_THREADS))
 
     env, vecnorm = build_env(cfg, cfg.train.seed)
     tb = str(run_dir / "tb") if (cfg.train.tensorboard and _has_tensorboard()) else None
-    model = build_model(cfg, env, tb)
-    cb = EpisodeLogger(run_dir, cfg.train.checkpoint_every, vecnorm)
-    callbacks = [cb] + ([ProgressBar(cfg.train.total_timesteps)] if cfg.train.progress_bar else [])
+    resumed = None
+    if ck is None:
+        model = build_model(cfg, env, tb)
+        cb = EpisodeLogger(run_dir, cfg.train.checkpoint_every, vecnorm)
+    else:
+        logged = last_logged_steps(run_dir)
+        model = load_checkpoint(ck, cfg.algo, env, vecnorm, cfg.train.device, tb)
+        prev = ck.state()["elapsed_s"]
+        resumed = dict(checkpoint=str(ck.model_path.relative_to(run_dir)), from_step=ck.steps,
+                       steps_redone=max(0, logged - ck.steps), previous_train_wall_s=prev)
+        cb = EpisodeLogger(run_dir, cfg.train.checkpoint_every, vecnorm, ck.steps, prev)
+    start = int(model.num_timesteps)
+    remaining = max(cfg.train.total_timesteps - start, 0)
+    callbacks = [cb] + ([ProgressBar(remaining)] if cfg.train.progress_bar else [])
+    held = None
+    if cfg.train.eval_every > 0 or report is not None:
+        held = HeldOutEvaluation(cfg, run_dir, cfg.train.eval_every, cfg.train.eval_every_episodes,
+                                 cfg.train.eval_seed, report=report)
+        callbacks.append(held)
     t0 = time.perf_counter()
-    model.learn(total_timesteps=cfg.train.total_timesteps, callback=callbacks, tb_log_name=cfg.algo)
+    model.learn(total_timesteps=remaining, callback=callbacks, tb_log_name=cfg.algo,
+                reset_num_timesteps=ck is None)
     wall = time.perf_counter() - t0
+    if held is not None:
+        wall = held.rows[-1]["train_s"]
     model.save(run_dir / "model.zip")
     if vecnorm is not None:
         vecnorm.save(str(run_dir / "vecnormalize.pkl"))
     env.close()
     last = cb.rows[-5:]
     summary = dict(env_id=cfg.env_id, algo=cfg.algo, timesteps=int(model.num_timesteps), train_wall_s=wall,
-                   env_steps_per_s=model.num_timesteps / wall,
+                   env_steps_per_s=(model.num_timesteps - start) / wall,
                    final_train_success=float(np.mean([r["success_rate"] for r in last])) if last else None)
+    if resumed is not None:
+        summary["resumed"] = resumed
+    if held is not None:
+        summary["held_out"] = held.summary()
     (run_dir / "train_summary.json").write_text(json.dumps(summary, indent=2))
     return summary
 
@@ -194,7 +354,8 @@ def final_evaluation(cfg: TrainConfig, run_dir) -> list:
     """The trained model of ``run_dir`` and ``cfg.train.eval_baselines`` on
     ``eval_episodes`` seeded episodes per noise setting; prints a Markdown
     table and writes ``eval.json`` / ``eval.png`` into ``run_dir``."""
-    from .baselines import SB3Policy, make_policy
+    from .baselines import SB3Policy
+    from .policies import make_policy
     from .evaluation import evaluate, format_table, save_results
 
     run_dir = Path(run_dir)
@@ -213,16 +374,24 @@ def final_evaluation(cfg: TrainConfig, run_dir) -> list:
     return results
 
 
-def train_and_evaluate(cfg: TrainConfig, run_dir, command: str = "", t_start: float | None = None) -> dict:
+def train_and_evaluate(cfg: TrainConfig | None, run_dir, command: str = "", t_start: float | None = None,
+                       resume: bool = False) -> dict:
     """Train (``train``), plot ``learning_curve.png`` and run the final
     evaluation (``final_evaluation``, skipped when ``eval_episodes`` is 0);
     the summary, with the evaluation and the total wall time since
-    ``t_start`` (default: now), is written to ``train_summary.json``."""
+    ``t_start`` (default: now), is written to ``train_summary.json``.
+    ``resume``: continue the run in ``run_dir`` (``cfg`` None: its own
+    ``config.yaml``)."""
     from .plotting import plot_runs
 
     t_start = time.perf_counter() if t_start is None else t_start
     run_dir = Path(run_dir)
-    summary = train(cfg, run_dir, command)
+    if cfg is None:
+        cfg = load_run_config(run_dir)
+    summary = train(cfg, run_dir, command, resume=resume)
+    if "resumed" in summary:
+        r = summary["resumed"]
+        print(f"resumed from {r['checkpoint']} (step {r['from_step']}); {r['steps_redone']} steps redone")
     print(f"trained {summary['timesteps']} steps in {summary['train_wall_s']:.1f} s "
           f"({summary['env_steps_per_s']:.0f} env steps/s incl. updates); model: {run_dir / 'model.zip'}")
     plot_runs([run_dir], run_dir / "learning_curve.png")

@@ -6,7 +6,7 @@
         --out results/agents/potone
 
 ``--policy``: ``random``, ``ghost``, ``search`` (K from ``--search-k``, or
-``search64``), or a run directory / model .zip (its config.yaml and
+``search64``), ``lookahead`` (pots that leave a next shot), or a run directory / model .zip (its config.yaml and
 vecnormalize.pkl are read). Every policy plays the first episode of the same
 seeded tables. Prints a Markdown table (success rate with its 95% Wilson
 interval, mean reward, scratch and foul rates, balls per episode) and writes

@@ -4,6 +4,7 @@
     python scripts/train.py                                   # PotOne PPO, configs/ppo.yaml
     python scripts/train.py --config configs/sac.yaml
     python scripts/train.py --env Billiards-RunOut-v0 --set ppo.learning_rate=1e-4 --set n_envs=64
+    python scripts/train.py --resume runs/<name>              # continue a stopped run
 
 Writes runs/<name>/: config.yaml (resolved), command.txt, model.zip,
 vecnormalize.pkl, checkpoints/, progress.csv, tb/ (TensorBoard),
@@ -33,9 +34,14 @@ def main(argv=None) -> int:
                     help="dotted override, e.g. ppo.learning_rate=1e-4 (repeatable)")
     ap.add_argument("--name", default=None, help="run name (default <algo>_<env>_<time>)")
     ap.add_argument("--runs-dir", default=str(ROOT / "runs"))
+    ap.add_argument("--resume", default=None, metavar="RUN_DIR",
+                    help="continue a stopped run from its newest checkpoint, with its own config.yaml")
     args = ap.parse_args(argv)
 
     t_start = time.perf_counter()
+    if args.resume:  # the run's own config.yaml; the command is appended to its command.txt
+        train_and_evaluate(None, args.resume, " ".join(map(shlex.quote, ["python", *sys.argv])), t_start, resume=True)
+        return 0
     cfg = load_config(args.config, args.env, args.set)
     short = cfg.env_id.replace("Billiards-", "").replace("-v0", "").lower()
     name = args.name or f"{cfg.algo}_{short}_{time.strftime('%Y%m%d-%H%M%S')}"

@@ -1,0 +1,141 @@
+"""The agents' benchmark table (what ``scripts/benchmark_agents.py`` runs).
+
+For every task and algorithm with a block in ``configs/<algo>.yaml``: train
+with that config (its own budget, or the ``steps`` given, which the table
+then labels as a short budget), evaluating the policy on held seeds during
+training (the learning curve, ``HeldOutEvaluation``); then evaluate the
+final model on ``episodes`` held tables (``agents.evaluation.evaluate``,
+seed ``EVAL_SEED``) without noise and with ``tournament`` noise. One row
+per run: config, budget in env steps, training wall time (held-seed
+evaluations excluded), env steps/s including the updates, time to beat the
+ghost-ball baseline, success with its 95% interval under both noise
+settings, mean reward and balls per episode.
+"""
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+
+from .config import CONFIG_DIR, load_config
+
+TASKS = ("Billiards-PotOne-v0", "Billiards-RunOut-v0", "Billiards-NineBall-v0")
+ALGOS = ("ppo", "sac")
+EVAL_SEED = 12345
+NOISES = ("none", "tournament")
+
+
+def configured(algo: str, env_id: str) -> bool:
+    import yaml
+    doc = yaml.safe_load((CONFIG_DIR / f"{algo}.yaml").read_text()) or {}
+    return env_id in doc
+
+
+def run_one(env_id: str, algo: str, out_dir: Path, steps: int | None, episodes: int, curve_points: int,
+            curve_episodes: int, extra: tuple = (), command: str = "") -> dict:
+    from .baselines import SB3Policy
+    from .evaluation import evaluate
+    from .training import train
+
+    cfg0 = load_config(None, env_id, list(extra), algo=algo)
+    budget = int(steps or cfg0.train.total_timesteps)
+    over = [f"train.total_timesteps={budget}", f"train.eval_every={max(budget // curve_points, 1)}",
+            f"train.eval_every_episodes={curve_episodes}", "train.eval_episodes=0", "train.progress_bar=false",
+            "train.tensorboard=false", "train.checkpoint_every=0", *extra]
+    cfg = load_config(None, env_id, over, algo=algo)
+    short = env_id.replace("Billiards-", "").replace("-v0", "").lower()
+    run_dir = out_dir / "runs" / f"{algo}_{short}"
+    s = train(cfg, run_dir, f"benchmark_agents {algo} {env_id} steps={budget}")
+    pol = SB3Policy.load(run_dir, name=algo)
+    evals = {nz: evaluate(lambda env: pol.bind(env), env_id, episodes, EVAL_SEED, nz, name=algo).to_dict()
+             for nz in NOISES}
+    held = s["held_out"]
+    return dict(env_id=env_id, algo=algo, config=f"configs/{algo}.yaml", overrides=list(extra),
+                budget_steps=s["timesteps"], config_budget_steps=int(cfg0.train.total_timesteps),
+                train_wall_s=s["train_wall_s"], env_steps_per_s=s["env_steps_per_s"],
+                ghost_success=held["ghost_target"], steps_to_beat_ghost=held["steps_to_target"],
+                time_to_beat_ghost_s=held["time_to_target_s"], curve=str((run_dir / "evaluations.csv").relative_to(out_dir)),
+                eval=evals, command=command)
+
+
+def run_benchmark(out_dir, tasks=TASKS, algos=ALGOS, steps: int | None = None, episodes: int = 1000,
+                  curve_points: int = 10, curve_episodes: int = 1000, extra: tuple = (),
+                  command: str = "") -> list[dict]:
+    """Train and evaluate every configured (task, algo) of ``tasks`` x
+    ``algos``; the rows replace those of the same (task, algo) in
+    ``out_dir/benchmark.json`` (the others are kept); returns all rows."""
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    path = out_dir / "benchmark.json"
+    # rows of earlier invocations stay unless this one reruns their (task, algo)
+    rows = json.loads(path.read_text()) if path.exists() else []
+    for env_id in tasks:
+        for algo in algos:
+            if not configured(algo, env_id):
+                print(f"skip {algo} on {env_id}: no block in configs/{algo}.yaml", flush=True)
+                continue
+            t = time.perf_counter()
+            row = run_one(env_id, algo, out_dir, steps, episodes, curve_points, curve_episodes, extra, command)
+            rows = [r for r in rows if (r["env_id"], r["algo"]) != (env_id, algo)] + [row]
+            rows.sort(key=lambda r: (TASKS.index(r["env_id"]) if r["env_id"] in TASKS else len(TASKS),
+                                     ALGOS.index(r["algo"])))
+            print(f"{algo} {env_id}: {time.perf_counter() - t:.0f} s", flush=True)
+            path.write_text(json.dumps(rows, indent=2))
+    return rows
+
+
+def _ci(e: dict) -> str:
+    return f"{e['success_rate']:.3f} [{e['success_ci95'][0]:.3f}, {e['success_ci95'][1]:.3f}]"
+
+
+def markdown_table(rows: list[dict]) -> str:
+    head = ["task", "algo", "config", "budget (env steps)", "train wall (s)", "env steps/s", "beats ghost after",
+            "success, no noise", "success, tournament", "mean reward", "balls/episode"]
+    lines = ["| " + " | ".join(head) + " |", "|" + "|".join("---" for _ in head) + "|"]
+    for r in rows:
+        short = "" if r["budget_steps"] >= r["config_budget_steps"] else \
+            f" (short; config: {r['config_budget_steps']:,})"
+        ghost = (f"{r['time_to_beat_ghost_s']:.0f} s / {r['steps_to_beat_ghost']:,} steps"
+                 if r["steps_to_beat_ghost"] is not None else "not within the run")
+        e0, e1 = r["eval"]["none"], r["eval"]["tournament"]
+        cfg = r["config"] + ("".join(f" `{o}`" for o in r["overrides"]) if r["overrides"] else "")
+        lines.append("| " + " | ".join([
+            r["env_id"].replace("Billiards-", ""), r["algo"].upper(), cfg, f"{r['budget_steps']:,}{short}",
+            f"{r['train_wall_s']:.0f}", f"{r['env_steps_per_s']:,.0f}", ghost, _ci(e0), _ci(e1),
+            f"{e0['mean_reward']:.3f}", f"{e0['balls_per_episode']:.2f}"]) + " |")
+    commands = list(dict.fromkeys(r.get("command", "") for r in rows if r.get("command")))
+    if commands:
+        lines += ["", "Commands that produced the rows:", "", "```bash", *commands, "```"]
+    return "\n".join(lines)
+
+
+def plot_curves(rows: list[dict], out) -> None:
+    """Held-seed success against training time, one panel per task, with the
+    ghost-ball baseline's success as a dashed line (``out`` in the directory
+    the rows' curve paths are relative to)."""
+    import csv
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    tasks = list(dict.fromkeys(r["env_id"] for r in rows))
+    fig, axes = plt.subplots(1, len(tasks), figsize=(4.5 * len(tasks), 3.6), squeeze=False)
+    for ax, env_id in zip(axes[0], tasks):
+        for r in (r for r in rows if r["env_id"] == env_id):
+            with open(Path(out).parent / r["curve"], newline="") as f:
+                pts = list(csv.DictReader(f))
+            ax.plot([float(p["train_s"]) for p in pts], [float(p["success_rate"]) for p in pts], marker="o",
+                    ms=3, label=r["algo"].upper())
+            ghost = r["ghost_success"]
+        ax.axhline(ghost, ls="--", color="grey", label=f"ghost-ball {ghost:.3f}")
+        ax.set_title(env_id.replace("Billiards-", ""))
+        ax.set_xlabel("training wall time (s)")
+        ax.set_ylabel("held-seed success (no noise)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    Path(out).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(out, dpi=120)
+    plt.close(fig)

@@ -1,0 +1,31 @@
+"""scripts/benchmark_agents.py --quick: every configured task x algorithm, tiny runs."""
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.mark.slow  # several training runs in subprocesses: about a minute
+def test_quick_benchmark_writes_table_curves_and_json(tmp_path):
+    cmd = [sys.executable, str(ROOT / "scripts" / "benchmark_agents.py"), "--quick", "--out", str(tmp_path),
+           "--task", "Billiards-PotOne-v0", "--task", "Billiards-RunOut-v0"]
+    out = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stderr[-3000:]
+    rows = json.loads((tmp_path / "benchmark.json").read_text())
+    # PotOne has PPO and SAC configs, RunOut only PPO
+    assert [(r["env_id"], r["algo"]) for r in rows] == [
+        ("Billiards-PotOne-v0", "ppo"), ("Billiards-PotOne-v0", "sac"), ("Billiards-RunOut-v0", "ppo")]
+    for r in rows:
+        for nz in ("none", "tournament"):
+            e = r["eval"][nz]
+            assert e["n_episodes"] == 20 and e["success_ci95"][0] <= e["success_rate"] <= e["success_ci95"][1]
+        assert r["budget_steps"] >= 1024 and r["env_steps_per_s"] > 0
+        curve = (tmp_path / r["curve"]).read_text().splitlines()
+        assert curve[0].startswith("timesteps,train_s,success_rate") and len(curve) >= 3
+    md = (tmp_path / "benchmark.md").read_text()
+    assert md.count("| PotOne-v0 |") == 2 and "(short; config:" in md
+    assert (tmp_path / "learning_curves.png").stat().st_size > 0
