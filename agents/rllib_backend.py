@@ -242,7 +242,6 @@ def train(cfg: TrainConfig, run_dir, command: str = "", address: str | None = No
     ``stop_after_iterations``: stop early (tests). Returns the summary dict."""
     import numba
     import torch
-    from ray.rllib.utils.metrics import ENV_RUNNER_RESULTS, NUM_ENV_STEPS_SAMPLED_LIFETIME
 
     run_dir = Path(run_dir)
     run_dir.mkdir(parents=True, exist_ok=True)
@@ -254,8 +253,23 @@ def train(cfg: TrainConfig, run_dir, command: str = "", address: str | None = No
         f.write(command + "\n")
     torch.set_num_threads(cfg.train.torch_threads)
     numba.set_num_threads(min(cfg.train.numba_threads, numba.config.NUMBA_NUM_THREADS))
-    start_ray(address, num_cpus)
+    import ray
 
+    if cfg.normalize.reward:
+        print("note: normalize.reward applies to the sb3 backend only; the rllib backend trains on raw rewards")
+    started_here = not ray.is_initialized()
+    start_ray(address, num_cpus)
+    try:
+        return _train(cfg, run_dir, last, stop_after_iterations)
+    finally:
+        if started_here:
+            ray.shutdown()
+
+
+def _train(cfg: TrainConfig, run_dir: Path, last: Path | None, stop_after_iterations: int | None) -> dict:
+    from ray.rllib.utils.metrics import ENV_RUNNER_RESULTS, NUM_ENV_STEPS_SAMPLED_LIFETIME
+
+    resume = last is not None
     algo = algo_config(cfg).build_algo()
     steps = 0
     if last is not None:
@@ -392,3 +406,34 @@ def _observation_filter(ckpt: Path):
                          clip=state["clip_by_value"])
     filt.running_stats = RunningStat.from_state(state["running_stats"][0])
     return filt
+
+
+def train_and_evaluate(cfg: TrainConfig, run_dir, command: str = "", t_start: float | None = None,
+                       address: str | None = None, resume: bool = False) -> dict:
+    """``agents.training.train_and_evaluate`` with this backend: train,
+    plot ``learning_curve.png``, evaluate the last checkpoint and the
+    baselines through the harness (``final_evaluation``), write the summary."""
+    from .plotting import plot_runs
+    from .training import final_evaluation
+
+    t_start = time.perf_counter() if t_start is None else t_start
+    run_dir = Path(run_dir)
+    summary = train(cfg, run_dir, command, address=address, resume=resume)
+    print(f"trained {summary['timesteps']} steps in {summary['train_wall_s']:.1f} s "
+          f"({summary['env_steps_per_s']:.0f} env steps/s incl. updates); checkpoint: {summary['checkpoint']}")
+    plot_runs([run_dir], run_dir / "learning_curve.png")
+    results = final_evaluation(cfg, run_dir) if cfg.train.eval_episodes > 0 else []
+    summary["total_wall_s"] = time.perf_counter() - t_start
+    summary["eval"] = [r.to_dict() for r in results]
+    (run_dir / "train_summary.json").write_text(json.dumps(summary, indent=2))
+    print(f"total wall time (training + evaluation): {summary['total_wall_s']:.1f} s; run directory: {run_dir}")
+    return summary
+
+
+def resume(run_dir, command: str = "", t_start: float | None = None, address: str | None = None) -> dict:
+    """Continue the run ``run_dir`` from its last checkpoint, with the
+    config it was started with (``config.yaml``), to its ``total_timesteps``."""
+    run_dir = Path(run_dir)
+    if not (run_dir / "config.yaml").exists():
+        raise ValueError(f"resume {run_dir}: not a run directory (no config.yaml)")
+    return train_and_evaluate(_load_run_config(run_dir), run_dir, command, t_start, address=address, resume=True)
