@@ -203,6 +203,18 @@ def checkpoints(run_dir) -> list[Path]:
     return sorted(found, key=lambda p: int(p.name[len(CHECKPOINT_PREFIX):]))
 
 
+def env_runner_facts(algo) -> list[dict]:
+    """Per remote EnvRunner (the local one when there are none): its node,
+    process, vector env class and table count."""
+    def facts(runner):
+        import ray
+        return dict(node_id=ray.get_runtime_context().get_node_id(), pid=os.getpid(),
+                    env_class=type(runner.env.unwrapped).__name__, num_envs=int(runner.env.num_envs))
+
+    group = algo.env_runner_group
+    return list(group.foreach_env_runner(facts, local_env_runner=group.num_remote_env_runners() == 0))
+
+
 def is_rllib_run(path) -> bool:
     """Whether ``path`` is a run directory of this backend or one of its checkpoints."""
     path = Path(path)
@@ -327,6 +339,7 @@ def _train(cfg: TrainConfig, run_dir: Path, last: Path | None, stop_after_iterat
         final = run_dir / "checkpoints" / f"{CHECKPOINT_PREFIX}{steps}"
         if not final.exists():
             algo.save_to_path(str(final))
+        runners = env_runner_facts(algo)
     finally:
         csv_f.close()
         if tb is not None:
@@ -334,7 +347,7 @@ def _train(cfg: TrainConfig, run_dir: Path, last: Path | None, stop_after_iterat
         algo.stop()
     tail = rows[-5:]
     summary = dict(env_id=cfg.env_id, algo=cfg.algo, backend="rllib", timesteps=steps, train_wall_s=wall,
-                   env_steps_per_s=(steps - start_steps) / wall, checkpoint=str(final),
+                   env_steps_per_s=(steps - start_steps) / wall, checkpoint=str(final), env_runners=runners,
                    final_train_success=float(np.mean([r["success_rate"] for r in tail])) if tail else None)
     (run_dir / "train_summary.json").write_text(json.dumps(summary, indent=2))
     return summary
