@@ -35,6 +35,7 @@ import os
 import time
 from pathlib import Path
 
+import gymnasium as gym
 import numpy as np
 
 from .config import TrainConfig, save_config
@@ -58,7 +59,6 @@ def make_vector_env(ctx) -> "gym.vector.VectorEnv":
     ``ctx["num_envs"]`` tables (next-step autoreset), with the agent-side
     features and action transform of the config. Runs inside each EnvRunner
     process: importing ``billiards_env`` there registers the ids."""
-    import gymnasium as gym
     import numba
 
     import billiards_env  # noqa: F401  (registers the env ids in this worker)
@@ -72,7 +72,7 @@ def make_vector_env(ctx) -> "gym.vector.VectorEnv":
     if ctx.get("features") or ctx.get("aim_scale", 1.0) != 1.0 or ctx.get("action_mode", "direct") != "direct":
         env = VectorShotFeatures(env, bool(ctx.get("features")), float(ctx.get("aim_scale", 1.0)),
                                  ctx.get("action_mode", "direct"))
-    return env
+    return EpisodeFlagTotals(env)
 
 
 def env_context(cfg: TrainConfig) -> dict:
@@ -82,18 +82,54 @@ def env_context(cfg: TrainConfig) -> dict:
                 numba_threads=int(cfg.rllib.get("num_cpus_per_env_runner", 1)))
 
 
+class EpisodeFlagTotals(gym.vector.VectorWrapper):
+    """Counts finished episodes and their success / scratch / foul flags on
+    the vector env, with array operations per step (a per-episode RLlib
+    callback costs more than the simulation on one-shot tasks); the
+    ``on_sample_end`` callback logs and clears the totals once per sample."""
+
+    def __init__(self, env):
+        super().__init__(env)
+        self.totals = dict.fromkeys(("episodes",) + EPISODE_FLAGS, 0)
+
+    def step(self, actions):
+        obs, rew, term, trunc, info = self.env.step(actions)
+        done = np.asarray(term) | np.asarray(trunc)
+        if done.any():
+            self.totals["episodes"] += int(done.sum())
+            for flag in EPISODE_FLAGS:
+                if flag in info:
+                    mask = np.asarray(info.get("_" + flag, done), dtype=bool)
+                    self.totals[flag] += int(np.sum(np.asarray(info[flag], dtype=bool) & mask & done))
+        return obs, rew, term, trunc, info
+
+    def pop_totals(self) -> dict:
+        out, self.totals = self.totals, dict.fromkeys(self.totals, 0)
+        return out
+
+    @staticmethod
+    def find(env):
+        """The ``EpisodeFlagTotals`` under RLlib's wrappers of ``env`` (or None)."""
+        for _ in range(10):
+            if isinstance(env, EpisodeFlagTotals) or env is None:
+                return env
+            env = getattr(env, "env", None)
+        return None
+
+
 def _episode_metrics_callback():
     from ray.rllib.callbacks.callbacks import RLlibCallback
 
     class EpisodeFlags(RLlibCallback):
-        """Sums of success / scratch / foul over the episodes finished in an
-        iteration (``progress.csv`` divides them by the episode count)."""
+        """Per sample: the episodes finished and their success / scratch /
+        foul counts (summed over runners; ``progress.csv`` divides them)."""
 
-        def on_episode_end(self, *, episode, metrics_logger=None, **kwargs):
-            info = episode.get_infos(-1) or {}
-            metrics_logger.log_value("billiards_episodes", 1, reduce="sum")
-            for flag in EPISODE_FLAGS:
-                metrics_logger.log_value(f"billiards_{flag}", float(bool(info.get(flag, False))), reduce="sum")
+        def on_sample_end(self, *, env_runner=None, metrics_logger=None, **kwargs):
+            env = EpisodeFlagTotals.find(getattr(env_runner, "env", None))
+            if env is None or metrics_logger is None:
+                return
+            for key, value in env.pop_totals().items():
+                metrics_logger.log_value(f"billiards_{key}", value, reduce="sum")
 
     return EpisodeFlags
 
@@ -127,7 +163,6 @@ def _split_rllib_block(block: dict) -> tuple[dict, dict, dict, dict]:
 
 def algo_config(cfg: TrainConfig):
     """The ``PPOConfig`` (new API stack) of ``cfg``."""
-    import gymnasium as gym
     from ray.rllib.algorithms.ppo import PPOConfig
     from ray.rllib.core.rl_module.default_model_config import DefaultModelConfig
 
