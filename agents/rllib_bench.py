@@ -11,7 +11,8 @@ Sampling (env steps/s, one numba thread per env stepper):
 - ``sb3 rollout``: SB3 PPO's ``collect_rollouts`` on the default config's env
   (the same tables in one process, VecNormalize, policy forward passes);
 - ``rllib N runners``: N remote EnvRunners (``num_envs_per_env_runner``
-  tables each) sampling at once; steps of all runners over the wall time.
+  tables each) sampling at once; steps of all runners over the wall time
+  (1 and 2 runners interleaved in each repeat).
 
 RLlib's sampling overhead is ``1 - rllib 1 runner / bare env`` at the same
 table count; the 2-runner scaling is ``rllib 2 runners / rllib 1 runner``.
@@ -88,26 +89,30 @@ def sb3_rollout_rate(repeats: int) -> float:
     return statistics.median(rates)
 
 
-def rllib_sample_rate(runners: int, tables: int, shots: int, repeats: int) -> float:
-    """Env steps/s of ``runners`` remote EnvRunners sampling ``shots`` steps
-    of ``tables`` tables each, at once (median)."""
+def rllib_sample_rates(tables: int, shots: int, repeats: int) -> dict:
+    """Env steps/s of one and of two remote EnvRunners sampling ``shots``
+    steps of ``tables`` tables each at once: one algorithm with two runners,
+    the two cases interleaved in each repeat (medians), so load from other
+    processes hits both alike."""
     from .rllib_backend import algo_config
 
-    cfg = _cfg([f"rllib.num_env_runners={runners}", f"rllib.num_envs_per_env_runner={tables}",
-                f"rllib.train_batch_size_per_learner={tables * runners}", f"rllib.minibatch_size={tables * runners}"])
+    cfg = _cfg(["rllib.num_env_runners=2", f"rllib.num_envs_per_env_runner={tables}",
+                f"rllib.train_batch_size_per_learner={2 * tables}", f"rllib.minibatch_size={2 * tables}"])
     algo = algo_config(cfg).build_algo()
     group = algo.env_runner_group
+    sample = lambda r: sum(len(e) for e in r.sample(num_timesteps=tables * shots))  # noqa: E731
+    ids = {1: [1], 2: [1, 2]}
     try:
-        sample = lambda r: sum(len(e) for e in r.sample(num_timesteps=tables * shots))  # noqa: E731
         group.foreach_env_runner(sample, local_env_runner=False)  # warm
-        rates = []
+        rates = {1: [], 2: []}
         for _ in range(repeats):
-            t0 = time.perf_counter()
-            steps = sum(group.foreach_env_runner(sample, local_env_runner=False))
-            rates.append(steps / (time.perf_counter() - t0))
+            for n, workers in ids.items():
+                t0 = time.perf_counter()
+                steps = sum(group.foreach_env_runner(sample, local_env_runner=False, remote_worker_ids=workers))
+                rates[n].append(steps / (time.perf_counter() - t0))
     finally:
         algo.stop()
-    return statistics.median(rates)
+    return {n: statistics.median(r) for n, r in rates.items()}
 
 
 def _iteration_rate(progress_csv) -> float:
@@ -161,9 +166,9 @@ def rllib_rows(args) -> list[dict]:
     ray.shutdown()
     start_ray(num_cpus=2)
     try:
+        sampled = rllib_sample_rates(tables, shots, repeats)
         for n in (1, 2):
-            add(f"sampling: rllib {n} runner{'s' * (n > 1)}", rllib_sample_rate(n, tables, shots, repeats),
-                batch=tables, runners=n)
+            add(f"sampling: rllib {n} runner{'s' * (n > 1)}", sampled[n], batch=tables, runners=n)
         with tempfile.TemporaryDirectory() as tmp:
             rates = train_rates(train_steps, tmp)
     finally:
