@@ -15,7 +15,8 @@ RLlib registers as a Gymnasium ``vector_entry_point`` inside every worker
 process (the driver's Gymnasium registry is not visible there), so one
 batched simulator call steps all of a runner's tables. The env is made with
 next-step autoreset, the convention RLlib's EnvRunner expects. Each runner
-sets numba to one thread per CPU it is given (``num_cpus_per_env_runner``).
+sets numba and torch to one thread per CPU it is given
+(``num_cpus_per_env_runner``).
 
 The ``rllib:`` block: ``num_env_runners``, ``num_envs_per_env_runner``,
 ``num_cpus_per_env_runner`` (EnvRunners), ``num_learners``,
@@ -60,13 +61,15 @@ def make_vector_env(ctx) -> "gym.vector.VectorEnv":
     features and action transform of the config. Runs inside each EnvRunner
     process: importing ``billiards_env`` there registers the ids."""
     import numba
+    import torch
 
     import billiards_env  # noqa: F401  (registers the env ids in this worker)
 
     from .features import VectorShotFeatures
 
-    threads = int(ctx.get("numba_threads", 1))
-    numba.set_num_threads(max(1, min(threads, numba.config.NUMBA_NUM_THREADS)))
+    threads = max(1, int(ctx.get("numba_threads", 1)))  # the CPUs this EnvRunner is given
+    numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
+    torch.set_num_threads(threads)  # its policy forward passes: no more threads than its CPUs either
     env = gym.make_vec(ctx["env_id"], num_envs=int(ctx["num_envs"]), vectorization_mode="vector_entry_point",
                        autoreset_mode="next_step", **dict(ctx.get("env_kwargs") or {}))
     if ctx.get("features") or ctx.get("aim_scale", 1.0) != 1.0 or ctx.get("action_mode", "direct") != "direct":

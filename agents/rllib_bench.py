@@ -16,6 +16,9 @@ Sampling (env steps/s, one numba thread per env stepper):
 
 RLlib's sampling overhead is ``1 - rllib 1 runner / bare env`` at the same
 table count; the 2-runner scaling is ``rllib 2 runners / rllib 1 runner``.
+The runners also report their processes' CPU time: steps per runner
+CPU-second show what each core does whether or not the machine gave the
+runners whole cores (on a shared machine it may not).
 
 Training (env steps/s including updates): each backend's ``train`` on the
 default PotOne config for ``train_steps`` env steps (no evaluation), the
@@ -100,19 +103,27 @@ def rllib_sample_rates(tables: int, shots: int, repeats: int) -> dict:
                 f"rllib.train_batch_size_per_learner={2 * tables}", f"rllib.minibatch_size={2 * tables}"])
     algo = algo_config(cfg).build_algo()
     group = algo.env_runner_group
-    sample = lambda r: sum(len(e) for e in r.sample(num_timesteps=tables * shots))  # noqa: E731
+    def sample(runner):  # (env steps, CPU seconds of the runner process)
+        c0 = time.process_time()
+        steps = sum(len(e) for e in runner.sample(num_timesteps=tables * shots))
+        return steps, time.process_time() - c0
+
     ids = {1: [1], 2: [1, 2]}
     try:
         group.foreach_env_runner(sample, local_env_runner=False)  # warm
         rates = {1: [], 2: []}
+        cpu_rates = {1: [], 2: []}
         for _ in range(repeats):
             for n, workers in ids.items():
                 t0 = time.perf_counter()
-                steps = sum(group.foreach_env_runner(sample, local_env_runner=False, remote_worker_ids=workers))
+                out = group.foreach_env_runner(sample, local_env_runner=False, remote_worker_ids=workers)
+                steps = sum(o[0] for o in out)
                 rates[n].append(steps / (time.perf_counter() - t0))
+                cpu_rates[n].append(steps / sum(o[1] for o in out))
     finally:
         algo.stop()
-    return {n: statistics.median(r) for n, r in rates.items()}
+    return {**{n: statistics.median(r) for n, r in rates.items()},
+            **{f"{n} per cpu": statistics.median(r) for n, r in cpu_rates.items()}}
 
 
 def _iteration_rate(progress_csv) -> float:
@@ -169,6 +180,9 @@ def rllib_rows(args) -> list[dict]:
         sampled = rllib_sample_rates(tables, shots, repeats)
         for n in (1, 2):
             add(f"sampling: rllib {n} runner{'s' * (n > 1)}", sampled[n], batch=tables, runners=n)
+        for n in (1, 2):
+            add(f"sampling: rllib {n} runner{'s' * (n > 1)}, per runner CPU-second", sampled[f"{n} per cpu"],
+                batch=tables, runners=n)
         with tempfile.TemporaryDirectory() as tmp:
             rates = train_rates(train_steps, tmp)
     finally:
@@ -193,5 +207,10 @@ def rllib_markdown(rows: list[dict]) -> list[str]:
         lines.append(f"RLlib sampling overhead over the bare env (1 runner): {100 * (1 - one / bare):.0f}%")
     if one and two:
         lines.append(f"2 runners / 1 runner: {two / one:.2f}x")
+    c1, c2 = (by.get(f"sampling: rllib {k}, per runner CPU-second", {}).get("env_steps_per_s")
+              for k in ("1 runner", "2 runners"))
+    if c1 and c2:
+        lines.append(f"steps per runner CPU-second, 2 runners / 1 runner: {c2 / c1:.2f} "
+                     f"(1.00: each runner does the same work per core as one alone)")
     lines.append("")
     return lines
