@@ -31,7 +31,6 @@ from __future__ import annotations
 
 import csv
 import json
-import math
 import os
 import time
 from pathlib import Path
@@ -51,6 +50,7 @@ CHECKPOINT_PREFIX = "steps_"
 # minutes on a loaded machine with a cold cache, far above RLlib's 60 s default.
 SAMPLE_TIMEOUT_S = 900.0
 RAY_ENV_NAME = "billiards_env_vector"  # make_vector_env's name in Ray's registry (seen by every worker)
+WORKER_LOGS_VAR = "BILLIARDS_RAY_LOGS"  # =1: show the Ray workers' output in the driver (hidden by default)
 EPISODE_FLAGS = ("success", "scratch", "foul")
 
 
@@ -152,15 +152,11 @@ def _split_rllib_block(block: dict) -> tuple[dict, dict, dict, dict]:
     if unknown:
         raise ValueError(f"unknown rllib setting(s) {unknown}: use {list(ENV_RUNNER_KEYS + LEARNER_KEYS + FAULT_KEYS)} "
                          f"or PPOConfig.training arguments (lr, minibatch_size, num_epochs, ...)")
-    for k in ("num_env_runners", "num_learners"):
-        if k in runners or k in learners:
-            v = {**runners, **learners}[k]
-            if not isinstance(v, int) or v < 0:
-                raise ValueError(f"rllib.{k} must be a non-negative integer, got {v!r}")
-    if "num_envs_per_env_runner" in runners:
-        v = runners["num_envs_per_env_runner"]
-        if not isinstance(v, int) or v < 1:
-            raise ValueError(f"rllib.num_envs_per_env_runner must be a positive integer, got {v!r}")
+    counts = {**runners, **learners}
+    for k, lowest in (("num_env_runners", 0), ("num_learners", 0), ("num_envs_per_env_runner", 1)):
+        v = counts.get(k, lowest)
+        if isinstance(v, bool) or not isinstance(v, int) or v < lowest:
+            raise ValueError(f"rllib.{k} must be an integer >= {lowest}, got {v!r}")
     return runners, learners, fault, training
 
 
@@ -168,12 +164,11 @@ def algo_config(cfg: TrainConfig):
     """The ``PPOConfig`` (new API stack) of ``cfg``."""
     from ray.rllib.algorithms.ppo import PPOConfig
     from ray.rllib.core.rl_module.default_model_config import DefaultModelConfig
+    from ray.tune.registry import register_env
 
     if cfg.algo != "ppo":
         raise ValueError(f"the rllib backend trains PPO only, got algo {cfg.algo!r}")
     runners, learners, fault, training = _split_rllib_block(cfg.rllib)
-    from ray.tune.registry import register_env
-
     runners.setdefault("num_envs_per_env_runner", cfg.n_envs)
     runners.setdefault("sample_timeout_s", SAMPLE_TIMEOUT_S)
     register_env(RAY_ENV_NAME, make_vector_env)
@@ -203,17 +198,19 @@ def start_ray(address: str | None = None, num_cpus: int | None = None) -> None:
     """Join the cluster at ``address`` (``auto`` or ``HOST:PORT``), or start
     a local Ray instance on this machine (``num_cpus``: its CPU count; default
     all cores). Workers import the project from the same Python environment
-    (``PYTHONPATH`` is passed on when set, so a source checkout works too)."""
+    (``PYTHONPATH`` is passed on when set, so a source checkout works too).
+    The workers' output reaches the driver only with ``BILLIARDS_RAY_LOGS=1``."""
     import ray
 
     if ray.is_initialized():
         return
     env_vars = {k: os.environ[k] for k in ("PYTHONPATH",) if k in os.environ}
     runtime_env = {"env_vars": env_vars} if env_vars else None
+    logs = os.environ.get(WORKER_LOGS_VAR) == "1"
     if address:
-        ray.init(address=address, runtime_env=runtime_env, log_to_driver=os.environ.get("BILLIARDS_RAY_LOGS") == "1")
+        ray.init(address=address, runtime_env=runtime_env, log_to_driver=logs)
     else:
-        ray.init(num_cpus=num_cpus, include_dashboard=False, runtime_env=runtime_env, log_to_driver=os.environ.get("BILLIARDS_RAY_LOGS") == "1")
+        ray.init(num_cpus=num_cpus, include_dashboard=False, runtime_env=runtime_env, log_to_driver=logs)
 
 
 # ---------------------------------------------------------------- train --
