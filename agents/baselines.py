@@ -276,17 +276,6 @@ class SB3Policy:
                    action_mode=meta.get("action_mode", "direct"))
 
 
-def load_trained(path, name: str | None = None):
-    """A trained policy from a run directory or model file of either backend:
-    stable-baselines3 (``model.zip``) or RLlib (``agents.rllib_backend``)."""
-    from .rllib_backend import is_rllib_run
-
-    if is_rllib_run(path):
-        from .rllib_backend import RLlibPolicy
-        return RLlibPolicy.load(path, name=name)
-    return SB3Policy.load(path, name=name)
-
-
 def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
     """A baseline by name: ``random``, ``ghost``, ``search`` (``search<K>``
     sets K, e.g. ``search64``), or a path to a saved model / run directory."""
@@ -297,4 +286,4 @@ def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
     if name.startswith("search"):
         kk = int(name[6:]) if name[6:] else k
         return SearchPolicy(env, k=kk, seed=seed)
-    return load_trained(name).bind(env)
+    return SB3Policy.load(name, env=env)

@@ -195,11 +195,22 @@ def evaluate(policy_fn: Callable, env_id: str, n_episodes: int = 1000, seed: int
     return combine_batches(batches, env_id, n_episodes, seed, noise, time.perf_counter() - t0, name)
 
 
+def load_trained(path, name: str | None = None):
+    """A trained policy from a run directory or model file of either backend:
+    stable-baselines3 (``model.zip``) or RLlib (``agents.rllib_policy``)."""
+    from .baselines import SB3Policy
+    from .rllib_policy import RLlibPolicy, is_rllib_run
+
+    if is_rllib_run(path):
+        return RLlibPolicy.load(path, name=name)
+    return SB3Policy.load(path, name=name)
+
+
 def policy_factory(spec: str, seed: int = 0, search_k: int = 256) -> tuple[Callable, str]:
     """``(policy_fn, display name)`` of a policy spec: ``random``, ``ghost``,
     ``search`` (K = ``search_k``), ``search<K>``, or a run directory / model
     file of either training backend."""
-    from .baselines import load_trained, make_policy
+    from .baselines import make_policy
 
     if spec in ("random", "ghost") or spec.startswith("search"):
         if spec == "search":
@@ -209,27 +220,26 @@ def policy_factory(spec: str, seed: int = 0, search_k: int = 256) -> tuple[Calla
     return (lambda env, p=loaded: p.bind(env)), f"{loaded.name}:{Path(spec).name}"  # noqa: E731
 
 
+def evaluate_spec(spec: str, policy_fn: Callable, env_id: str, n_episodes: int, seed: int, noise: str,
+                  batch_size: int, name: str, search_k: int = 256) -> EvalResult:
+    """One entry of ``evaluate_policies``, in this process."""
+    return evaluate(policy_fn, env_id, n_episodes, seed, noise, batch_size=batch_size, name=name)
+
+
 def evaluate_policies(specs: list[str], env_id: str, n_episodes: int = 1000, seed: int = 0,
                       noises: list | None = None, search_k: int = 256, batch_size: int = 1000,
-                      names: list[str] | None = None, backend: str = "local") -> list[EvalResult]:
+                      names: list[str] | None = None, run: Callable = evaluate_spec) -> list[EvalResult]:
     """Evaluate every policy of ``specs`` (see ``policy_factory``) under
     every noise setting of ``noises`` (default ``["none"]``) on the same
     seeded episodes, printing one line per result. ``names``: display names
-    per spec (optional). ``backend="ray"``: batches and search candidates as
-    Ray tasks (``agents.ray_eval``), with the same results."""
-    if backend not in ("local", "ray"):
-        raise ValueError(f"backend must be 'local' or 'ray', got {backend!r}")
-    if backend == "ray":
-        from .ray_eval import evaluate_spec
+    per spec (optional). ``run``: how one entry is evaluated (``evaluate_spec``
+    here; ``agents.ray_eval.evaluate_spec`` on Ray, with the same results)."""
     results = []
     for j, spec in enumerate(specs):
         fn, display = policy_factory(spec, seed, search_k)
         display = names[j] if names and j < len(names) and names[j] else display
         for nz in noises or ["none"]:
-            if backend == "ray":
-                r = evaluate_spec(spec, fn, env_id, n_episodes, seed, nz, batch_size, display, search_k)
-            else:
-                r = evaluate(fn, env_id, n_episodes, seed, nz, batch_size=batch_size, name=display)
+            r = run(spec, fn, env_id, n_episodes, seed, nz, batch_size, display, search_k)
             print(f"{display:>20s} noise={nz:<10s} success {r.success_rate:.3f} "
                   f"[{r.success_ci95[0]:.3f}, {r.success_ci95[1]:.3f}]  ({r.wall_time_s:.1f} s)", flush=True)
             results.append(r)

@@ -7,7 +7,8 @@ writes the same run directory: ``config.yaml``, ``command.txt``,
 ``checkpoints/`` (RLlib checkpoints named by env steps), ``progress.csv``
 (same columns), ``tb/`` (TensorBoard), ``learning_curve.png``,
 ``train_summary.json`` and the final evaluation through the project's harness
-(``eval.json``/``eval.png``, ``RLlibPolicy`` playing the seeded episodes).
+(``eval.json``/``eval.png``, ``agents.rllib_policy.RLlibPolicy`` playing the
+seeded episodes).
 
 Each EnvRunner is a Ray actor stepping one native vector env of
 ``num_envs_per_env_runner`` tables: ``make_vector_env`` is the env creator
@@ -39,13 +40,13 @@ import gymnasium as gym
 import numpy as np
 
 from .config import TrainConfig, save_config
+from .rllib_policy import CHECKPOINT_PREFIX, checkpoints, load_run_config
 
 ENV_RUNNER_KEYS = ("num_env_runners", "num_envs_per_env_runner", "num_cpus_per_env_runner")
 LEARNER_KEYS = ("num_learners", "num_cpus_per_learner")
 FAULT_KEYS = ("max_num_env_runner_restarts",)
 PROGRESS_FIELDS = ["timesteps", "time_s", "episodes", "success_rate", "mean_reward", "scratch_rate", "foul_rate",
                    "steps_per_s"]
-CHECKPOINT_PREFIX = "steps_"
 # A fresh worker compiles (or loads) its numba kernels during its first sample:
 # minutes on a loaded machine with a cold cache, far above RLlib's 60 s default.
 SAMPLE_TIMEOUT_S = 900.0
@@ -229,15 +230,6 @@ def _set_log_std(algo, value: float) -> None:
     algo.env_runner_group.sync_weights(from_worker_or_learner_group=algo.learner_group, inference_only=True)
 
 
-def checkpoints(run_dir) -> list[Path]:
-    """The run's checkpoints, oldest first (named by env steps)."""
-    ck = Path(run_dir) / "checkpoints"
-    if not ck.is_dir():
-        return []
-    found = [p for p in ck.iterdir() if p.is_dir() and p.name.startswith(CHECKPOINT_PREFIX)]
-    return sorted(found, key=lambda p: int(p.name[len(CHECKPOINT_PREFIX):]))
-
-
 def env_runner_facts(algo) -> list[dict]:
     """Per remote EnvRunner (the local one when there are none): its node,
     process, vector env class and table count."""
@@ -248,13 +240,6 @@ def env_runner_facts(algo) -> list[dict]:
 
     group = algo.env_runner_group
     return list(group.foreach_env_runner(facts, local_env_runner=group.num_remote_env_runners() == 0))
-
-
-def is_rllib_run(path) -> bool:
-    """Whether ``path`` is a run directory of this backend or one of its checkpoints."""
-    path = Path(path)
-    return (path / "rllib_checkpoint.json").exists() or any(
-        (c / "rllib_checkpoint.json").exists() for c in checkpoints(path))
 
 
 def _row(result: dict, steps: int, elapsed: float) -> dict | None:
@@ -388,74 +373,6 @@ def _train(cfg: TrainConfig, run_dir: Path, last: Path | None, stop_after_iterat
     return summary
 
 
-# ----------------------------------------------------------- evaluation --
-class RLlibPolicy:
-    """A trained RLlib PPO policy in the evaluation harness's interface
-    (``act(obs) -> actions``, deterministic: the Gaussian's mean): the
-    RLModule and the observation filter's statistics read from a checkpoint,
-    the agent-side features and action transform from the run's config."""
-
-    def __init__(self, module, obs_filter, cfg: TrainConfig, name: str = "rllib_ppo", env=None):
-        self.module, self.obs_filter, self.cfg, self.name, self.env = module, obs_filter, cfg, name, env
-
-    def bind(self, env) -> "RLlibPolicy":
-        from .baselines import native_env
-
-        return RLlibPolicy(self.module, self.obs_filter, self.cfg, self.name, native_env(env))
-
-    def act(self, obs: np.ndarray) -> np.ndarray:
-        import torch
-
-        from .features import shot_features, transform_actions
-
-        cfg = self.cfg
-        if cfg.features:
-            obs = np.concatenate([obs, shot_features(self.env, cfg.aim_scale)], axis=1)
-        obs = np.asarray(obs, dtype=np.float32)
-        if self.obs_filter is not None:  # the EnvRunners' own filter code, its statistics frozen
-            obs = self.obs_filter(obs, update=False)
-        with torch.no_grad():
-            out = self.module.forward_inference({"obs": torch.as_tensor(obs, dtype=torch.float32)})
-        mean = out["action_dist_inputs"].numpy()[:, :out["action_dist_inputs"].shape[1] // 2]
-        return transform_actions(self.env, np.clip(mean, -1.0, 1.0), cfg.action_mode, cfg.aim_scale)
-
-    @classmethod
-    def load(cls, path, name: str | None = None) -> "RLlibPolicy":
-        """From a run directory (its last checkpoint) or one checkpoint directory."""
-        from ray.rllib.core.rl_module.rl_module import RLModule
-
-        path = Path(path)
-        run_dir, ckpt = (path, checkpoints(path)[-1]) if (path / "checkpoints").is_dir() else (path.parents[1], path)
-        cfg = _load_run_config(run_dir)
-        module = RLModule.from_checkpoint(ckpt / "learner_group" / "learner" / "rl_module" / "default_policy")
-        obs_filter = _observation_filter(ckpt) if cfg.normalize.obs else None
-        return cls(module, obs_filter, cfg, name or "rllib_ppo")
-
-
-def _load_run_config(run_dir: Path) -> TrainConfig:
-    import yaml
-
-    return TrainConfig.from_dict(yaml.safe_load((run_dir / "config.yaml").read_text()))
-
-
-def _observation_filter(ckpt: Path):
-    """The EnvRunners' observation filter (RLlib's ``MeanStdFilter``) with
-    the running statistics saved in the checkpoint ``ckpt``."""
-    import pickle
-
-    from ray.rllib.utils.filter import MeanStdFilter, RunningStat
-
-    state_file = ckpt / "env_runner" / "env_to_module_connector" / "MeanStdFilter" / "state.pkl"
-    if not state_file.exists():
-        raise FileNotFoundError(f"{ckpt}: no observation filter state ({state_file})")
-    with open(state_file, "rb") as f:
-        state = pickle.load(f)[None]  # single-agent: the one filter, keyed by agent id None
-    filt = MeanStdFilter(tuple(state["shape"]), demean=state["de_mean_to_zero"], destd=state["de_std_to_one"],
-                         clip=state["clip_by_value"])
-    filt.running_stats = RunningStat.from_state(state["running_stats"][0])
-    return filt
-
-
 def train_and_evaluate(cfg: TrainConfig, run_dir, command: str = "", t_start: float | None = None,
                        address: str | None = None, resume: bool = False) -> dict:
     """``agents.training.train_and_evaluate`` with this backend: train,
@@ -484,4 +401,4 @@ def resume(run_dir, command: str = "", t_start: float | None = None, address: st
     run_dir = Path(run_dir)
     if not (run_dir / "config.yaml").exists():
         raise ValueError(f"resume {run_dir}: not a run directory (no config.yaml)")
-    return train_and_evaluate(_load_run_config(run_dir), run_dir, command, t_start, address=address, resume=True)
+    return train_and_evaluate(load_run_config(run_dir), run_dir, command, t_start, address=address, resume=True)

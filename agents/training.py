@@ -194,8 +194,8 @@ def final_evaluation(cfg: TrainConfig, run_dir) -> list:
     """The trained model of ``run_dir`` and ``cfg.train.eval_baselines`` on
     ``eval_episodes`` seeded episodes per noise setting; prints a Markdown
     table and writes ``eval.json`` / ``eval.png`` into ``run_dir``."""
-    from .baselines import load_trained, make_policy
-    from .evaluation import evaluate, format_table, save_results
+    from .baselines import make_policy
+    from .evaluation import evaluate, format_table, load_trained, save_results
 
     run_dir = Path(run_dir)
     trained = load_trained(run_dir)  # either backend's run

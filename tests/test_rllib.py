@@ -91,9 +91,9 @@ def test_vector_features_wrapper_matches_the_sb3_wrapper():
 
 # ---------------------------------------------------------------- ray tests --
 def test_local_run_steps_the_vector_env_and_loads_into_the_harness(local_ray, tmp_path):
-    from agents.baselines import load_trained
-    from agents.evaluation import evaluate
-    from agents.rllib_backend import RLlibPolicy, checkpoints, train
+    from agents.evaluation import evaluate, load_trained
+    from agents.rllib_backend import train
+    from agents.rllib_policy import RLlibPolicy, checkpoints
 
     run = tmp_path / "run"
     s = train(_cfg("train.total_timesteps=192", "train.checkpoint_every=64"), run, "test")
@@ -132,11 +132,12 @@ def test_unknown_rllib_setting_is_an_error_naming_it():
 
 def test_distributed_evaluation_equals_local(local_ray, tmp_path):
     from agents.evaluation import evaluate_policies
+    from agents.ray_eval import evaluate_spec
 
     specs = ["random", "ghost", "search8"]
     kw = dict(env_id="Billiards-PotOne-v0", n_episodes=48, seed=777, noises=["none", "tournament"], batch_size=16)
     local = evaluate_policies(specs, **kw)
-    dist = evaluate_policies(specs, **kw, backend="ray")
+    dist = evaluate_policies(specs, **kw, run=evaluate_spec)
     assert [r.policy for r in dist] == [r.policy for r in local]
     for a, b in zip(local, dist):
         assert a.per_episode == b.per_episode, (a.policy, a.noise)
@@ -169,7 +170,8 @@ def test_killed_env_runner_is_restarted_and_training_continues(local_ray):
 
 
 def test_resume_continues_from_the_last_checkpoint(local_ray, tmp_path):
-    from agents.rllib_backend import checkpoints, train
+    from agents.rllib_backend import train
+    from agents.rllib_policy import checkpoints
 
     run = tmp_path / "run"
     cfg = _cfg("train.total_timesteps=256", "train.checkpoint_every=128")
