@@ -97,6 +97,19 @@ class GhostBallPolicy:
         return to_action(env, self.shots(env.state, target))
 
 
+def candidate_success(struck: BallState, target: np.ndarray, table, params, effects=None, models=None) -> np.ndarray:
+    """Success of each struck table (one candidate shot each): first contact
+    with its ``target`` ball, that ball pocketed, the cue ball not."""
+    res = simulate(struck, table, params, effects=effects, models=models, validate=False)
+    before = struck.pocket >= 0
+    after = res.state.pocket >= 0
+    newly = after & ~before
+    legal_first = res.first_contact == target
+    cue_safe = ~after[:, 0]
+    potted_target = newly[np.arange(len(target)), target]
+    return legal_first & cue_safe & potted_target
+
+
 def to_action(env, shots: Shots) -> np.ndarray:
     """The env's actions (float32 [N, 4]) for ``shots``."""
     return np.clip(np.asarray(env.shots_to_actions(shots), dtype=np.float32), -1.0, 1.0)
@@ -116,12 +129,16 @@ class SearchPolicy:
 
     name = "search"
 
-    def __init__(self, env, k: int = 256, seed: int = 0, aim_jitter_deg: float = 1.5, chunk: int = 65536):
+    def __init__(self, env, k: int = 256, seed: int = 0, aim_jitter_deg: float = 1.5, chunk: int = 65536,
+                 map_chunks=None):
         self.env = native_env(env)
         self.k = int(k)
         self.rng = np.random.default_rng(seed)
         self.aim_jitter = math.radians(aim_jitter_deg)
         self.chunk = chunk
+        # map_chunks(fn, list of argument tuples) -> list of results, in order;
+        # the default runs them here, agents.ray_eval on Ray workers
+        self.map_chunks = map_chunks or (lambda fn, args: [fn(*a) for a in args])
         self.name = f"search{self.k}"
 
     def candidates(self, state: BallState, target: np.ndarray):
@@ -173,21 +190,13 @@ class SearchPolicy:
         rep = np.repeat(np.arange(E), K)
         big = state.take(rep)
         struck = strike_velocity(big, phi.ravel(), speed.ravel(), a.ravel(), b.ravel(), env.params)
-        ok = np.empty(E * K, dtype=bool)
+        effects, models = getattr(env, "effects", None), getattr(env, "models", None)
+        args = []
         for s0 in range(0, E * K, self.chunk):
             sl = slice(s0, min(E * K, s0 + self.chunk))
             sub = BallState(struck.pos[sl], struck.vel[sl], struck.omega[sl], struck.pocket[sl])
-            res = simulate(sub, env.table, env.params, effects=getattr(env, "effects", None),
-                           models=getattr(env, "models", None), validate=False)
-            before = big.pocket[sl] >= 0
-            after = res.state.pocket >= 0
-            newly = after & ~before
-            tgt = target[rep[sl]]
-            legal_first = res.first_contact == tgt
-            cue_safe = ~after[:, 0]
-            potted_target = newly[np.arange(len(tgt)), tgt]
-            ok[sl] = legal_first & cue_safe & potted_target
-        return ok.reshape(E, K)
+            args.append((sub, target[rep[sl]], env.table, env.params, effects, models))
+        return np.concatenate(self.map_chunks(candidate_success, args)).reshape(E, K)
 
     def shots(self, state: BallState, target: np.ndarray):
         phi, speed, a, b, closeness = self.candidates(state, target)

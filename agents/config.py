@@ -7,6 +7,7 @@ into frozen dataclasses, with dotted command-line overrides.
       algo: ppo
       n_envs: 128
       ppo: {learning_rate: 3.0e-4, n_steps: 4, ...}   # SB3 constructor kwargs
+      rllib: {num_env_runners: 2, lr: 3.0e-4, ...}    # RLlib PPO (agents.rllib_backend)
       policy: {net_arch: [256, 256], log_std_init: -0.7, ...}
       normalize: {obs: true, reward: false, ...}
       train: {total_timesteps: ..., eval_episodes: ..., ...}
@@ -95,6 +96,7 @@ class TrainConfig:
     action_mode: str = "direct"  # direct | residual (corrections to the ghost-ball shot)
     ppo: dict = dataclasses.field(default_factory=dict)   # SB3 PPO kwargs
     sac: dict = dataclasses.field(default_factory=dict)   # SB3 SAC kwargs
+    rllib: dict = dataclasses.field(default_factory=dict)  # RLlib PPO settings (agents.rllib_backend)
     policy: PolicyConfig = dataclasses.field(default_factory=PolicyConfig)
     normalize: NormalizeConfig = dataclasses.field(default_factory=NormalizeConfig)
     train: TrainSettings = dataclasses.field(default_factory=TrainSettings)
@@ -137,7 +139,7 @@ class TrainConfig:
                     if f.name in v and isinstance(v[f.name], list):
                         v[f.name] = tuple(v[f.name])
                 d[k] = sub(**v)
-        for k in ("ppo", "sac", "env_kwargs"):
+        for k in ("ppo", "sac", "rllib", "env_kwargs"):
             if k in d:
                 d[k] = dict(d[k] or {})
         return cls(**d)
@@ -204,7 +206,7 @@ def load_config(path=None, env_id: str | None = None, overrides: list[str] | Non
     block = apply_overrides(block, overrides or [])
     # RL-Zoo style: total_timesteps may sit in the algorithm block
     # (``--set ppo.total_timesteps=512``); it belongs to the run settings.
-    for algo_key in ("ppo", "sac"):
+    for algo_key in ("ppo", "sac", "rllib"):
         sub = block.get(algo_key)
         if isinstance(sub, dict) and "total_timesteps" in sub:
             block.setdefault("train", {})

@@ -106,93 +106,140 @@ def parse_noise(spec: str | None):
     return d
 
 
+def play_batch(policy_fn: Callable, env_id: str, n: int, seed: int, env_kwargs: dict | None = None,
+               max_steps: int = 10_000, name: str | None = None) -> dict:
+    """Play the first episode of ``n`` tables reset with ``seed``; per-episode
+    arrays (success, reward, scratch, foul, balls, shots) and the policy's name.
+    One batch of ``evaluate``; a unit of work for distributed evaluation."""
+    env: NativeVecEnv = make_sb3_vec_env(env_id, n, **dict(env_kwargs or {}))
+    env.seed(seed)
+    policy = policy_fn(env)
+    pname = name or getattr(policy, "name", "policy")
+    obs = env.reset()
+    finished = np.zeros(n, dtype=bool)
+    ep_ret = np.zeros(n)
+    ep_scratch = np.zeros(n, dtype=bool)
+    ep_foul = np.zeros(n, dtype=bool)
+    ep_balls = np.zeros(n, dtype=np.int64)
+    ep_shots = np.zeros(n, dtype=np.int64)
+    ep_succ = np.zeros(n, dtype=bool)
+    steps = 0
+    while not finished.all():
+        steps += 1
+        if steps > max_steps:
+            raise RuntimeError(f"evaluation of {pname} on {env_id}: episodes did not end in {max_steps} steps")
+        actions = policy.act(obs)
+        obs, rewards, dones, infos = env.step(actions)
+        live = ~finished
+        ep_ret[live] += rewards[live]
+        ep_shots[live] += 1
+        for i in np.flatnonzero(live):
+            info = infos[i]
+            ep_scratch[i] |= _flag(info, "scratch")
+            ep_foul[i] |= _flag(info, "foul")
+            ep_balls[i] += _count(info, "n_pocketed", "balls_pocketed", "legal_pocketed")
+            if dones[i]:
+                ep_succ[i] = _flag(info, "success", "is_success")
+        finished |= dones
+    env.close()
+    return dict(name=pname, success=ep_succ, reward=ep_ret, scratch=ep_scratch, foul=ep_foul, balls=ep_balls,
+                shots=ep_shots)
+
+
+def batch_plan(n_episodes: int, seed: int, batch_size: int) -> list[tuple[int, int]]:
+    """(tables, reset seed) of each batch: batch j holds ``batch_size`` tables
+    (the last one the rest) reset with ``seed + j``."""
+    plan, done = [], 0
+    while done < n_episodes:
+        n = min(batch_size, n_episodes - done)
+        plan.append((n, seed + len(plan)))
+        done += n
+    return plan
+
+
+def eval_kwargs(noise: str | None, env_kwargs: dict | None = None) -> dict:
+    """The env arguments of an evaluation under ``noise``."""
+    kw = dict(env_kwargs or {})
+    if noise and noise != "none":
+        kw["noise"] = parse_noise(noise)
+    return kw
+
+
+def combine_batches(batches: list[dict], env_id: str, n_episodes: int, seed: int, noise: str | None,
+                    wall_time_s: float, name: str | None = None) -> EvalResult:
+    """One ``EvalResult`` from the ``play_batch`` outputs, in batch order."""
+    succ, ret, scratch, foul, balls, shots = (np.concatenate([b[k] for b in batches])
+                                              for k in ("success", "reward", "scratch", "foul", "balls", "shots"))
+    k = int(succ.sum())
+    return EvalResult(
+        policy=name or batches[0]["name"], env_id=env_id, noise=noise or "none", n_episodes=int(n_episodes),
+        seed=int(seed), success_rate=k / n_episodes, success_ci95=wilson_interval(k, n_episodes),
+        mean_reward=float(ret.mean()), std_reward=float(ret.std()),
+        scratch_rate=float(scratch.mean()), foul_rate=float(foul.mean()),
+        balls_per_episode=float(balls.mean()), shots_per_episode=float(shots.mean()),
+        wall_time_s=wall_time_s,
+        per_episode=dict(success=succ.tolist(), reward=ret.tolist()))
+
+
 def evaluate(policy_fn: Callable, env_id: str, n_episodes: int = 1000, seed: int = 0, noise: str = "none",
              batch_size: int = 1000, max_steps: int = 10_000, env_kwargs: dict | None = None,
              name: str | None = None, numba_threads: int | None = None) -> EvalResult:
     """Evaluate ``policy_fn(env) -> policy`` (a policy built on the SB3
     adapter ``env``; it may read the native env through it)."""
     t0 = time.perf_counter()
-    kw = dict(env_kwargs or {})
-    if noise and noise != "none":
-        kw["noise"] = parse_noise(noise)
-    succ, ret, scratch, foul, balls, shots = ([] for _ in range(6))
-    done_total = 0
-    batch_idx = 0
-    pname = name
-    while done_total < n_episodes:
-        n = min(batch_size, n_episodes - done_total)
-        env: NativeVecEnv = make_sb3_vec_env(env_id, n, **kw)
-        env.seed(seed + batch_idx)
-        policy = policy_fn(env)
-        pname = pname or getattr(policy, "name", "policy")
-        obs = env.reset()
-        finished = np.zeros(n, dtype=bool)
-        ep_ret = np.zeros(n)
-        ep_scratch = np.zeros(n, dtype=bool)
-        ep_foul = np.zeros(n, dtype=bool)
-        ep_balls = np.zeros(n, dtype=np.int64)
-        ep_shots = np.zeros(n, dtype=np.int64)
-        ep_succ = np.zeros(n, dtype=bool)
-        steps = 0
-        while not finished.all():
-            steps += 1
-            if steps > max_steps:
-                raise RuntimeError(f"evaluation of {pname} on {env_id}: episodes did not end in {max_steps} steps")
-            actions = policy.act(obs)
-            obs, rewards, dones, infos = env.step(actions)
-            live = ~finished
-            ep_ret[live] += rewards[live]
-            ep_shots[live] += 1
-            for i in np.flatnonzero(live):
-                info = infos[i]
-                ep_scratch[i] |= _flag(info, "scratch")
-                ep_foul[i] |= _flag(info, "foul")
-                ep_balls[i] += _count(info, "n_pocketed", "balls_pocketed", "legal_pocketed")
-                if dones[i]:
-                    ep_succ[i] = _flag(info, "success", "is_success")
-            finished |= dones
-        env.close()
-        succ.append(ep_succ); ret.append(ep_ret); scratch.append(ep_scratch); foul.append(ep_foul)
-        balls.append(ep_balls); shots.append(ep_shots)
-        done_total += n
-        batch_idx += 1
-    succ, ret, scratch, foul, balls, shots = map(np.concatenate, (succ, ret, scratch, foul, balls, shots))
-    k = int(succ.sum())
-    return EvalResult(
-        policy=pname, env_id=env_id, noise=noise or "none", n_episodes=int(n_episodes), seed=int(seed),
-        success_rate=k / n_episodes, success_ci95=wilson_interval(k, n_episodes),
-        mean_reward=float(ret.mean()), std_reward=float(ret.std()),
-        scratch_rate=float(scratch.mean()), foul_rate=float(foul.mean()),
-        balls_per_episode=float(balls.mean()), shots_per_episode=float(shots.mean()),
-        wall_time_s=time.perf_counter() - t0,
-        per_episode=dict(success=succ.tolist(), reward=ret.tolist()))
+    kw = eval_kwargs(noise, env_kwargs)
+    batches = []
+    for n, batch_seed in batch_plan(n_episodes, seed, batch_size):
+        batches.append(play_batch(policy_fn, env_id, n, batch_seed, kw, max_steps, name))
+        name = name or batches[0]["name"]
+    return combine_batches(batches, env_id, n_episodes, seed, noise, time.perf_counter() - t0, name)
+
+
+def load_trained(path, name: str | None = None):
+    """A trained policy from a run directory or model file of either backend:
+    stable-baselines3 (``model.zip``) or RLlib (``agents.rllib_policy``)."""
+    from .baselines import SB3Policy
+    from .rllib_policy import RLlibPolicy, is_rllib_run
+
+    if is_rllib_run(path):
+        return RLlibPolicy.load(path, name=name)
+    return SB3Policy.load(path, name=name)
+
+
+def policy_factory(spec: str, seed: int = 0, search_k: int = 256) -> tuple[Callable, str]:
+    """``(policy_fn, display name)`` of a policy spec: ``random``, ``ghost``,
+    ``search`` (K = ``search_k``), ``search<K>``, ``lookahead``, or a run
+    directory / model file of either training backend."""
+    from .policies import BASELINE_NAMES, make_policy
+
+    if spec in BASELINE_NAMES or spec.startswith("search"):
+        if spec == "search":
+            spec = f"search{search_k}"
+        return (lambda env, s=spec: make_policy(s, env, seed=seed)), spec  # noqa: E731
+    loaded = load_trained(spec)
+    return (lambda env, p=loaded: p.bind(env)), f"{loaded.name}:{Path(spec).name}"  # noqa: E731
+
+
+def evaluate_spec(spec: str, policy_fn: Callable, env_id: str, n_episodes: int, seed: int, noise: str,
+                  batch_size: int, name: str, search_k: int = 256) -> EvalResult:
+    """One entry of ``evaluate_policies``, in this process."""
+    return evaluate(policy_fn, env_id, n_episodes, seed, noise, batch_size=batch_size, name=name)
 
 
 def evaluate_policies(specs: list[str], env_id: str, n_episodes: int = 1000, seed: int = 0,
                       noises: list | None = None, search_k: int = 256, batch_size: int = 1000,
-                      names: list[str] | None = None) -> list[EvalResult]:
-    """Evaluate every policy of ``specs`` (``random``, ``ghost``, ``search``
-    (K = ``search_k``), ``search<K>``, ``lookahead``, or a run directory / model .zip) under
+                      names: list[str] | None = None, run: Callable = evaluate_spec) -> list[EvalResult]:
+    """Evaluate every policy of ``specs`` (see ``policy_factory``) under
     every noise setting of ``noises`` (default ``["none"]``) on the same
     seeded episodes, printing one line per result. ``names``: display names
-    per spec (optional)."""
-    from .baselines import SB3Policy
-    from .policies import BASELINE_NAMES, make_policy
-
+    per spec (optional). ``run``: how one entry is evaluated (``evaluate_spec``
+    here; ``agents.ray_eval.evaluate_spec`` on Ray, with the same results)."""
     results = []
     for j, spec in enumerate(specs):
-        display = names[j] if names and j < len(names) else None
-        if spec in BASELINE_NAMES or spec.startswith("search"):
-            if spec == "search":
-                spec = f"search{search_k}"
-            fn = lambda env, s=spec: make_policy(s, env, seed=seed)  # noqa: E731
-            display = display or spec
-        else:
-            loaded = SB3Policy.load(spec)
-            fn = lambda env, p=loaded: p.bind(env)  # noqa: E731
-            display = display or f"{loaded.name}:{Path(spec).name}"
+        fn, display = policy_factory(spec, seed, search_k)
+        display = names[j] if names and j < len(names) and names[j] else display
         for nz in noises or ["none"]:
-            r = evaluate(fn, env_id, n_episodes, seed, nz, batch_size=batch_size, name=display)
+            r = run(spec, fn, env_id, n_episodes, seed, nz, batch_size, display, search_k)
             print(f"{display:>20s} noise={nz:<10s} success {r.success_rate:.3f} "
                   f"[{r.success_ci95[0]:.3f}, {r.success_ci95[1]:.3f}]  ({r.wall_time_s:.1f} s)", flush=True)
             results.append(r)

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import math
 
+import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 from stable_baselines3.common.vec_env.base_vec_env import VecEnvWrapper
@@ -136,3 +137,42 @@ class ShotFeatures(VecEnvWrapper):
                 if t is not None:
                     infos[i]["terminal_observation"] = np.concatenate([t, np.zeros(k, dtype=np.float32)])
         return self._aug(obs), rew, dones, infos
+
+
+class VectorShotFeatures(gym.vector.VectorWrapper):
+    """``ShotFeatures`` for a Gymnasium ``VectorEnv`` (what Ray RLlib's
+    EnvRunners step): the same features appended to observations and the same
+    action transform, on the native vector env under ``env``. Final
+    observations reported in ``infos["final_obs"]`` (same-step autoreset) get
+    zero features, as the SB3 wrapper's terminal observations do."""
+
+    def __init__(self, env: gym.vector.VectorEnv, features: bool = True, aim_scale: float = 1.0,
+                 action_mode: str = "direct"):
+        if action_mode not in ("direct", "residual"):
+            raise ValueError(f"action_mode must be 'direct' or 'residual', got {action_mode!r}")
+        super().__init__(env)
+        self.native = env.unwrapped
+        self.features, self.aim_scale, self.action_mode = features, float(aim_scale), action_mode
+        if features:
+            base = env.single_observation_space
+            k = n_features(self.native)
+            self.single_observation_space = spaces.Box(-np.inf, np.inf, shape=(base.shape[0] + k,), dtype=np.float32)
+            self.observation_space = gym.vector.utils.batch_space(self.single_observation_space, env.num_envs)
+
+    def _aug(self, obs):
+        if not self.features:
+            return obs
+        return np.concatenate([obs, shot_features(self.native, self.aim_scale)], axis=1)
+
+    def reset(self, *, seed=None, options=None):
+        obs, info = self.env.reset(seed=seed, options=options)
+        return self._aug(obs), info
+
+    def step(self, actions):
+        obs, rew, term, trunc, info = self.env.step(
+            transform_actions(self.native, actions, self.action_mode, self.aim_scale))
+        if self.features and "final_obs" in info:
+            final = np.asarray(info["final_obs"], dtype=np.float32)
+            info["final_obs"] = np.concatenate([final, np.zeros((len(final), n_features(self.native)), np.float32)],
+                                               axis=1)
+        return self._aug(obs), rew, term, trunc, info

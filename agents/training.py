@@ -354,17 +354,16 @@ def final_evaluation(cfg: TrainConfig, run_dir) -> list:
     """The trained model of ``run_dir`` and ``cfg.train.eval_baselines`` on
     ``eval_episodes`` seeded episodes per noise setting; prints a Markdown
     table and writes ``eval.json`` / ``eval.png`` into ``run_dir``."""
-    from .baselines import SB3Policy
+    from .evaluation import evaluate, format_table, load_trained, save_results
     from .policies import make_policy
-    from .evaluation import evaluate, format_table, save_results
 
     run_dir = Path(run_dir)
-    trained = SB3Policy.load(run_dir, name=cfg.algo)
+    trained = load_trained(run_dir)  # either backend's run
     ts = cfg.train
     results = []
     for noise in ts.eval_noise:
         results.append(evaluate(lambda env: trained.bind(env), cfg.env_id, ts.eval_episodes, ts.eval_seed,
-                                noise, name=cfg.algo))
+                                noise, name=trained.name))
         for b in ts.eval_baselines:
             bname = f"search{ts.search_k}" if b == "search" else b
             results.append(evaluate(lambda env, b=bname: make_policy(b, env, seed=ts.eval_seed), cfg.env_id,

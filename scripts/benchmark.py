@@ -9,6 +9,7 @@ the history of the headline figures (history.png).
     python scripts/benchmark.py --quick         # smaller batches, fewer repeats
     python scripts/benchmark.py --only solver --against HEAD~1 --quick
     python scripts/benchmark.py --only models   # each non-default model (models.md)
+    python scripts/benchmark.py --only rllib    # RLlib vs SB3 vs bare env (docs/distributed.md; needs [ray])
     python scripts/benchmark.py --history       # only redraw history.png
 
 ``--against REV`` checks REV out in a temporary git worktree, warms both
@@ -259,7 +260,8 @@ def cold_start_rows():
     return rows
 
 
-SECTION_NAMES = {"solver": "solver", "effects": "effects", "models": "models", "env": "env", "cold": "cold start"}
+SECTION_NAMES = {"solver": "solver", "effects": "effects", "models": "models", "env": "env", "cold": "cold start",
+                 "rllib": "rllib"}
 
 
 def markdown(rows):
@@ -292,6 +294,9 @@ def markdown(rows):
             lines.append(f"| {r['scene']} | {r['batch']} | {r['autoreset']} | {r['env_steps_per_s']:,.0f} | "
                          f"{100 * r['sim_share']:.0f}% | {r['env_overhead_pct']:.0f}% |")
         lines.append("")
+    if any(r["section"] == "rllib" for r in rows):  # the RLlib backend's section (agents/rllib_bench.py)
+        from agents.rllib_bench import rllib_markdown
+        lines += rllib_markdown([r for r in rows if r["section"] == "rllib"])
     cold = [r for r in rows if r["section"] == "cold start"]
     if cold:
         lines += ["| start | seconds |", "|---|---:|"]
@@ -314,6 +319,9 @@ def run_sections(args) -> list[dict]:
         print("environments:"); rows += env_rows(args)
     if "cold" in args.only:
         print("cold start:"); rows += cold_start_rows()
+    if "rllib" in args.only:  # needs the ray extra; not in the default sections
+        from agents.rllib_bench import rllib_rows
+        print("rllib:"); rows += rllib_rows(args)
     return rows
 
 

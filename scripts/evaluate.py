@@ -11,6 +11,10 @@ vecnormalize.pkl are read). Every policy plays the first episode of the same
 seeded tables. Prints a Markdown table (success rate with its 95% Wilson
 interval, mean reward, scratch and foul rates, balls per episode) and writes
 <out>.json and <out>.png.
+
+``--backend ray`` spreads the batches (and the search baseline's candidate
+shots) over Ray tasks, on a local Ray instance or the cluster at
+``--address``; results equal the local ones for the same seed and batch size.
 """
 from __future__ import annotations
 
@@ -34,11 +38,22 @@ def main(argv=None) -> int:
     ap.add_argument("--search-k", type=int, default=256)
     ap.add_argument("--batch-size", type=int, default=1000, help="tables simulated together")
     ap.add_argument("--out", default=None, help="output prefix for .json and .png (default results/agents/eval)")
+    ap.add_argument("--backend", choices=("local", "ray"), default="local",
+                    help="local: this process (default); ray: batches and search candidates as Ray tasks")
+    ap.add_argument("--address", default=None, help="ray: cluster to join (auto or HOST:PORT; default: local Ray)")
     a = ap.parse_args(argv)
+    if a.address and a.backend != "ray":
+        ap.error("--address needs --backend ray")
 
-    from agents.evaluation import evaluate_policies, format_table, save_results
+    from agents.evaluation import evaluate_policies, evaluate_spec, format_table, save_results
 
-    results = evaluate_policies(a.policy, a.env, a.episodes, a.seed, a.noise, a.search_k, a.batch_size, a.name)
+    run = evaluate_spec
+    if a.backend == "ray":
+        from agents.ray_eval import evaluate_spec as run
+        from agents.rllib_backend import start_ray
+        start_ray(a.address)
+    results = evaluate_policies(a.policy, a.env, a.episodes, a.seed, a.noise, a.search_k, a.batch_size, a.name,
+                                run=run)
     print()
     print(format_table(results))
     out = Path(a.out) if a.out else ROOT / "results" / "agents" / "eval"

@@ -1,0 +1,97 @@
+"""Distributed evaluation on Ray: the evaluation harness's batches, and the
+search baseline's candidate shots, as Ray tasks.
+
+``evaluate_ray`` plays the same batches as ``agents.evaluation.evaluate``
+(batch j: ``batch_size`` tables reset with ``seed + j``), each batch a Ray
+task, and combines them in batch order, so its results equal the local
+evaluation's for the same seed and batch size. The search baseline's cost
+is its candidate shots (K per table, simulated in chunks): under Ray each
+chunk is a task (``RayChunkMap``), and the chunks' results are joined in
+order, so the chosen shots are the same as in one process.
+
+Work goes to whatever cluster ``agents.rllib_backend.start_ray`` joined (a
+local instance by default). Each task uses one CPU and sets numba to one
+thread.
+"""
+from __future__ import annotations
+
+import math
+import time
+from typing import Callable
+
+from .evaluation import EvalResult, batch_plan, combine_batches, eval_kwargs, play_batch
+
+_remote_cache: dict = {}
+
+
+def _remote(fn):
+    """``fn`` as a one-CPU Ray remote function (made once per process)."""
+    import ray
+
+    if fn not in _remote_cache:
+        def run(*args):
+            import numba
+            numba.set_num_threads(1)
+            return fn(*args)
+        run.__name__ = run.__qualname__ = fn.__name__
+        _remote_cache[fn] = ray.remote(num_cpus=1)(run)
+    return _remote_cache[fn]
+
+
+class RayChunkMap:
+    """``map_chunks`` for ``SearchPolicy``: each chunk of candidate shots is
+    simulated by a Ray task; results come back in chunk order."""
+
+    def __call__(self, fn, args: list) -> list:
+        import ray
+
+        remote = _remote(fn)
+        return ray.get([remote.remote(*a) for a in args])
+
+
+def cluster_cpus() -> int:
+    import ray
+
+    return max(1, int(ray.cluster_resources().get("CPU", 1)))
+
+
+def search_policy_fn(spec: str, seed: int, search_k: int, tables: int) -> Callable:
+    """``policy_fn`` of the search baseline ``spec`` (``search`` or
+    ``search<K>``) whose candidate chunks run as Ray tasks: about two chunks
+    per cluster CPU for ``tables`` tables."""
+    from .baselines import SearchPolicy
+
+    k = int(spec[6:]) if spec[6:] else search_k
+    chunk = max(1, math.ceil(tables * k / (2 * cluster_cpus())))
+    mapper = RayChunkMap()
+    return lambda env: SearchPolicy(env, k=k, seed=seed, chunk=chunk, map_chunks=mapper)
+
+
+def evaluate_ray(policy_fn: Callable, env_id: str, n_episodes: int = 1000, seed: int = 0, noise: str = "none",
+                 batch_size: int = 1000, max_steps: int = 10_000, env_kwargs: dict | None = None,
+                 name: str | None = None, local_batches: bool = False) -> EvalResult:
+    """``agents.evaluation.evaluate`` with every batch a Ray task
+    (``local_batches``: play the batches here, in order; for policies that
+    spread their own work, such as the search baseline's candidates)."""
+    import ray
+
+    t0 = time.perf_counter()
+    kw = eval_kwargs(noise, env_kwargs)
+    plan = batch_plan(n_episodes, seed, batch_size)
+    if local_batches:
+        batches = [play_batch(policy_fn, env_id, n, s, kw, max_steps, name) for n, s in plan]
+    else:
+        remote = _remote(play_batch)
+        batches = ray.get([remote.remote(policy_fn, env_id, n, s, kw, max_steps, name) for n, s in plan])
+    return combine_batches(batches, env_id, n_episodes, seed, noise, time.perf_counter() - t0, name)
+
+
+def evaluate_spec(spec: str, policy_fn: Callable, env_id: str, n_episodes: int, seed: int, noise: str,
+                  batch_size: int, name: str, search_k: int = 256) -> EvalResult:
+    """One entry of ``agents.evaluation.evaluate_policies(run=evaluate_spec)``
+    on Ray: the search baseline plays its batches here with its candidates spread
+    over the cluster; every other policy has its batches spread."""
+    if spec.startswith("search"):
+        fn = search_policy_fn(spec, seed, search_k, min(batch_size, n_episodes))
+        return evaluate_ray(fn, env_id, n_episodes, seed, noise, batch_size, name=name, local_batches=True)
+    return evaluate_ray(policy_fn, env_id, n_episodes, seed, noise, batch_size, name=name)

@@ -1,0 +1,208 @@
+"""The Ray RLlib backend and distributed evaluation (agents.rllib_backend,
+agents.ray_eval): local training through the native vector entry point, a
+checkpoint loaded into the evaluation harness, a two-node cluster on one
+machine, distributed evaluation equal to local evaluation, an EnvRunner
+killed mid-run, and resuming a stopped run.
+
+The Ray tests need ``ray[rllib]`` (the ``ray`` extra). Without it they are
+skipped, except under CI (environment variable ``CI`` set), where a missing
+Ray fails. Every Ray instance here is small (one or two CPUs) and shut down
+after use.
+"""
+from __future__ import annotations
+
+import csv
+import math
+import os
+import signal
+import time
+
+import numpy as np
+import pytest
+
+from agents.config import load_config
+
+# Tiny runs: 2 EnvRunners x 16 tables, 64-step batches, one SGD pass.
+TINY = ["rllib.num_env_runners=2", "rllib.num_envs_per_env_runner=16", "rllib.train_batch_size_per_learner=64",
+        "rllib.minibatch_size=64", "rllib.num_epochs=1", "train.progress_bar=false", "train.tensorboard=false"]
+
+
+def _ray():
+    try:
+        import ray
+        import ray.rllib  # noqa: F401
+    except ImportError:
+        msg = "ray[rllib] is not installed (pip install -e '.[ray]')"
+        if os.environ.get("CI"):
+            pytest.fail(msg + " (required under CI)")
+        pytest.skip(msg)
+    return ray
+
+
+@pytest.fixture(scope="module")
+def local_ray():
+    """A local Ray instance with 2 CPUs (one per EnvRunner), shared by this
+    module's tests and shut down after them (the two-node test, last, makes
+    its own cluster)."""
+    ray = _ray()
+    ray.shutdown()
+    from agents.rllib_backend import start_ray
+    start_ray(num_cpus=2)
+    yield ray
+    ray.shutdown()
+
+
+def _cfg(*extra):
+    return load_config(None, "Billiards-PotOne-v0", TINY + list(extra))
+
+
+def _progress(run_dir) -> list[dict]:
+    with open(run_dir / "progress.csv") as f:
+        return list(csv.DictReader(f))
+
+
+# ------------------------------------------------------------ no ray needed --
+def test_vector_features_wrapper_matches_the_sb3_wrapper():
+    """The Gymnasium wrapper the EnvRunners step gives the observations and
+    env actions of the SB3 wrapper on the same seeded tables."""
+    import gymnasium as gym
+
+    import billiards_env  # noqa: F401
+    from agents.features import ShotFeatures, VectorShotFeatures
+    from agents.sb3_vec_env import make_sb3_vec_env
+
+    n = 8
+    sb3 = make_sb3_vec_env("Billiards-PotOne-v0", n, seed=3)
+    sb3 = ShotFeatures(sb3, sb3.unwrapped, True, 0.004, "residual")
+    venv = VectorShotFeatures(gym.make_vec("Billiards-PotOne-v0", num_envs=n, vectorization_mode="vector_entry_point",
+                                           autoreset_mode="next_step"), True, 0.004, "residual")
+    obs_a = sb3.reset()
+    obs_b, _ = venv.reset(seed=3)
+    assert venv.single_observation_space.shape == (obs_a.shape[1],)
+    np.testing.assert_array_equal(obs_a, obs_b)
+    acts = np.random.default_rng(0).uniform(-1, 1, (n, 4)).astype(np.float32)
+    _, r_a, d_a, _ = sb3.step(acts)
+    obs_b, r_b, term, trunc, _ = venv.step(acts)
+    np.testing.assert_array_equal(r_a, np.asarray(r_b, dtype=np.float32))  # the SB3 adapter hands out float32
+    assert (d_a == (term | trunc)).all() and d_a.all()
+    obs_b, *_ = venv.step(acts)  # next-step autoreset: the new tables, with their features
+    assert obs_b.shape == obs_a.shape and np.isfinite(obs_b).all()
+
+
+# ---------------------------------------------------------------- ray tests --
+def test_local_run_steps_the_vector_env_and_loads_into_the_harness(local_ray, tmp_path):
+    from agents.evaluation import evaluate, load_trained
+    from agents.rllib_backend import train
+    from agents.rllib_policy import RLlibPolicy, checkpoints
+
+    run = tmp_path / "run"
+    s = train(_cfg("train.total_timesteps=192", "train.checkpoint_every=64"), run, "test")
+    # each EnvRunner steps the task's own batched vector env (one simulator
+    # call for its 16 tables), not Gymnasium's per-env SyncVectorEnv loop
+    assert len(s["env_runners"]) == 2
+    for r in s["env_runners"]:
+        assert r["env_class"] == "PotOneVectorEnv" and r["num_envs"] == 16
+    rows = _progress(run)
+    assert len(rows) >= 3 and int(rows[-1]["timesteps"]) >= 192
+    assert all(math.isfinite(float(r["mean_reward"])) for r in rows)
+    assert all(0.0 <= float(r["success_rate"]) <= 1.0 for r in rows)
+    assert len(checkpoints(run)) >= 3
+    for name in ("config.yaml", "command.txt", "train_summary.json"):
+        assert (run / name).exists()
+    policy = load_trained(run)
+    assert isinstance(policy, RLlibPolicy)
+    res = evaluate(lambda env: policy.bind(env), "Billiards-PotOne-v0", 64, 12345, "none", name=policy.name)
+    assert res.n_episodes == 64 and math.isfinite(res.mean_reward)
+    # the policy is deterministic: the same seeds give the same episodes
+    again = evaluate(lambda env: policy.bind(env), "Billiards-PotOne-v0", 64, 12345, "none")
+    assert again.per_episode == res.per_episode
+    # a trained residual policy stays near the ghost-ball shot: far above random (~3%)
+    assert res.success_rate > 0.3
+
+
+def test_unknown_rllib_setting_is_an_error_naming_it():
+    _ray()
+    from agents.rllib_backend import algo_config
+
+    with pytest.raises(ValueError, match="learning_rate"):
+        algo_config(_cfg("rllib.learning_rate=1e-3"))
+    with pytest.raises(ValueError, match="num_envs_per_env_runner"):
+        algo_config(_cfg("rllib.num_envs_per_env_runner=0"))
+
+
+def test_distributed_evaluation_equals_local(local_ray, tmp_path):
+    from agents.evaluation import evaluate_policies
+    from agents.ray_eval import evaluate_spec
+
+    specs = ["random", "ghost", "search8"]
+    kw = dict(env_id="Billiards-PotOne-v0", n_episodes=48, seed=777, noises=["none", "tournament"], batch_size=16)
+    local = evaluate_policies(specs, **kw)
+    dist = evaluate_policies(specs, **kw, run=evaluate_spec)
+    assert [r.policy for r in dist] == [r.policy for r in local]
+    for a, b in zip(local, dist):
+        assert a.per_episode == b.per_episode, (a.policy, a.noise)
+        assert a.success_rate == b.success_rate and a.mean_reward == b.mean_reward
+
+
+def test_killed_env_runner_is_restarted_and_training_continues(local_ray):
+    from ray.rllib.utils.metrics import ENV_RUNNER_RESULTS, NUM_ENV_STEPS_SAMPLED_LIFETIME
+
+    from agents.rllib_backend import algo_config, env_runner_facts
+
+    algo = algo_config(_cfg()).build_algo()
+    try:
+        steps = lambda res: res[ENV_RUNNER_RESULTS][NUM_ENV_STEPS_SAMPLED_LIFETIME]  # noqa: E731
+        before = steps(algo.train())
+        pids = [f["pid"] for f in env_runner_facts(algo)]
+        assert len(pids) == 2
+        os.kill(pids[0], signal.SIGKILL)
+        after = before
+        deadline = time.time() + 180
+        while time.time() < deadline:
+            after = steps(algo.train())
+            if algo.env_runner_group.num_healthy_remote_env_runners() == 2 and after >= before + 3 * 64:
+                break
+        assert after >= before + 3 * 64  # training went on
+        new_pids = [f["pid"] for f in env_runner_facts(algo)]
+        assert len(new_pids) == 2 and pids[0] not in new_pids  # the dead runner was replaced
+    finally:
+        algo.stop()
+
+
+def test_resume_continues_from_the_last_checkpoint(local_ray, tmp_path):
+    from agents.rllib_backend import train
+    from agents.rllib_policy import checkpoints
+
+    run = tmp_path / "run"
+    cfg = _cfg("train.total_timesteps=256", "train.checkpoint_every=128")
+    first = train(cfg, run, "first", stop_after_iterations=2)
+    assert first["timesteps"] == 128 and [c.name for c in checkpoints(run)] == ["steps_128"]
+    second = train(cfg, run, "second", resume=True)
+    assert second["timesteps"] >= 256
+    steps = [int(r["timesteps"]) for r in _progress(run)]
+    assert steps == sorted(steps) and steps[0] == 64 and steps[-1] >= 256  # one log, no step twice
+    assert (run / "command.txt").read_text().split() == ["first", "second"]
+
+
+@pytest.mark.slow
+def test_two_node_cluster_places_env_runners_on_both_nodes(tmp_path):
+    ray = _ray()
+    from ray.cluster_utils import Cluster
+
+    from agents.rllib_backend import train
+
+    ray.shutdown()
+    cluster = Cluster(initialize_head=True, head_node_args={"num_cpus": 1})
+    try:
+        cluster.add_node(num_cpus=1)
+        cluster.wait_for_nodes()
+        ray.init(address=cluster.address)
+        alive = {n["NodeID"] for n in ray.nodes() if n["Alive"]}
+        assert len(alive) == 2
+        s = train(_cfg("train.total_timesteps=128", "train.checkpoint_every=0"), tmp_path / "run", "two nodes",
+                  address=cluster.address)
+        assert {r["node_id"] for r in s["env_runners"]} == alive
+        assert s["timesteps"] >= 128 and math.isfinite(s["env_steps_per_s"])
+    finally:
+        ray.shutdown()
+        cluster.shutdown()
