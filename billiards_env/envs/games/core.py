@@ -260,15 +260,15 @@ class GameCore(BilliardsCore):
         passed = may_pass & decl
         push = c.push_out_allowed[idx] & decl
         called = np.where(c.call_needed[idx], self.called_pocket(a), -1)
-        placed = np.full((n, 2), np.nan)
         moved = np.zeros(n, dtype=bool)
         h = np.nonzero((hand != R.IN_HAND_NONE) & ~passed)[0]
         if len(h):
-            placed[h], moved[h] = self.legal_placement(self.placement_of(a[h]), idx[h])
-            self.state.pos[idx[h], 0] = placed[h]
+            spots, moved[h] = self.legal_placement(self.placement_of(a[h]), idx[h])
+            self.state.pos[idx[h], 0] = spots
             self.state.pocket[idx[h], 0] = -1
             self._context = None
         start = self.state.take(idx)
+        placed = start.pos[:, 0].copy()  # where each cue ball is played from
         shoot = np.nonzero(~passed)[0]
         if (start.pocket[shoot, 0] >= 0).any():
             raise RuntimeError("the cue ball is pocketed without ball in hand: the game has ended, reset it")

@@ -1,0 +1,289 @@
+"""Policies for the two-player games (``billiards_env.envs.games``).
+
+A game policy has ``act(obs, idx=None) -> actions [n, 8]`` for the tables
+``idx`` (default: all) of the ``GameCore`` it is bound to (``core``), each
+for that table's player to move. Geometric policies read the core's state
+and constraints and turn ``Shots`` into actions with ``core.actions_for``.
+
+- ``GameRandomPolicy``: uniform actions (placements and declarations
+  included).
+- ``GameGhostPolicy``: the ghost-ball shot (``agents.geometry``) on the
+  easiest legal target and pocket; the seeded standard break; with ball in
+  hand, the cue ball placed for a short straight-in shot on a legal target;
+  after the opponent's push-out, it passes when it has no pot; when no pot
+  is open it plays a safety (``safety=True``): ``safety_k`` candidate soft
+  shots at the legal targets simulated in one batched call, judged by the
+  rules, keeping a legal one that leaves the opponent no straight line to
+  any of their legal targets (else any legal one).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from billiards_env.envs.games import GameCore
+from billiards_env.envs.games.setup import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP
+from billiards_env.envs.tasks.nine_ball import break_shots
+from billiards_env.physics import simulate, strike_velocity
+from billiards_env.physics.strike import Shots
+from billiards_env.rules import ShotInput
+from billiards_env.rules import records as R
+
+from . import geometry as G
+
+APPROACH_CORNER = math.radians(60)  # steepest approach to a corner pocket the ghost-ball shot accepts (as agents.geometry)
+APPROACH_SIDE = math.radians(50)    # and to a side pocket
+MAX_CUT = math.radians(70)          # a pot with a larger cut angle is "not likely": play a safety instead
+PLACE_BACK = (0.2, 0.35, 0.5)       # m: distances behind the ghost ball tried for a ball-in-hand placement
+PLACE_CLEAR = 1e-3                  # m: a placement keeps this clear of every ball beyond 2R
+SAFETY_SPEEDS = (0.8, 3.0)          # m/s: range of the safety candidates' speeds
+BREAK_SPEED = 8.0                   # m/s: the break's nominal speed (as the one-player NineBall's)
+
+
+def native_game(env) -> GameCore:
+    """The ``GameCore`` under a game env (vector, single-agent or AEC) or the core itself."""
+    for _ in range(5):
+        if isinstance(env, GameCore):
+            return env
+        nxt = getattr(env, "core", None) or getattr(env, "unwrapped", None)
+        if nxt is None or nxt is env:
+            break
+        env = nxt
+    raise TypeError("a game policy needs a two-player game env (with .core) or a GameCore")
+
+
+class GameRandomPolicy:
+    name = "random"
+
+    def __init__(self, env, seed: int | None = 0):
+        self.core = native_game(env)
+        self.rng = np.random.default_rng(seed)
+
+    def act(self, obs=None, idx=None) -> np.ndarray:
+        n = self.core.n_envs if idx is None else len(idx)
+        return self.rng.uniform(-1.0, 1.0, size=(n, 8)).astype(np.float32)
+
+
+def _line_blocked(a: np.ndarray, b: np.ndarray, pos: np.ndarray, on: np.ndarray, skip: list, R_: float) -> np.ndarray:
+    """[n, ...]: the segment a -> b (arrays [n, ..., 2]) passes within 2R of a
+    ball on the table other than the ``skip`` balls."""
+    shape = np.broadcast_shapes(a.shape, b.shape)[:-1]
+    out = np.zeros(shape, dtype=bool)
+    extra = (1,) * (len(shape) - 1)
+    for j in range(pos.shape[1]):
+        if j in skip:
+            continue
+        pj = pos[:, j].reshape((-1,) + extra + (2,))
+        d = G._seg_point_dist(a, b, pj)
+        out |= on[:, j].reshape((-1,) + extra) & (d < 2 * R_)
+    return out
+
+
+class GameGhostPolicy:
+    """Rule-aware ghost-ball play: see the module docstring."""
+
+    name = "ghost"
+
+    def __init__(self, env, seed: int = 0, safety: bool = True, safety_k: int = 32, dist_weight: float = 0.5):
+        self.core = native_game(env)
+        self.rng = np.random.default_rng(seed)
+        self.safety, self.safety_k, self.dist_weight = safety, int(safety_k), dist_weight
+        self.name = "ghost" if safety else "ghost-nosafety"
+
+    # --- pots ---------------------------------------------------------------
+    def best_pots(self, pos: np.ndarray, on: np.ndarray, targets: np.ndarray) -> dict:
+        """The easiest ghost-ball pot per table over the legal targets and
+        pockets: arrays [n] ``cost`` (inf: none open), ``phi``, ``speed``,
+        ``pocket``, ``ball``, ``cut``."""
+        core = self.core
+        t, p = core.table, core.params
+        n, B = on.shape
+        side = G.side_pocket_mask(t)
+        out = dict(cost=np.full(n, np.inf), phi=np.zeros(n), speed=np.zeros(n), pocket=np.zeros(n, dtype=np.int64),
+                   ball=np.full(n, -1, dtype=np.int64), cut=np.zeros(n))
+        for b in range(1, B):
+            rows = np.nonzero(targets[:, b] & on[:, b])[0]
+            if not len(rows):
+                continue
+            sh = G.ghost_shots(pos[rows], on[rows], np.full(len(rows), b), t, p, inset=0.0)
+            bad = ~sh["valid"] | sh["blocked"] | (sh["cut"] > MAX_CUT)
+            bad |= sh["approach"] > np.where(side, APPROACH_SIDE, APPROACH_CORNER)[None]
+            cost = np.where(bad, np.inf, sh["cut"] + self.dist_weight * (sh["d_cg"] + sh["d_op"]))
+            k = np.argmin(cost, axis=1)
+            ar = np.arange(len(rows))
+            c = cost[ar, k]
+            better = c < out["cost"][rows]
+            r = rows[better]
+            kb = k[better]
+            arb = ar[better]
+            out["cost"][r] = c[better]
+            out["phi"][r] = sh["phi"][arb, kb]
+            out["cut"][r] = sh["cut"][arb, kb]
+            out["speed"][r] = G.required_speed(sh["d_cg"][arb, kb], sh["d_op"][arb, kb], sh["cut"][arb, kb], p,
+                                               b=0.0, margin=1.0)
+            out["pocket"][r] = kb
+            out["ball"][r] = b
+        return out
+
+    # --- ball in hand -----------------------------------------------------------
+    def placements(self, pos: np.ndarray, on: np.ndarray, targets: np.ndarray, kitchen: np.ndarray) -> np.ndarray:
+        """A cue-ball spot [n, 2] per table for a short straight-in shot on a
+        legal target: behind the ghost ball on the line pocket -> object ball,
+        ``PLACE_BACK`` metres away, on the allowed area, clear of every ball,
+        both paths open; the shortest object-ball run wins. Tables with no
+        such spot get the head spot (behind the head string) or the table's
+        centre (anywhere), which the env then makes legal."""
+        core = self.core
+        t, p = core.table, core.params
+        R_ = p.R
+        n, B = on.shape
+        aims = G.pocket_aim_points(t, inset=0.0)                     # [P, 2]
+        best = np.full(n, np.inf)
+        spot = np.where(kitchen[:, None], [t.width / 2, HEAD_STRING * t.length], [t.width / 2, t.length / 2])
+        spot = spot.astype(np.float64)
+        y_hi = np.where(kitchen, HEAD_STRING * t.length - KITCHEN_GAP, t.length - R_)
+        on_c = on.copy()
+        on_c[:, 0] = False                                              # the cue ball is in hand
+        for b in range(1, B):
+            rows = np.nonzero(targets[:, b] & on[:, b])[0]
+            if not len(rows):
+                continue
+            o = pos[rows, b][:, None]                                   # [m, 1, 2]
+            op = aims[None] - o                                         # [m, P, 2]
+            d_op = np.linalg.norm(op, axis=-1)
+            u = op / d_op[..., None]
+            ghost = o - 2 * R_ * u
+            path_op = _line_blocked(o, np.broadcast_to(aims[None], op.shape), pos[rows], on_c[rows], [0, b], R_)
+            for back in PLACE_BACK:
+                cue = ghost - back * u                                  # [m, P, 2]
+                ok = ~path_op & (cue[..., 0] > R_ + 1e-3) & (cue[..., 0] < t.width - R_ - 1e-3)
+                ok &= (cue[..., 1] > R_ + 1e-3) & (cue[..., 1] < y_hi[rows, None])
+                for j in range(B):
+                    if j == 0:
+                        continue
+                    dj = np.linalg.norm(cue - pos[rows, j][:, None], axis=-1)
+                    ok &= ~on[rows, j][:, None] | (dj > 2 * R_ + PLACE_CLEAR)
+                for q in range(len(core.pockets)):
+                    px, py, pr = core.pockets[q]
+                    ok &= np.hypot(cue[..., 0] - px, cue[..., 1] - py) > pr + R_
+                ok &= ~_line_blocked(cue, ghost, pos[rows], on_c[rows], [0, b], R_)
+                cost = np.where(ok, d_op + 0.5 * back, np.inf)
+                k = np.argmin(cost, axis=1)
+                ar = np.arange(len(rows))
+                c = cost[ar, k]
+                better = c < best[rows]
+                best[rows[better]] = c[better]
+                spot[rows[better]] = cue[ar[better], k[better]]
+        return spot
+
+    # --- safeties --------------------------------------------------------------
+    def safeties(self, idx: np.ndarray, pos: np.ndarray) -> tuple[Shots, np.ndarray]:
+        """A safety per table ``idx`` (cue ball at ``pos[:, 0]``): the best of
+        ``safety_k`` soft shots at the legal targets, simulated and judged.
+        Returns the shots and whether each is a legal shot."""
+        core = self.core
+        K, n = self.safety_k, len(idx)
+        c = core.constraints()
+        tg = c.targets[idx]
+        on = core.state.pocket[idx] < 0
+        rep = np.repeat(np.arange(n), K)
+        # a random legal target per candidate, hit between its edges (cut up to ~70 deg either side)
+        w = (tg & on).astype(np.float64)
+        w[w.sum(axis=1) == 0, 1:] = 1.0
+        cdf = np.cumsum(w, axis=1) / w.sum(axis=1, keepdims=True)
+        ball = (self.rng.random((n * K, 1)) > cdf[rep]).sum(axis=1)
+        d = pos[rep, ball] - pos[rep, 0]
+        dist = np.maximum(np.linalg.norm(d, axis=1), 2 * core.params.R)
+        half = np.arcsin(np.minimum(2 * core.params.R / dist, 1.0)) * 0.95
+        phi = np.arctan2(d[:, 1], d[:, 0]) + half * self.rng.uniform(-1, 1, n * K)
+        speed = np.exp(self.rng.uniform(*np.log(SAFETY_SPEEDS), n * K))
+        b = self.rng.uniform(-0.3, 0.3, n * K)
+        start = core.state.take(idx[rep])
+        start.pos[:, 0] = pos[rep, 0]
+        start.pocket[:, 0] = -1
+        res = simulate(strike_velocity(start, phi, speed, 0.0, b, core.params), core.table, core.params,
+                       effects=core.effects, models=core.models, validate=False)
+        from billiards_env.envs.games.core import rails_after_contact
+        game = core.game.take(idx[rep])
+        shot = ShotInput(start.pocket, res.state.pocket, res.first_contact, rails_after_contact(res),
+                         res.cushion_hits)
+        rec, g2 = core.rules.judge(game, shot)
+        nxt = core.rules.constraints(g2, res.state.pocket)
+        after = res.state.pos
+        on2 = res.state.pocket < 0
+        cue = after[:, 0][:, None]                                       # [nK, 1, 2]
+        open_line = np.zeros(n * K, dtype=bool)
+        for j in range(1, on2.shape[1]):
+            m = nxt.targets[:, j] & on2[:, j]
+            if not m.any():
+                continue
+            blocked = _line_blocked(cue[:, 0], after[:, j], after, on2, [0, j], core.params.R)
+            open_line |= m & ~blocked
+        good = rec.legal & ~rec.game_over & rec.turn_over
+        score = good * 2.0 + (good & ~open_line) * 1.0 + (rec.winner == rec.shooter) * 10.0
+        score = score.reshape(n, K) - 0.01 * speed.reshape(n, K)
+        k = np.argmax(score, axis=1)
+        pick = np.arange(n) * K + k
+        return Shots(phi[pick], speed[pick], np.zeros(n), b[pick]), good[pick]
+
+    # --- acting ------------------------------------------------------------------
+    def act(self, obs=None, idx=None) -> np.ndarray:
+        core = self.core
+        idx = np.arange(core.n_envs) if idx is None else np.asarray(idx, dtype=np.int64)
+        n = len(idx)
+        c = core.constraints()
+        s = core.state
+        t, p = core.table, core.params
+        pos = s.pos[idx].copy()
+        on = s.pocket[idx] < 0
+        tg = c.targets[idx]
+        hand = c.ball_in_hand[idx]
+        placement = np.full((n, 2), np.nan)
+        phi, speed = np.zeros(n), np.zeros(n)
+        a, b = np.zeros(n), np.zeros(n)
+        brk = c.is_break[idx]
+        if brk.any():
+            r = np.nonzero(brk)[0]
+            apex = np.tile([t.width / 2, FOOT_SPOT * t.length], (len(r), 1))
+            cue, phi[r], speed[r], a[r], b[r] = break_shots(t, apex, BREAK_SPEED, self.rng.random((len(r), 5)),
+                                                            self.rng.normal(size=len(r)))
+            placement[r] = cue
+        play = ~brk & ~c.over[idx]
+        h = np.nonzero(play & (hand != R.IN_HAND_NONE))[0]
+        if len(h):
+            want = self.placements(pos[h], on[h], tg[h], hand[h] == R.IN_HAND_KITCHEN)
+            placement[h], _ = core.legal_placement(want, idx[h])
+            pos[h, 0] = placement[h]
+            on[h, 0] = True
+        rows = np.nonzero(play)[0]
+        pots = self.best_pots(pos[rows], on[rows], tg[rows])
+        pocket = np.zeros(n, dtype=np.int64)
+        has = np.isfinite(pots["cost"])
+        phi[rows[has]], speed[rows[has]] = pots["phi"][has], pots["speed"][has]
+        pocket[rows] = pots["pocket"]
+        declare = np.zeros(n, dtype=bool)
+        declare[rows[~has]] = c.may_pass[idx[rows[~has]]]           # no pot after a push-out: hand it back
+        none = rows[~has & ~declare[rows]]
+        if len(none):
+            if self.safety:
+                sh, _ = self.safeties(idx[none], pos[none])
+                phi[none], speed[none], b[none] = sh.phi, sh.speed, sh.b
+            else:  # straight at the nominal target's centre, firmly enough to reach a rail
+                tgt = c.targets[idx[none]].argmax(axis=1)
+                d = pos[none, tgt] - pos[none, 0]
+                phi[none], speed[none] = np.arctan2(d[:, 1], d[:, 0]), 2.0
+        speed = np.clip(speed, 0.05, p.max_speed)
+        return core.actions_for(Shots(phi, speed, a, b), idx, placement, declare, pocket).astype(np.float32)
+
+
+def make_game_policy(name: str, env, seed: int = 0):
+    """A game policy by name: ``random``, ``ghost`` (rule-aware, with
+    safeties), ``ghost-nosafety``."""
+    if name == "random":
+        return GameRandomPolicy(env, seed=seed)
+    if name == "ghost":
+        return GameGhostPolicy(env, seed=seed)
+    if name == "ghost-nosafety":
+        return GameGhostPolicy(env, seed=seed, safety=False)
+    raise ValueError(f"unknown game policy {name!r}; choose random, ghost or ghost-nosafety")
