@@ -1,0 +1,144 @@
+"""The two-player game environments: PettingZoo's and Gymnasium's own
+checks, the vector env against single games, properties of thousands of
+random games, ball in hand, and the match harness."""
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import billiards_env  # noqa: F401 (registers the ids)
+from billiards_env.envs.games import GameConfig, GameCore
+from billiards_env.envs.games.setup import HEAD_STRING
+from billiards_env.envs.games.vector import GameVectorEnv
+from billiards_env.rules import records as R
+
+GAMES = ["nine_ball", "eight_ball"]
+IDS = ["Billiards-NineBall2P-v0", "Billiards-EightBall-v0"]
+
+
+@pytest.mark.parametrize("game", GAMES)
+def test_pettingzoo_api(game):
+    pytest.importorskip("pettingzoo")
+    from pettingzoo.test import api_test
+
+    from billiards_env.envs.games.aec import EightBallAECEnv, NineBallAECEnv
+    cls = NineBallAECEnv if game == "nine_ball" else EightBallAECEnv
+    api_test(cls(max_shots=40), num_cycles=300, verbose_progress=False)
+
+
+@pytest.mark.parametrize("env_id", IDS)
+def test_single_agent_check_env(env_id):
+    from gymnasium.utils.env_checker import check_env
+    env = gym.make(env_id, max_shots=40)
+    check_env(env.unwrapped, skip_render_check=True)
+    obs, info = env.reset(seed=3)
+    assert env.observation_space.contains(obs) and env.action_space.shape == (8,)
+    v = gym.make_vec(env_id, num_envs=3, vectorization_mode="vector_entry_point")
+    assert isinstance(v, GameVectorEnv) and v.single_action_space.shape == (8,)
+
+
+@pytest.mark.parametrize("game", GAMES)
+def test_vector_env_equals_single_games(game):
+    """Table k of a vector env seeded s plays exactly like the AEC env seeded s + k under the same actions."""
+    pytest.importorskip("pettingzoo")
+    from billiards_env.envs.games.aec import EightBallAECEnv, NineBallAECEnv
+    N, seed = 4, 11
+    vec = GameVectorEnv(N, game=game, noise="tournament")
+    obs, info = vec.reset(seed=seed)
+    singles = [(NineBallAECEnv if game == "nine_ball" else EightBallAECEnv)(noise="tournament") for _ in range(N)]
+    for k, s in enumerate(singles):
+        s.reset(seed=seed + k)
+    rng = np.random.default_rng(0)
+    alive = np.ones(N, dtype=bool)
+    compared = 0
+    for _ in range(12):
+        a = rng.uniform(-1, 1, (N, 8))
+        for k, s in enumerate(singles):
+            if alive[k]:
+                np.testing.assert_array_equal(obs[k], s.observe(s.agent_selection))
+                assert info["to_move"][k] == int(s.agent_selection[-1])
+                s.step(a[k].astype(np.float32))
+                compared += 1
+        obs, r, term, trunc, info = vec.step(a.astype(np.float32))
+        for k, s in enumerate(singles):
+            if alive[k]:
+                np.testing.assert_array_equal(obs[k], s.observe(s.possible_agents[0]))
+                if term[k] or trunc[k]:
+                    assert s.terminations[s.agent_selection] == term[k] and s.rewards["player_0"] == info["rewards"][k, 0]
+                    alive[k] = False
+    assert compared >= 12
+
+
+@pytest.mark.parametrize("game,n_tables", [("nine_ball", 2000), ("eight_ball", 1000)])
+def test_random_games_properties(game, n_tables):
+    """Random policies: every game ends within the shot cap; no ball is lost
+    or duplicated; the player to move follows the shot records exactly."""
+    cap = 150
+    core = GameCore(GameConfig(game=game, max_shots=cap, noise="tournament"), n_tables)
+    core.streams.seed(np.arange(n_tables), np.arange(n_tables) + 7)
+    core.reset_tables(np.arange(n_tables))
+    rng = np.random.default_rng(1)
+    R_ = core.params.R
+    live = np.ones(n_tables, dtype=bool)
+    steps = 0
+    while live.any():
+        idx = np.nonzero(live)[0]
+        before = core.game.shooter[idx].copy()
+        on_before = core.state.pocket[idx] < 0
+        out = core.step(rng.uniform(-1.1, 1.1, (len(idx), 8)), idx)
+        rec = out["record"]
+        steps += 1
+        assert (rec.shooter == before).all()
+        assert (core.game.shooter[idx] == np.where(rec.turn_over, 1 - before, before)).all()
+        on = core.state.pocket[idx] < 0
+        # balls leave the table only by being pocketed on this shot, return only by a respot or a placement
+        came_back = on & ~on_before
+        assert not came_back[:, 1:][~rec.respot[:, 1:]].any()
+        pk = out["info"]["pocketed"][:, 1:]  # object balls (the cue ball may come back by ball in hand)
+        assert (pk == (on_before & ~on)[:, 1:] | (pk & rec.respot[:, 1:])).all()
+        pos = core.state.pos[idx]
+        d = np.linalg.norm(pos[:, :, None] - pos[:, None], axis=-1)
+        both = on[:, :, None] & on[:, None]
+        d[:, np.arange(d.shape[1]), np.arange(d.shape[1])] = np.inf
+        assert (d[both] >= 2 * R_ - 1e-9).all(), "two balls overlap (a duplicated ball)"
+        done = out["terminated"] | out["truncated"]
+        assert not (out["terminated"] & out["truncated"]).any()
+        live[idx[done]] = False
+        assert steps <= cap + 1
+    g = core.game
+    assert ((g.winner >= 0) == g.over).all() and (g.over | (g.shots >= cap)).all()
+    assert g.over.mean() > 0.5
+
+
+def test_ball_in_hand_illegal_placement_is_moved_and_reported():
+    core = GameCore(GameConfig(game="eight_ball"), 1)
+    core.streams.seed([0], [0])
+    core.reset_tables([0], [0])
+    # the break: ball in hand behind the head string; ask for a spot on the rack
+    a = np.zeros((1, 8))
+    a[0, 4:6] = core.placement_to_actions(core.state.pos[0, 1][None])[0]
+    out = core.step(a, [0])
+    xy = out["info"]["placement"][0]
+    assert out["info"]["placement_moved"][0]
+    assert xy[1] <= HEAD_STRING * core.table.length
+    # a spot on top of a ball is moved to the nearest free spot, reported
+    core.game.ball_in_hand[0] = R.IN_HAND_ANYWHERE
+    core.game.over[0] = False
+    core.game.phase[0] = R.PHASE_PLAY
+    core._changed()
+    on = np.nonzero(core.state.pocket[0, 1:] < 0)[0] + 1
+    target = core.state.pos[0, on[0]].copy()
+    spot, moved = core.legal_placement(target[None], [0])
+    d = np.linalg.norm(core.state.pos[0, on] - spot[0], axis=1)
+    assert moved[0] and d.min() >= 2 * core.params.R
+    assert np.linalg.norm(spot[0] - target) < 3 * core.params.R  # the nearest free spot, not just any
+
+
+@pytest.mark.parametrize("game", GAMES)
+def test_ghost_beats_random(game):
+    """The match harness: the rule-aware ghost-ball policy beats random in at
+    least 95% of 200 games (100 racks, each side breaking once)."""
+    from agents.match import play_pairing
+    r = play_pairing("ghost", "random", game, n_racks=100, seed=0, noise="tournament")
+    s = r.summary()
+    assert s["games"] == 200 and s["a_win_rate"] >= 0.95, s
+    assert r.a_broke.sum() == 100
