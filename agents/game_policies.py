@@ -7,11 +7,14 @@ and constraints and turn ``Shots`` into actions with ``core.actions_for``.
 
 - ``GameRandomPolicy``: uniform actions (placements and declarations
   included).
-- ``GameGhostPolicy``: the ghost-ball shot (``agents.geometry``) on the
-  easiest legal target and pocket; the seeded standard break; with ball in
-  hand, the cue ball placed for a short straight-in shot on a legal target;
-  after the opponent's push-out, it passes when it has no pot; when no pot
-  is open it plays a safety (``safety=True``): ``safety_k`` candidate soft
+- ``GameGhostPolicy`` (``ghost``): the ghost-ball shot (``agents.geometry``,
+  as kernels in ``agents.game_geometry``) on the easiest legal target and
+  pocket; the seeded standard break; with ball in hand, the cue ball placed
+  for a short straight-in shot on a legal target; after the opponent's
+  push-out, it passes when it has no pot. When no pot is likely (every pot
+  blocked or cut more than 70 deg) it hits the nominal target full at 2 m/s
+  (a legal contact that reaches a rail); with ``safety=True``
+  (``ghost-safety``) it plays a safety instead: ``safety_k`` candidate soft
   shots at the legal targets simulated in one batched call, judged by the
   rules, keeping a legal one that leaves the opponent no straight line to
   any of their legal targets (else any legal one).
@@ -30,6 +33,7 @@ from billiards_env.physics.strike import Shots
 from billiards_env.rules import ShotInput
 from billiards_env.rules import records as R
 
+from . import game_geometry as GG
 from . import geometry as G
 
 APPROACH_CORNER = math.radians(60)  # steepest approach to a corner pocket the ghost-ball shot accepts (as agents.geometry)
@@ -65,116 +69,53 @@ class GameRandomPolicy:
         return self.rng.uniform(-1.0, 1.0, size=(n, 8)).astype(np.float32)
 
 
-def _line_blocked(a: np.ndarray, b: np.ndarray, pos: np.ndarray, on: np.ndarray, skip: list, R_: float) -> np.ndarray:
-    """[n, ...]: the segment a -> b (arrays [n, ..., 2]) passes within 2R of a
-    ball on the table other than the ``skip`` balls."""
-    shape = np.broadcast_shapes(a.shape, b.shape)[:-1]
-    out = np.zeros(shape, dtype=bool)
-    extra = (1,) * (len(shape) - 1)
-    for j in range(pos.shape[1]):
-        if j in skip:
-            continue
-        pj = pos[:, j].reshape((-1,) + extra + (2,))
-        d = G._seg_point_dist(a, b, pj)
-        out |= on[:, j].reshape((-1,) + extra) & (d < 2 * R_)
-    return out
-
-
 class GameGhostPolicy:
     """Rule-aware ghost-ball play: see the module docstring."""
 
     name = "ghost"
 
-    def __init__(self, env, seed: int = 0, safety: bool = True, safety_k: int = 32, dist_weight: float = 0.5):
+    def __init__(self, env, seed: int = 0, safety: bool = False, safety_k: int = 16, dist_weight: float = 0.5):
         self.core = native_game(env)
         self.rng = np.random.default_rng(seed)
         self.safety, self.safety_k, self.dist_weight = safety, int(safety_k), dist_weight
-        self.name = "ghost" if safety else "ghost-nosafety"
+        t = self.core.table
+        self._aims = np.ascontiguousarray(G.pocket_aim_points(t, inset=0.0))
+        self._axes = np.ascontiguousarray(G.pocket_axes(t))
+        self._limits = GG.pocket_limits(t, APPROACH_CORNER, APPROACH_SIDE)
+        self.name = "ghost-safety" if safety else "ghost"
 
     # --- pots ---------------------------------------------------------------
     def best_pots(self, pos: np.ndarray, on: np.ndarray, targets: np.ndarray) -> dict:
         """The easiest ghost-ball pot per table over the legal targets and
-        pockets: arrays [n] ``cost`` (inf: none open), ``phi``, ``speed``,
-        ``pocket``, ``ball``, ``cut``."""
-        core = self.core
-        t, p = core.table, core.params
-        n, B = on.shape
-        side = G.side_pocket_mask(t)
-        out = dict(cost=np.full(n, np.inf), phi=np.zeros(n), speed=np.zeros(n), pocket=np.zeros(n, dtype=np.int64),
-                   ball=np.full(n, -1, dtype=np.int64), cut=np.zeros(n))
-        for b in range(1, B):
-            rows = np.nonzero(targets[:, b] & on[:, b])[0]
-            if not len(rows):
-                continue
-            sh = G.ghost_shots(pos[rows], on[rows], np.full(len(rows), b), t, p, inset=0.0)
-            bad = ~sh["valid"] | sh["blocked"] | (sh["cut"] > MAX_CUT)
-            bad |= sh["approach"] > np.where(side, APPROACH_SIDE, APPROACH_CORNER)[None]
-            cost = np.where(bad, np.inf, sh["cut"] + self.dist_weight * (sh["d_cg"] + sh["d_op"]))
-            k = np.argmin(cost, axis=1)
-            ar = np.arange(len(rows))
-            c = cost[ar, k]
-            better = c < out["cost"][rows]
-            r = rows[better]
-            kb = k[better]
-            arb = ar[better]
-            out["cost"][r] = c[better]
-            out["phi"][r] = sh["phi"][arb, kb]
-            out["cut"][r] = sh["cut"][arb, kb]
-            out["speed"][r] = G.required_speed(sh["d_cg"][arb, kb], sh["d_op"][arb, kb], sh["cut"][arb, kb], p,
-                                               b=0.0, margin=1.0)
-            out["pocket"][r] = kb
-            out["ball"][r] = b
+        pockets (``game_geometry.best_pots``): arrays [n] ``cost`` (inf: none
+        open), ``phi``, ``speed``, ``pocket``, ``ball``, ``cut``."""
+        p = self.core.params
+        n = len(pos)
+        out = dict(cost=np.empty(n), phi=np.zeros(n), d_cg=np.zeros(n), d_op=np.zeros(n), cut=np.zeros(n),
+                   pocket=np.zeros(n, dtype=np.int64), ball=np.zeros(n, dtype=np.int64))
+        GG.best_pots(np.ascontiguousarray(pos), np.ascontiguousarray(on), np.ascontiguousarray(targets), self._aims,
+                     self._axes, self._limits, p.R, MAX_CUT, self.dist_weight, out["cost"], out["phi"], out["d_cg"],
+                     out["d_op"], out["cut"], out["pocket"], out["ball"])
+        out["speed"] = G.required_speed(out["d_cg"], out["d_op"], out["cut"], p, b=0.0, margin=1.0)
         return out
 
     # --- ball in hand -----------------------------------------------------------
     def placements(self, pos: np.ndarray, on: np.ndarray, targets: np.ndarray, kitchen: np.ndarray) -> np.ndarray:
         """A cue-ball spot [n, 2] per table for a short straight-in shot on a
-        legal target: behind the ghost ball on the line pocket -> object ball,
-        ``PLACE_BACK`` metres away, on the allowed area, clear of every ball,
-        both paths open; the shortest object-ball run wins. Tables with no
-        such spot get the head spot (behind the head string) or the table's
-        centre (anywhere), which the env then makes legal."""
-        core = self.core
-        t, p = core.table, core.params
-        R_ = p.R
-        n, B = on.shape
-        aims = G.pocket_aim_points(t, inset=0.0)                     # [P, 2]
-        best = np.full(n, np.inf)
+        legal target (``game_geometry.straight_in_spots``: behind the ghost
+        ball on the line pocket -> ball, ``PLACE_BACK`` metres away, on the
+        allowed area, clear of every ball, both paths open; the shortest
+        object-ball run wins). Tables with no such spot get the head spot
+        (behind the head string) or the table's centre (anywhere), which the
+        env then makes legal."""
+        t, R_ = self.core.table, self.core.params.R
         spot = np.where(kitchen[:, None], [t.width / 2, HEAD_STRING * t.length], [t.width / 2, t.length / 2])
-        spot = spot.astype(np.float64)
-        y_hi = np.where(kitchen, HEAD_STRING * t.length - KITCHEN_GAP, t.length - R_)
-        on_c = on.copy()
-        on_c[:, 0] = False                                              # the cue ball is in hand
-        for b in range(1, B):
-            rows = np.nonzero(targets[:, b] & on[:, b])[0]
-            if not len(rows):
-                continue
-            o = pos[rows, b][:, None]                                   # [m, 1, 2]
-            op = aims[None] - o                                         # [m, P, 2]
-            d_op = np.linalg.norm(op, axis=-1)
-            u = op / d_op[..., None]
-            ghost = o - 2 * R_ * u
-            path_op = _line_blocked(o, np.broadcast_to(aims[None], op.shape), pos[rows], on_c[rows], [0, b], R_)
-            for back in PLACE_BACK:
-                cue = ghost - back * u                                  # [m, P, 2]
-                ok = ~path_op & (cue[..., 0] > R_ + 1e-3) & (cue[..., 0] < t.width - R_ - 1e-3)
-                ok &= (cue[..., 1] > R_ + 1e-3) & (cue[..., 1] < y_hi[rows, None])
-                for j in range(B):
-                    if j == 0:
-                        continue
-                    dj = np.linalg.norm(cue - pos[rows, j][:, None], axis=-1)
-                    ok &= ~on[rows, j][:, None] | (dj > 2 * R_ + PLACE_CLEAR)
-                for q in range(len(core.pockets)):
-                    px, py, pr = core.pockets[q]
-                    ok &= np.hypot(cue[..., 0] - px, cue[..., 1] - py) > pr + R_
-                ok &= ~_line_blocked(cue, ghost, pos[rows], on_c[rows], [0, b], R_)
-                cost = np.where(ok, d_op + 0.5 * back, np.inf)
-                k = np.argmin(cost, axis=1)
-                ar = np.arange(len(rows))
-                c = cost[ar, k]
-                better = c < best[rows]
-                best[rows[better]] = c[better]
-                spot[rows[better]] = cue[ar[better], k[better]]
+        spot = np.ascontiguousarray(spot, dtype=np.float64)
+        y_hi = np.where(kitchen, HEAD_STRING * t.length - KITCHEN_GAP, t.length - R_ - PLACE_CLEAR)
+        on_c = np.ascontiguousarray(on).copy()
+        on_c[:, 0] = False  # the cue ball is in hand
+        GG.straight_in_spots(np.ascontiguousarray(pos), on_c, np.ascontiguousarray(targets), y_hi, self._aims,
+                             np.array(PLACE_BACK), t.width, R_, PLACE_CLEAR, self.core.pockets, spot)
         return spot
 
     # --- safeties --------------------------------------------------------------
@@ -210,16 +151,8 @@ class GameGhostPolicy:
                          res.cushion_hits)
         rec, g2 = core.rules.judge(game, shot)
         nxt = core.rules.constraints(g2, res.state.pocket)
-        after = res.state.pos
-        on2 = res.state.pocket < 0
-        cue = after[:, 0][:, None]                                       # [nK, 1, 2]
-        open_line = np.zeros(n * K, dtype=bool)
-        for j in range(1, on2.shape[1]):
-            m = nxt.targets[:, j] & on2[:, j]
-            if not m.any():
-                continue
-            blocked = _line_blocked(cue[:, 0], after[:, j], after, on2, [0, j], core.params.R)
-            open_line |= m & ~blocked
+        open_line = np.empty(n * K, dtype=bool)
+        GG.open_lines(res.state.pos, res.state.pocket < 0, nxt.targets, core.params.R, open_line)
         good = rec.legal & ~rec.game_over & rec.turn_over
         score = good * 2.0 + (good & ~open_line) * 1.0 + (rec.winner == rec.shooter) * 10.0
         score = score.reshape(n, K) - 0.01 * speed.reshape(n, K)
@@ -277,13 +210,16 @@ class GameGhostPolicy:
         return core.actions_for(Shots(phi, speed, a, b), idx, placement, declare, pocket).astype(np.float32)
 
 
+POLICIES = ("random", "ghost", "ghost-safety")
+
+
 def make_game_policy(name: str, env, seed: int = 0):
-    """A game policy by name: ``random``, ``ghost`` (rule-aware, with
-    safeties), ``ghost-nosafety``."""
+    """A game policy by name: ``random``, ``ghost`` (rule-aware ghost-ball,
+    geometry only), ``ghost-safety`` (the same with simulated safeties)."""
     if name == "random":
         return GameRandomPolicy(env, seed=seed)
     if name == "ghost":
         return GameGhostPolicy(env, seed=seed)
-    if name == "ghost-nosafety":
-        return GameGhostPolicy(env, seed=seed, safety=False)
-    raise ValueError(f"unknown game policy {name!r}; choose random, ghost or ghost-nosafety")
+    if name == "ghost-safety":
+        return GameGhostPolicy(env, seed=seed, safety=True)
+    raise ValueError(f"unknown game policy {name!r}; choose one of {POLICIES}")

@@ -1,7 +1,7 @@
 #!/usr/bin/env python
 """Seeded matches between game policies, with win rates and ratings.
 
-    python scripts/match.py --game nine_ball --policies random ghost ghost-nosafety --racks 100
+    python scripts/match.py --game nine_ball --policies random ghost ghost-safety --racks 100
     python scripts/match.py --game eight_ball --noise high --racks 50 --out results/matches
 
 Every pairing plays ``--racks`` racks twice (each side breaks once on each
@@ -62,7 +62,7 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--game", choices=["nine_ball", "eight_ball"], default="nine_ball")
     ap.add_argument("--policies", nargs="+", default=["random", "ghost"],
-                    help="entrants: random, ghost, ghost-nosafety")
+                    help="entrants: random, ghost, ghost-safety")
     ap.add_argument("--racks", type=int, default=100, help="racks per pairing (each played twice)")
     ap.add_argument("--noise", choices=["none", "tournament", "high", "variable"], default="tournament")
     ap.add_argument("--seed", type=int, default=0)
