@@ -41,14 +41,15 @@ def _blocked(pos, on, skip1, skip2, ax, ay, bx, by, d2):
 
 
 @_jit
-def best_pots(pos, on, targets, aims, axes, limits, R, max_cut, dist_weight, cost, phi, d_cg, d_op, cut, pocket,
-              ball):
+def best_pots(pos, on, targets, aims, axes, limits, R, clear, max_cut, dist_weight, cost, phi, d_cg, d_op, cut,
+              pocket, ball):
     """Per table e: among legal targets b (``targets[e, b]``) and pockets p,
     the open ghost-ball pot of least ``cut + dist_weight (d_cg + d_op)``:
     cut below ``max_cut``, approach to the pocket within ``limits[p]``, both
-    paths (cue -> ghost, ball -> aim point) clear of other balls by 2R.
-    Writes the cost (inf: none), aim ``phi``, distances, cut, pocket, ball."""
-    d2 = 4.0 * R * R
+    paths (cue -> ghost, ball -> aim point) clear of other balls by 2R +
+    ``clear``. Writes the cost (inf: none), aim ``phi``, distances, cut,
+    pocket, ball."""
+    d2 = (2.0 * R + clear) ** 2
     for e in range(pos.shape[0]):
         cost[e] = math.inf
         ball[e] = -1
@@ -155,3 +156,27 @@ def pocket_limits(table, corner: float, side: float) -> np.ndarray:
     """The steepest approach angle accepted for each pocket (side or corner)."""
     from .geometry import side_pocket_mask
     return np.where(side_pocket_mask(table), side, corner).astype(np.float64)
+
+
+@_jit
+def nearest_open_target(pos, on, targets, R, out, seen):
+    """Per table: the nearest legal target the cue ball sees along a line
+    clear of other balls by 2R (``seen`` True); if none, the nearest legal
+    target (``seen`` False); -1 if there is no legal target on the table."""
+    d2 = 4.0 * R * R
+    for e in range(pos.shape[0]):
+        best_open, best_any = math.inf, math.inf
+        out[e] = -1
+        any_b = -1
+        for b in range(1, pos.shape[1]):
+            if not (targets[e, b] and on[e, b]):
+                continue
+            d = math.hypot(pos[e, b, 0] - pos[e, 0, 0], pos[e, b, 1] - pos[e, 0, 1])
+            if d < best_any:
+                best_any, any_b = d, b
+            if d < best_open and not _blocked(pos[e], on[e], b, -1, pos[e, 0, 0], pos[e, 0, 1], pos[e, b, 0],
+                                              pos[e, b, 1], d2):
+                best_open, out[e] = d, b
+        seen[e] = out[e] >= 0
+        if out[e] < 0:
+            out[e] = any_b

@@ -12,12 +12,15 @@ and constraints and turn ``Shots`` into actions with ``core.actions_for``.
   pocket; the seeded standard break; with ball in hand, the cue ball placed
   for a short straight-in shot on a legal target; after the opponent's
   push-out, it passes when it has no pot. When no pot is likely (every pot
-  blocked or cut more than 70 deg) it hits the nominal target full at 2 m/s
-  (a legal contact that reaches a rail); with ``safety=True``
-  (``ghost-safety``) it plays a safety instead: ``safety_k`` candidate soft
-  shots at the legal targets simulated in one batched call, judged by the
-  rules, keeping a legal one that leaves the opponent no straight line to
-  any of their legal targets (else any legal one).
+  blocked or cut more than 70 deg) it hits the nearest legal target in
+  sight full at 1.5 m/s (a legal contact that reaches a rail), or, with no
+  legal target in sight, searches for a legal shot like a safety; with
+  ``safety=True`` (``ghost-safety``) it always plays a safety: ``safety_k``
+  candidate soft shots at the legal targets simulated in one batched call,
+  judged by the rules, keeping a legal one that leaves the opponent no
+  straight line to any of their legal targets (else any legal one). On the
+  8 it chooses the speed and draw of its pot in the simulator
+  (``eight_ball_shot``).
 """
 from __future__ import annotations
 
@@ -30,6 +33,7 @@ from billiards_env.envs.games.setup import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP
 from billiards_env.envs.tasks.nine_ball import break_shots
 from billiards_env.physics import simulate, strike_velocity
 from billiards_env.physics.strike import Shots
+from billiards_env.envs.games.core import rails_after_contact
 from billiards_env.rules import ShotInput
 from billiards_env.rules import records as R
 
@@ -38,10 +42,16 @@ from . import geometry as G
 
 APPROACH_CORNER = math.radians(60)  # steepest approach to a corner pocket the ghost-ball shot accepts (as agents.geometry)
 APPROACH_SIDE = math.radians(50)    # and to a side pocket
+BLOCK_CLEAR = 0.005                 # m: a pot's paths keep this clear of other balls beyond 2R (execution noise)
 MAX_CUT = math.radians(70)          # a pot with a larger cut angle is "not likely": play a safety instead
 PLACE_BACK = (0.2, 0.35, 0.5)       # m: distances behind the ghost ball tried for a ball-in-hand placement
 PLACE_CLEAR = 1e-3                  # m: a placement keeps this clear of every ball beyond 2R
 SAFETY_SPEEDS = (0.8, 3.0)          # m/s: range of the safety candidates' speeds
+FALLBACK_SPEED = 1.5                # m/s: the full hit played when no pot is likely (reaches a rail, seldom pockets)
+EIGHT_SPEEDS = (0.8, 1.0, 1.3)      # speed factors tried on the 8
+EIGHT_HEIGHTS = (-0.3, 0.0, 0.3)    # height offsets (R) tried on the 8
+EIGHT_DRAWS = 4                     # executions of each variant on the 8 (one noise-free)
+SOFT_SPEED = 0.8                    # m/s: the shot on the 8 when the planned one would lose
 BREAK_SPEED = 8.0                   # m/s: the break's nominal speed (as the one-player NineBall's)
 
 
@@ -94,7 +104,7 @@ class GameGhostPolicy:
         out = dict(cost=np.empty(n), phi=np.zeros(n), d_cg=np.zeros(n), d_op=np.zeros(n), cut=np.zeros(n),
                    pocket=np.zeros(n, dtype=np.int64), ball=np.zeros(n, dtype=np.int64))
         GG.best_pots(np.ascontiguousarray(pos), np.ascontiguousarray(on), np.ascontiguousarray(targets), self._aims,
-                     self._axes, self._limits, p.R, MAX_CUT, self.dist_weight, out["cost"], out["phi"], out["d_cg"],
+                     self._axes, self._limits, p.R, BLOCK_CLEAR, MAX_CUT, self.dist_weight, out["cost"], out["phi"], out["d_cg"],
                      out["d_op"], out["cut"], out["pocket"], out["ball"])
         out["speed"] = G.required_speed(out["d_cg"], out["d_op"], out["cut"], p, b=0.0, margin=1.0)
         return out
@@ -118,6 +128,49 @@ class GameGhostPolicy:
                              np.array(PLACE_BACK), t.width, R_, PLACE_CLEAR, self.core.pockets, spot)
         return spot
 
+    def eight_ball_shot(self, idx, pos, phi, speed, pocket):
+        """The pot on the 8 played as the variant (speed x ``EIGHT_SPEEDS``,
+        height ``EIGHT_HEIGHTS``) that wins most often over ``EIGHT_DRAWS``
+        executions with the table's shot noise (the first one without); if
+        none wins, a soft hit (``SOFT_SPEED``)."""
+        n = len(idx)
+        V = len(EIGHT_SPEEDS) * len(EIGHT_HEIGHTS)
+        sf, hb = (np.array(v, dtype=np.float64).ravel() for v in np.meshgrid(EIGHT_SPEEDS, EIGHT_HEIGHTS))
+        rep = np.repeat(np.arange(n), V * EIGHT_DRAWS)
+        var = np.tile(np.repeat(np.arange(V), EIGHT_DRAWS), n)
+        ph, sp, bb = phi[rep], np.minimum(speed[rep] * sf[var], self.core.params.max_speed), hb[var]
+        nz, R_ = self.core.cfg.noise, self.core.params.R
+        scale = self.core.noise_scale[idx][rep] * (np.tile(np.arange(EIGHT_DRAWS), n * V) > 0)
+        z = self.rng.normal(size=(len(rep), 3)) * scale[:, None]
+        ph = ph + z[:, 0] * math.radians(nz.aim_deg)
+        sp = np.clip(sp + z[:, 1] * nz.speed, 0.05, self.core.params.max_speed)
+        bb = bb + z[:, 2] * nz.height_mm * 1e-3 / R_
+        rec = self.judge(idx, pos, Shots(ph, sp, np.zeros(len(rep)), bb), pocket, rep)
+        wins = (rec.winner == rec.shooter).reshape(n, V, EIGHT_DRAWS)
+        score = wins.sum(axis=2) + 0.5 * wins[:, :, 0]
+        k = np.argmax(score, axis=1)
+        ok = score[np.arange(n), k] > 0
+        return (phi, np.where(ok, np.minimum(speed * sf[k], self.core.params.max_speed), SOFT_SPEED),
+                np.where(ok, hb[k], 0.0))
+
+    def judge(self, idx: np.ndarray, pos: np.ndarray, shots: Shots, pocket: np.ndarray, rep=None):
+        """Simulate ``shots`` (no noise) on tables ``idx`` with the cue ball at
+        ``pos[:, 0]`` (rows ``rep`` of them, if given) and judge them by the
+        rules with ``pocket`` called: the ``ShotRecord``, the state after and
+        the next constraints."""
+        core = self.core
+        rep = np.arange(len(idx)) if rep is None else rep
+        start = core.state.take(idx[rep])
+        start.pos[:, 0] = pos[rep, 0]
+        start.pocket[:, 0] = -1
+        res = simulate(strike_velocity(start, *shots, core.params), core.table, core.params,
+                       effects=core.effects, models=core.models, validate=False)
+        shot = ShotInput(start.pocket, res.state.pocket, res.first_contact, rails_after_contact(res),
+                         res.cushion_hits, called_pocket=np.asarray(pocket)[rep] if len(np.shape(pocket)) else None)
+        rec, g2 = core.rules.judge(core.game.take(idx[rep]), shot)
+        self.last_judged = (res, core.rules.constraints(g2, res.state.pocket))
+        return rec
+
     # --- safeties --------------------------------------------------------------
     def safeties(self, idx: np.ndarray, pos: np.ndarray) -> tuple[Shots, np.ndarray]:
         """A safety per table ``idx`` (cue ball at ``pos[:, 0]``): the best of
@@ -140,17 +193,8 @@ class GameGhostPolicy:
         phi = np.arctan2(d[:, 1], d[:, 0]) + half * self.rng.uniform(-1, 1, n * K)
         speed = np.exp(self.rng.uniform(*np.log(SAFETY_SPEEDS), n * K))
         b = self.rng.uniform(-0.3, 0.3, n * K)
-        start = core.state.take(idx[rep])
-        start.pos[:, 0] = pos[rep, 0]
-        start.pocket[:, 0] = -1
-        res = simulate(strike_velocity(start, phi, speed, 0.0, b, core.params), core.table, core.params,
-                       effects=core.effects, models=core.models, validate=False)
-        from billiards_env.envs.games.core import rails_after_contact
-        game = core.game.take(idx[rep])
-        shot = ShotInput(start.pocket, res.state.pocket, res.first_contact, rails_after_contact(res),
-                         res.cushion_hits)
-        rec, g2 = core.rules.judge(game, shot)
-        nxt = core.rules.constraints(g2, res.state.pocket)
+        rec = self.judge(idx, pos, Shots(phi, speed, np.zeros(n * K), b), np.full(n, -1), rep)
+        res, nxt = self.last_judged
         open_line = np.empty(n * K, dtype=bool)
         GG.open_lines(res.state.pos, res.state.pocket < 0, nxt.targets, core.params.R, open_line)
         good = rec.legal & ~rec.game_over & rec.turn_over
@@ -199,18 +243,41 @@ class GameGhostPolicy:
         declare[rows[~has]] = c.may_pass[idx[rows[~has]]]           # no pot after a push-out: hand it back
         none = rows[~has & ~declare[rows]]
         if len(none):
-            if self.safety:
-                sh, _ = self.safeties(idx[none], pos[none])
-                phi[none], speed[none], b[none] = sh.phi, sh.speed, sh.b
-            else:  # straight at the nominal target's centre, firmly enough to reach a rail
-                tgt = c.targets[idx[none]].argmax(axis=1)
-                d = pos[none, tgt] - pos[none, 0]
-                phi[none], speed[none] = np.arctan2(d[:, 1], d[:, 0]), 2.0
+            tgt = np.empty(len(none), dtype=np.int64)
+            seen = np.empty(len(none), dtype=bool)
+            GG.nearest_open_target(np.ascontiguousarray(pos[none]), np.ascontiguousarray(on[none]),
+                                   np.ascontiguousarray(c.targets[idx[none]]), p.R, tgt, seen)
+            d = pos[none, np.maximum(tgt, 0)] - pos[none, 0]
+            phi[none], speed[none] = np.arctan2(d[:, 1], d[:, 0]), FALLBACK_SPEED  # full on the nearest in sight
+            on8 = c.call_needed[idx[none]]
+            if on8.any():  # a full hit on the 8: soft, calling the pocket straight ahead of it
+                k = none[on8]
+                u = d[on8] / np.linalg.norm(d[on8], axis=1, keepdims=True)
+                to_p = self._aims[None] - pos[k, 8][:, None]
+                along = np.einsum("npi,ni->np", to_p, u)
+                off = np.linalg.norm(to_p - along[..., None] * u[:, None], axis=-1)
+                pocket[k] = np.argmin(np.where(along > 0, off, np.inf), axis=1)
+                speed[k] = SOFT_SPEED
+            search = none if self.safety else none[~seen]  # no target in sight: search for a legal shot
+            if len(search):
+                sh, _ = self.safeties(idx[search], pos[search])
+                phi[search], speed[search], b[search] = sh.phi, sh.speed, sh.b
         speed = np.clip(speed, 0.05, p.max_speed)
+        eight = np.nonzero(c.call_needed[idx] & play & np.isfinite(pots_cost(rows, pots, n)))[0]
+        if len(eight):  # the game hangs on this shot: pick its speed and draw in the simulator
+            phi[eight], speed[eight], b[eight] = self.eight_ball_shot(idx[eight], pos[eight], phi[eight],
+                                                                      speed[eight], pocket[eight])
         return core.actions_for(Shots(phi, speed, a, b), idx, placement, declare, pocket).astype(np.float32)
 
 
 POLICIES = ("random", "ghost", "ghost-safety")
+
+
+def pots_cost(rows, pots, n) -> np.ndarray:
+    """The pot cost of every table [n] (inf where none, or where not computed)."""
+    out = np.full(n, np.inf)
+    out[rows] = pots["cost"]
+    return out
 
 
 def make_game_policy(name: str, env, seed: int = 0):
