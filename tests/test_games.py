@@ -210,3 +210,19 @@ def test_sim_rail_before_contact_does_not_count(speed):
     out = shoot(core, -math.pi / 2, speed)
     assert out["info"]["first_contact"][0] == 1
     assert out["record"].foul[0] == R.FOUL_NO_RAIL
+
+
+def test_render_game_state_and_gif(tmp_path):
+    from billiards_env.rendering.game import render_game, save_game_animation, status_lines
+    core = GameCore(GameConfig(game="eight_ball"), 1)
+    core.streams.seed([0], [0])
+    core.reset_tables([0], [1])
+    img = render_game(core, 0)
+    assert img.ndim == 3 and img.shape[0] > img.shape[1] and img.dtype == np.uint8
+    lines = status_lines(core, 0)
+    assert "P1 to move" in lines[0] and "behind the head string" in lines[0] and "groups: P0 open" in lines[1]
+    path = save_game_animation(tmp_path / "game.gif", "nine_ball", ("ghost", "random"), seed=1, fps=4,
+                               speedup=8.0, hold=1, max_shots=3, ppm=60)
+    import imageio.v3 as iio
+    frames = iio.imread(path)
+    assert path.exists() and len(frames) >= 4
