@@ -226,3 +226,29 @@ def test_render_game_state_and_gif(tmp_path):
     import imageio.v3 as iio
     frames = iio.imread(path)
     assert path.exists() and len(frames) >= 4
+
+
+def test_noise_levels():
+    """high = 5x the tournament deviations; variable = a factor in [0, 5] per
+    game, drawn from the table's stream (the same rack seed, the same factor)."""
+    from billiards_env.envs.config import NoiseConfig
+    t, h = NoiseConfig.preset("tournament"), NoiseConfig.preset("high")
+    assert all(getattr(h, f) == pytest.approx(5 * getattr(t, f)) for f in ("aim_deg", "speed", "side_mm", "height_mm"))
+    core = GameCore(GameConfig(game="nine_ball", noise="variable"), 400)
+    core.streams.seed(np.arange(400), np.tile(np.arange(200), 2))
+    core.reset_tables(np.arange(400))
+    f = core.noise_scale
+    assert (f >= 0).all() and (f <= 5).all() and f.max() > 4 and f.min() < 1
+    np.testing.assert_array_equal(f[:200], f[200:])
+    assert core.cfg.noise == t
+    assert (GameCore(GameConfig(noise="high"), 2).cfg.noise == h)
+
+
+def test_stable_baselines3_trains_on_the_single_agent_env():
+    sb3 = pytest.importorskip("stable_baselines3")
+    env = gym.make("Billiards-NineBall2P-v0", max_shots=30)
+    model = sb3.PPO("MlpPolicy", env, n_steps=32, batch_size=32, n_epochs=1, seed=0, device="cpu")
+    model.learn(64)
+    obs, _ = env.reset(seed=0)
+    action, _ = model.predict(obs, deterministic=True)
+    assert env.action_space.contains(action)
