@@ -21,6 +21,8 @@ and constraints and turn ``Shots`` into actions with ``core.actions_for``.
   straight line to any of their legal targets (else any legal one). On the
   8 it chooses the speed and draw of its pot in the simulator
   (``eight_ball_shot``).
+- ``GameSearchPolicy`` (``search<K>``): ``ghost-safety`` whose pots are
+  chosen among K simulated candidates judged by the rules.
 """
 from __future__ import annotations
 
@@ -153,6 +155,9 @@ class GameGhostPolicy:
         return (phi, np.where(ok, np.minimum(speed * sf[k], self.core.params.max_speed), SOFT_SPEED),
                 np.where(ok, hb[k], 0.0))
 
+    def refine(self, idx, rows, pos, balls, phi, speed, a, b) -> None:
+        """Improve the planned pots of tables ``idx[rows]`` in place (``GameSearchPolicy``); none here."""
+
     def judge(self, idx: np.ndarray, pos: np.ndarray, shots: Shots, pocket: np.ndarray, rep=None):
         """Simulate ``shots`` (no noise) on tables ``idx`` with the cue ball at
         ``pos[:, 0]`` (rows ``rep`` of them, if given) and judge them by the
@@ -263,6 +268,8 @@ class GameGhostPolicy:
                 sh, _ = self.safeties(idx[search], pos[search])
                 phi[search], speed[search], b[search] = sh.phi, sh.speed, sh.b
         speed = np.clip(speed, 0.05, p.max_speed)
+        self.refine(idx, rows[has & ~c.call_needed[idx[rows]]], pos, pots["ball"][has & ~c.call_needed[idx[rows]]],
+                    phi, speed, a, b)
         eight = np.nonzero(c.call_needed[idx] & play & np.isfinite(pots_cost(rows, pots, n)))[0]
         if len(eight):  # the game hangs on this shot: pick its speed and draw in the simulator
             phi[eight], speed[eight], b[eight] = self.eight_ball_shot(idx[eight], pos[eight], phi[eight],
@@ -270,7 +277,45 @@ class GameGhostPolicy:
         return core.actions_for(Shots(phi, speed, a, b), idx, placement, declare, pocket).astype(np.float32)
 
 
-POLICIES = ("random", "ghost", "ghost-safety")
+class GameSearchPolicy(GameGhostPolicy):
+    """``GameGhostPolicy`` whose pots are searched: ``k`` candidate shots
+    per table on the planned ball (``agents.baselines.SearchPolicy``'s
+    candidates: every pocket's ghost-ball shot, then jittered aims, speeds
+    and spins) simulated in one batched call and judged by the rules; it
+    plays the best (a win, else a legal shot that keeps the table with the
+    easiest next pot, else the ghost-ball plan), preferring candidates close
+    to the nominal shots."""
+
+    def __init__(self, env, seed: int = 0, k: int = 64):
+        super().__init__(env, seed=seed, safety=True)
+        from .baselines import SearchPolicy
+        self.search = SearchPolicy(self.core, k=k, seed=seed)
+        self.name = f"search{k}"
+
+    def refine(self, idx, rows, pos, balls, phi, speed, a, b) -> None:
+        if not len(rows):
+            return
+        core, K = self.core, self.search.k
+        st = core.state.take(idx[rows])
+        st.pos[:, 0], st.pocket[:, 0] = pos[rows, 0], -1
+        cph, csp, ca, cb, close = self.search.candidates(st, balls)
+        rep = np.repeat(rows, K)
+        rec = self.judge(idx, pos, Shots(cph.ravel(), csp.ravel(), ca.ravel(), cb.ravel()), np.full(len(idx), -1), rep)
+        win, loss = rec.winner == rec.shooter, rec.winner == 1 - rec.shooter
+        res, nxt = self.last_judged
+        keeps = rec.legal & ~rec.turn_over & ~rec.game_over
+        follow = self.best_pots(res.state.pos, res.state.pocket < 0, nxt.targets)["cost"]  # the next pot's cost
+        position = np.where(keeps & np.isfinite(follow), 2.0 - np.minimum(follow, 2.0), 0.0)
+        score = (10.0 * win - 10.0 * loss + 3.0 * keeps + position).reshape(len(rows), K)
+        score = score - 0.01 * close
+        k = np.argmax(score, axis=1)
+        ok = score[np.arange(len(rows)), k] > 1.0
+        r, kk = rows[ok], k[ok]
+        ar = np.nonzero(ok)[0]
+        phi[r], speed[r], a[r], b[r] = cph[ar, kk], csp[ar, kk], ca[ar, kk], cb[ar, kk]
+
+
+POLICIES = ("random", "ghost", "ghost-safety", "search<K>")
 
 
 def pots_cost(rows, pots, n) -> np.ndarray:
@@ -282,11 +327,14 @@ def pots_cost(rows, pots, n) -> np.ndarray:
 
 def make_game_policy(name: str, env, seed: int = 0):
     """A game policy by name: ``random``, ``ghost`` (rule-aware ghost-ball,
-    geometry only), ``ghost-safety`` (the same with simulated safeties)."""
+    geometry only), ``ghost-safety`` (the same with simulated safeties),
+    ``search<K>`` (searched pots, K candidates, default 64, and safeties)."""
     if name == "random":
         return GameRandomPolicy(env, seed=seed)
     if name == "ghost":
         return GameGhostPolicy(env, seed=seed)
     if name == "ghost-safety":
         return GameGhostPolicy(env, seed=seed, safety=True)
+    if name.startswith("search"):
+        return GameSearchPolicy(env, seed=seed, k=int(name[6:]) if name[6:] else 64)
     raise ValueError(f"unknown game policy {name!r}; choose one of {POLICIES}")

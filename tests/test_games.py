@@ -252,3 +252,12 @@ def test_stable_baselines3_trains_on_the_single_agent_env():
     obs, _ = env.reset(seed=0)
     action, _ = model.predict(obs, deterministic=True)
     assert env.action_space.contains(action)
+
+
+def test_search_policy_plays_legal_game():
+    """search<K> is built on the same hooks: on a position with an easy pot it keeps the table."""
+    from agents.game_policies import make_game_policy
+    core = nine_ball_table({0: (0.32, 0.32), 1: (0.2, 0.2), **PARKED})
+    pol = make_game_policy("search16", core, seed=0)
+    out = core.step(pol.act(None, np.array([0])).astype(np.float64), [0])
+    assert out["record"].legal[0] and out["info"]["pocketed"][0, 1] and not out["record"].turn_over[0]
