@@ -34,7 +34,8 @@ class GameVectorEnv(VectorEnv):
     **Info**: the shot record (``legal``, ``foul``, ``turn_over``,
     ``game_over``, ``winner``, ``end``, ``push_out``, ``passed``,
     ``shooter``, ``respotted``), ``pocketed``, ``first_contact``,
-    ``called_pocket``, ``placement`` and ``placement_moved`` (ball in hand),
+    ``called_pocket``, ``placement`` (where the cue ball was played from)
+    and ``placement_moved`` (a ball-in-hand spot was illegal and moved),
     ``action_clipped``, ``n_events``, ``sim_time``, ``shot``; the next
     shooter's constraints as ``ball_in_hand``, ``targets``,
     ``push_out_allowed``, ``may_pass``, ``call_needed``, ``to_move``.
