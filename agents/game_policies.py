@@ -228,8 +228,9 @@ class GameGhostPolicy:
         if brk.any():
             r = np.nonzero(brk)[0]
             apex = np.tile([t.width / 2, FOOT_SPOT * t.length], (len(r), 1))
-            cue, phi[r], speed[r], a[r], b[r] = break_shots(t, apex, BREAK_SPEED, self.rng.random((len(r), 5)),
-                                                            self.rng.normal(size=len(r)))
+            u = self.rng.random((len(r), 5))
+            u[:, 1] *= 0.45  # the cue ball on or behind the head string's side of the break area
+            cue, phi[r], speed[r], a[r], b[r] = break_shots(t, apex, BREAK_SPEED, u, self.rng.normal(size=len(r)))
             placement[r] = cue
         play = ~brk & ~c.over[idx]
         h = np.nonzero(play & (hand != R.IN_HAND_NONE))[0]

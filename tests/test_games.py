@@ -71,7 +71,7 @@ def test_vector_env_equals_single_games(game):
     assert compared >= 12
 
 
-@pytest.mark.parametrize("game,n_tables", [("nine_ball", 2000), ("eight_ball", 1000)])
+@pytest.mark.parametrize("game,n_tables", [("nine_ball", 2000), ("eight_ball", 2000)])
 def test_random_games_properties(game, n_tables):
     """Random policies: every game ends within the shot cap; no ball is lost
     or duplicated; the player to move follows the shot records exactly."""
