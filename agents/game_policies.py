@@ -316,7 +316,23 @@ class GameSearchPolicy(GameGhostPolicy):
         phi[r], speed[r], a[r], b[r] = cph[ar, kk], csp[ar, kk], ca[ar, kk], cb[ar, kk]
 
 
-POLICIES = ("random", "ghost", "ghost-safety", "search<K>")
+class GameModelPolicy:
+    """A saved stable-baselines3 model (a run directory or a ``.zip``, with
+    its VecNormalize statistics if saved beside it; ``SB3Policy.load``)
+    trained on a game env, playing on the core's observations, deterministic."""
+
+    def __init__(self, env, path, name: str | None = None):
+        from .baselines import SB3Policy
+        self.core = native_game(env)
+        self.inner = SB3Policy.load(path)
+        self.name = name or f"model:{path}"
+
+    def act(self, obs=None, idx=None) -> np.ndarray:
+        o = self.core.observe()
+        return self.inner.act(o if idx is None else o[np.asarray(idx)]).astype(np.float32)
+
+
+POLICIES = ("random", "ghost", "ghost-safety", "search<K>", "<path to a saved model>")
 
 
 def pots_cost(rows, pots, n) -> np.ndarray:
@@ -329,13 +345,17 @@ def pots_cost(rows, pots, n) -> np.ndarray:
 def make_game_policy(name: str, env, seed: int = 0):
     """A game policy by name: ``random``, ``ghost`` (rule-aware ghost-ball,
     geometry only), ``ghost-safety`` (the same with simulated safeties),
-    ``search<K>`` (searched pots, K candidates, default 64, and safeties)."""
+    ``search<K>`` (searched pots, K candidates, default 64, and safeties),
+    or the path of a saved stable-baselines3 model (``GameModelPolicy``)."""
     if name == "random":
         return GameRandomPolicy(env, seed=seed)
     if name == "ghost":
         return GameGhostPolicy(env, seed=seed)
     if name == "ghost-safety":
         return GameGhostPolicy(env, seed=seed, safety=True)
-    if name.startswith("search"):
+    if name.startswith("search") and name[6:].isdigit() or name == "search":
         return GameSearchPolicy(env, seed=seed, k=int(name[6:]) if name[6:] else 64)
+    from pathlib import Path
+    if Path(name).exists():
+        return GameModelPolicy(env, name)
     raise ValueError(f"unknown game policy {name!r}; choose one of {POLICIES}")

@@ -62,7 +62,7 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--game", choices=["nine_ball", "eight_ball"], default="nine_ball")
     ap.add_argument("--policies", nargs="+", default=["random", "ghost"],
-                    help="entrants: random, ghost, ghost-safety")
+                    help="entrants: random, ghost, ghost-safety, search<K>, or paths of saved models")
     ap.add_argument("--racks", type=int, default=100, help="racks per pairing (each played twice)")
     ap.add_argument("--noise", choices=["none", "tournament", "high", "variable"], default="tournament")
     ap.add_argument("--seed", type=int, default=0)

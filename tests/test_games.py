@@ -261,3 +261,27 @@ def test_search_policy_plays_legal_game():
     pol = make_game_policy("search16", core, seed=0)
     out = core.step(pol.act(None, np.array([0])).astype(np.float64), [0])
     assert out["record"].legal[0] and out["info"]["pocketed"][0, 1] and not out["record"].turn_over[0]
+
+
+@pytest.mark.slow
+def test_match_script_with_a_saved_model(tmp_path):
+    """scripts/match.py through a subprocess: a PPO model saved after a few
+    steps on the single-agent env enters a match against random; JSON,
+    Markdown and plot are written."""
+    import json
+    import subprocess
+    import sys
+    from pathlib import Path
+    sb3 = pytest.importorskip("stable_baselines3")
+    env = gym.make("Billiards-NineBall2P-v0", max_shots=20)
+    model = sb3.PPO("MlpPolicy", env, n_steps=16, batch_size=16, n_epochs=1, seed=0, device="cpu")
+    model.learn(16)
+    model.save(tmp_path / "model.zip")
+    root = Path(__file__).resolve().parents[1]
+    out = subprocess.run([sys.executable, str(root / "scripts" / "match.py"), "--racks", "3", "--max-shots", "20",
+                          "--policies", "random", str(tmp_path / "model.zip"), "--out", str(tmp_path)],
+                         capture_output=True, text=True, cwd=root, timeout=300)
+    assert out.returncode == 0, out.stderr[-2000:]
+    doc = json.loads((tmp_path / "nine_ball_tournament.json").read_text())
+    assert doc["pairings"][0]["games"] == 6 and len(doc["ratings"]) == 2
+    assert (tmp_path / "nine_ball_tournament.png").exists() and (tmp_path / "nine_ball_tournament.md").exists()

@@ -46,6 +46,7 @@ class GameVectorEnv(VectorEnv):
     def __init__(self, num_envs: int = 1, game: str = "nine_ball", config=None, **overrides: Any):
         self.config = make_config(config, {**overrides, "game": game} if config is None else overrides)
         self.num_envs = int(num_envs)
+        self.render_mode = None
         self.core = GameCore(self.config, self.num_envs)
         self.single_observation_space = observation_space(self.core)
         self.single_action_space = action_space()
