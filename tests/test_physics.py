@@ -122,3 +122,19 @@ def test_event_log_reconstructs_the_final_state(pool, params):
     for i, st in last.items():
         if r.state.pocket[0, i] < 0:
             np.testing.assert_allclose(st[:2], r.state.pos[0, i], atol=1e-12)
+
+
+@pytest.mark.parametrize("solver,dt", [("event", None), ("step", 1e-4)])
+def test_cushion_hits_after_contact_count_only_after_the_first_contact(pool, params, solver, dt):
+    """A cue ball sent into the side rail before it reaches the object ball
+    hits a cushion that does not count as after contact; the object ball's
+    cushion hits all do (it is at rest until it is touched)."""
+    pos = np.array([[[0.40, 1.00], [0.90, 1.60]],    # rail first: cue ball goes left, never meets ball 1
+                    [[0.635, 1.00], [0.635, 1.40]]])  # contact first: straight at ball 1, which runs to the foot rail
+    s = strike_velocity(BallState.from_positions(pos), np.array([math.pi, math.pi / 2]), 1.5, 0.0, 0.0, params)
+    res = simulate(s, pool, params, solver=solver, dt=dt)
+    assert res.first_contact.tolist() == [-1, 1]
+    assert res.cushion_hits[0, 0] >= 1 and res.cushion_hits_after_contact[0].sum() == 0
+    assert res.cushion_hits[1, 1] >= 1
+    np.testing.assert_array_equal(res.cushion_hits_after_contact[1, 1:], res.cushion_hits[1, 1:])
+    assert np.all(res.cushion_hits_after_contact <= res.cushion_hits)

@@ -16,7 +16,18 @@ import numba
 from numba.core.caching import FunctionCache
 
 JIT = dict(cache=False, nogil=True, fastmath=False, error_model="numpy")
-njit = numba.njit(**JIT)
+# Helpers are compiled without numba's runtime (NRT): they allocate nothing,
+# and with it every array they read out of a structure or receive is
+# reference-counted by an atomic call at entry and exit, which cost a small
+# scene up to a third of its time. The few functions that allocate (the
+# kernels' prange loop, layout.impact_scratch) keep it: ``njit_alloc``.
+HELPER_JIT = dict(JIT, _nrt=False)
+njit = numba.njit(**HELPER_JIT)
+njit_alloc = numba.njit(**JIT)
+# Inlined into the caller at numba's level: for a helper of the step loop,
+# which runs every few nanoseconds, a call that passes the named structures
+# (a few dozen machine words each) costs as much as the work.
+njit_inline = numba.njit(**HELPER_JIT, inline="always")
 
 
 def name_of(function) -> str:

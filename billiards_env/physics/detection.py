@@ -120,8 +120,7 @@ def boundary_time(pos, vel, st, e, i, ax, ay, H, p, geo, quadratic):
     cushion segment, a jaw tip or a pocket of ``geo`` (layout.Geometry)
     within H. Returns (time, kind, index). With ``quadratic`` the ball moves
     in a straight line (step solver; pass ax = ay = 0)."""
-    # geo's fields are read where used: a field held in a variable across
-    # the calls below would count a reference on every call of this function
+    segs, norms, tips, pockets = geo.segs, geo.norms, geo.tips, geo.pockets
     best = math.inf
     kind = -1
     idx = -1
@@ -135,12 +134,12 @@ def boundary_time(pos, vel, st, e, i, ax, ay, H, p, geo, quadratic):
     if H < math.inf:  # (H is infinite only without sliding friction)
         bx0, bx1 = _extent(x, vx, ax, H)
         by0, by1 = _extent(y, vy, ay, H)
-    for s in range(geo.segs.shape[0]):
-        if (_apart(bx0, bx1, min(geo.segs[s, 0], geo.segs[s, 2]), max(geo.segs[s, 0], geo.segs[s, 2]), R + BOX_SLACK)
-                or _apart(by0, by1, min(geo.segs[s, 1], geo.segs[s, 3]), max(geo.segs[s, 1], geo.segs[s, 3]), R + BOX_SLACK)):
+    for s in range(segs.shape[0]):
+        if (_apart(bx0, bx1, min(segs[s, 0], segs[s, 2]), max(segs[s, 0], segs[s, 2]), R + BOX_SLACK)
+                or _apart(by0, by1, min(segs[s, 1], segs[s, 3]), max(segs[s, 1], segs[s, 3]), R + BOX_SLACK)):
             continue
-        nx, ny = geo.norms[s, 0], geo.norms[s, 1]
-        c0 = (x - geo.segs[s, 0]) * nx + (y - geo.segs[s, 1]) * ny - R
+        nx, ny = norms[s, 0], norms[s, 1]
+        c0 = (x - segs[s, 0]) * nx + (y - segs[s, 1]) * ny - R
         c1 = vx * nx + vy * ny
         c2 = 0.5 * (ax * nx + ay * ny)
         if quadratic:
@@ -149,28 +148,28 @@ def boundary_time(pos, vel, st, e, i, ax, ay, H, p, geo, quadratic):
             t = first_entry(0.0, 0.0, c2, c1, c0, min(H, best), C.CONTACT_TOL, -R)
         if t < best:
             # the contact point must lie on the segment (tips handle its ends)
-            qx = x + vx * t + 0.5 * ax * t * t - geo.segs[s, 0]
-            qy = y + vy * t + 0.5 * ay * t * t - geo.segs[s, 1]
-            ex, ey = geo.segs[s, 2] - geo.segs[s, 0], geo.segs[s, 3] - geo.segs[s, 1]
+            qx = x + vx * t + 0.5 * ax * t * t - segs[s, 0]
+            qy = y + vy * t + 0.5 * ay * t * t - segs[s, 1]
+            ex, ey = segs[s, 2] - segs[s, 0], segs[s, 3] - segs[s, 1]
             lam = (qx * ex + qy * ey) / (ex * ex + ey * ey)
             if 0.0 <= lam <= 1.0:
                 best = t; kind = C.EV_CUSHION; idx = s
-    for v in range(geo.tips.shape[0]):
-        if (_apart(bx0, bx1, geo.tips[v, 0], geo.tips[v, 0], R + BOX_SLACK)
-                or _apart(by0, by1, geo.tips[v, 1], geo.tips[v, 1], R + BOX_SLACK)):
+    for v in range(tips.shape[0]):
+        if (_apart(bx0, bx1, tips[v, 0], tips[v, 0], R + BOX_SLACK)
+                or _apart(by0, by1, tips[v, 1], tips[v, 1], R + BOX_SLACK)):
             continue
         if quadratic:
-            dx, dy = x - geo.tips[v, 0], y - geo.tips[v, 1]
+            dx, dy = x - tips[v, 0], y - tips[v, 1]
             c0 = dx * dx + dy * dy - R * R
             t = first_entry_quadratic(vx * vx + vy * vy, 2.0 * (dx * vx + dy * vy), c0,
                                       min(H, best), 2.0 * R * C.CONTACT_TOL, -math.inf)
         else:
-            t = _circle_time(x, y, vx, vy, ax, ay, geo.tips[v, 0], geo.tips[v, 1], R, min(H, best),
+            t = _circle_time(x, y, vx, vy, ax, ay, tips[v, 0], tips[v, 1], R, min(H, best),
                              2.0 * R * C.CONTACT_TOL, -math.inf)
         if t < best:
             best = t; kind = C.EV_JAW_TIP; idx = v
-    for k in range(geo.pockets.shape[0]):
-        cx, cy, r = geo.pockets[k, 0], geo.pockets[k, 1], geo.pockets[k, 2]
+    for k in range(pockets.shape[0]):
+        cx, cy, r = pockets[k, 0], pockets[k, 1], pockets[k, 2]
         if _apart(bx0, bx1, cx, cx, r + BOX_SLACK) or _apart(by0, by1, cy, cy, r + BOX_SLACK):
             continue
         if quadratic:

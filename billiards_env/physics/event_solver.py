@@ -29,7 +29,7 @@ def refresh(balls, scr, geo, e, i, t, p):
     that event refreshes the ball again, so pair checks read them instead
     of recomputing them for the other ball of every pair."""
     pos, vel, om, st = balls.pos, balls.vel, balls.om, balls.st
-    tt, tb, tpair, paths = scr.tt, scr.tb, scr.tpair, scr.paths  # fields read once, not per pair
+    tt, tb, tpair, paths = scr.tt, scr.tb, scr.tpair, scr.paths
     B = pos.shape[1]
     if st[e, i] == C.POCKETED:
         tt[e, i] = math.inf; tb[e, i] = math.inf
@@ -80,19 +80,18 @@ def next_event(scr, e, B):
     """Earliest event of table e: (time, kind, a, b); kind -2 is a motion
     transition of ball a. Ties go to the first found (pairs, then
     boundaries, then transitions), a fixed deterministic order."""
-    # fields read where used: no call in between, so numba drops the
-    # reference counting of each read
+    tpair, tb, tt = scr.tpair, scr.tb, scr.tt
     tmin = math.inf; kind = -1; a = -1; b = -1
     for i in range(B):
         for j in range(i + 1, B):
-            if scr.tpair[e, i, j] < tmin:
-                tmin = scr.tpair[e, i, j]; kind = C.EV_BALL_BALL; a = i; b = j
+            if tpair[e, i, j] < tmin:
+                tmin = tpair[e, i, j]; kind = C.EV_BALL_BALL; a = i; b = j
     for i in range(B):
-        if scr.tb[e, i] < tmin:
-            tmin = scr.tb[e, i]; kind = scr.bkind[e, i]; a = i; b = scr.bidx[e, i]
+        if tb[e, i] < tmin:
+            tmin = tb[e, i]; kind = scr.bkind[e, i]; a = i; b = scr.bidx[e, i]
     for i in range(B):
-        if scr.tt[e, i] < tmin:
-            tmin = scr.tt[e, i]; kind = -2; a = i; b = -1
+        if tt[e, i] < tmin:
+            tmin = tt[e, i]; kind = -2; a = i; b = -1
     return tmin, kind, a, b
 
 
@@ -103,8 +102,9 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
     resolve_impact_set = impacts.resolve_impact_set
 
     @variant_njit(__name__, spin_on, zspin_on, diag_on, *impacts.choices)
-    def table(balls, geo, p, scr, out, log, max_events, e):
-        """Simulate table e to rest."""
+    def table(balls, geo, p, scr, out, log, max_events, e, imp, stuck):
+        """Simulate table e to rest (imp: its impact scratch, stuck: a
+        flag per ball)."""
         pos, vel, om, st, tpair = balls.pos, balls.vel, balls.om, balls.st, scr.tpair  # once, not per event
         B = pos.shape[1]
         prepare(balls, e, p)
@@ -118,9 +118,8 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
             en_prev = diagnostics.start(balls, geo, e, p, out.diag)
         out.first[e] = -1
         nev = 0
-        imp = impact_scratch()
         sim_i, sim_j = imp.i, imp.j
-        stuck = np.zeros(B, dtype=np.bool_)  # balls of the events at the current instant
+        stuck[:] = False  # balls of the events at the current instant
         n_stuck = 0  # events since time last advanced
         rounds = 0  # collapse rounds at the current instant
         while True:
@@ -176,6 +175,7 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
 
     def run(balls, geo, p, scr, out, log, max_events):
         for e in numba.prange(balls.pos.shape[0]):
-            table(balls, geo, p, scr, out, log, max_events, e)
+            table(balls, geo, p, scr, out, log, max_events, e, impact_scratch(),
+                  np.zeros(balls.pos.shape[1], dtype=np.bool_))
 
     return run

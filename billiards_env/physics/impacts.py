@@ -122,6 +122,8 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion):
         if diag_on:
             out.diag[e, 0] = max(out.diag[e, 0], energy(balls.vel, balls.om, balls.st, e, a, p) - e0)
         out.cush[e, a] += 1
+        if out.first[e] >= 0:
+            out.cush_after[e, a] += 1
 
     @variant
     def impulses(balls, e, imp, ns, nb, p):

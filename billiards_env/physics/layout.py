@@ -9,7 +9,7 @@ from collections import namedtuple
 import numpy as np
 
 from . import constants as C
-from ._jit import njit
+from ._jit import njit_alloc
 
 # pos [E, B, 2], vel [E, B, 2], om [E, B, 3], st [E, B] motion state
 # (constants.STATIONARY ...), pocket [E, B] pocket index or -1
@@ -24,9 +24,9 @@ Geometry = namedtuple("Geometry", "segs norms tips pockets width length")
 # box (paths [E, B, 6], detection.sweep_path)
 EventScratch = namedtuple("EventScratch", "tt tb bkind bidx tpair paths")
 # Per table: simulated time, events, first ball the cue ball touched (-1),
-# cushion hits per ball [E, B], truncated flag, diagnostics [E, 4]
-# (simulate.SimResult.diagnostics)
-Outputs = namedtuple("Outputs", "time nev first cush trunc diag")
+# cushion hits per ball [E, B] (all, and those after the cue ball's first
+# contact), truncated flag, diagnostics [E, 4] (simulate.SimResult.diagnostics)
+Outputs = namedtuple("Outputs", "time nev first cush cush_after trunc diag")
 # Event log buffers: on (record at all), n [E] events so far, t [E, N],
 # kind [E, N], ij [E, N, 2], state [E, N, 2, 8] (simulate.EventLog)
 LogBuffers = namedtuple("LogBuffers", "on n t kind ij state")
@@ -36,7 +36,7 @@ LogBuffers = namedtuple("LogBuffers", "on n t kind ij state")
 ImpactScratch = namedtuple("ImpactScratch", "i j w balls saved swapped")
 
 
-@njit
+@njit_alloc
 def impact_scratch():
     """Fresh ``ImpactScratch`` for one table."""
     return ImpactScratch(np.empty(C.MAX_SIMULTANEOUS, dtype=np.int64), np.empty(C.MAX_SIMULTANEOUS, dtype=np.int64),

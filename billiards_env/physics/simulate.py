@@ -47,6 +47,7 @@ class SimResult:
     first_contact: np.ndarray  # [E] first ball the cue ball touched, -1 if none
     cushion_hits: np.ndarray   # [E, B]
     truncated: np.ndarray      # [E] True if the event or step cap was hit
+    cushion_hits_after_contact: np.ndarray  # [E, B] cushion hits once the cue ball has touched a ball (the rules' "rail after contact")
     events: list | None = None  # [E] EventLog with record=True
     diagnostics: np.ndarray | None = None  # [E, 4]: max energy gain (J) of any impact or of the total from one event (step) to the next, max momentum error of a ball-ball impact (kg m/s), min gap (m), max off-table (m)
 
@@ -104,7 +105,8 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
     kernel = make_kernel(solver, effects, models, diagnostics)
 
     out = Outputs(time=np.zeros(E), nev=np.zeros(E, dtype=np.int64), first=np.full(E, -1, dtype=np.int64),
-                  cush=np.zeros((E, B), dtype=np.int64), trunc=np.zeros(E, dtype=np.bool_), diag=np.zeros((E, 4)))
+                  cush=np.zeros((E, B), dtype=np.int64), cush_after=np.zeros((E, B), dtype=np.int64),
+                  trunc=np.zeros(E, dtype=np.bool_), diag=np.zeros((E, 4)))
     cap = RECORD_CAPACITY if record else 1
     rows = E if record else 1
     log = LogBuffers(on=bool(record), n=np.zeros(E, dtype=np.int64), t=np.zeros((rows, cap)),
@@ -132,7 +134,7 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
                                f"record capacity {cap}")
         events = [EventLog(log.t[e, :log.n[e]].copy(), log.kind[e, :log.n[e]].copy(),
                            log.ij[e, :log.n[e]].copy(), log.state[e, :log.n[e]].copy()) for e in range(E)]
-    return SimResult(s, out.time, out.nev, out.first, out.cush, out.trunc, events,
+    return SimResult(s, out.time, out.nev, out.first, out.cush, out.trunc, out.cush_after, events,
                      out.diag if diagnostics else None)
 
 

@@ -14,13 +14,13 @@ import numba
 
 from . import constants as C
 from . import diagnostics, event_log
-from ._jit import njit, variant_njit
+from ._jit import njit, njit_inline, variant_njit
 from .detection import boundary_time, pair_time_linear
 from .layout import impact_scratch
 from .motion import friction_step
 
 
-@njit
+@njit_inline
 def earliest_contact(balls, geo, e, rem, p):
     """Earliest contact of table e within rem (s), balls moving in straight
     lines: (time, kind, a, b), kind -1 if none."""
@@ -72,8 +72,8 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
     resolve_impact_set = impacts.resolve_impact_set
 
     @variant_njit(__name__, spin_on, zspin_on, diag_on, *impacts.choices)
-    def table(balls, geo, p, out, log, max_events, dt, max_steps, e):
-        """Simulate table e to rest."""
+    def table(balls, geo, p, out, log, max_events, dt, max_steps, e, imp):
+        """Simulate table e to rest (imp: its impact scratch)."""
         pos, vel, om, st = balls.pos, balls.vel, balls.om, balls.st  # once, not per step
         B = pos.shape[1]
         prepare(balls, e, p)
@@ -85,7 +85,6 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
         t = 0.0
         nev = 0
         steps = 0
-        imp = impact_scratch()
         while True:
             if not moving(st, e):
                 break
@@ -127,6 +126,6 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
 
     def run(balls, geo, p, out, log, max_events, dt, max_steps):
         for e in numba.prange(balls.pos.shape[0]):
-            table(balls, geo, p, out, log, max_events, dt, max_steps, e)
+            table(balls, geo, p, out, log, max_events, dt, max_steps, e, impact_scratch())
 
     return run
