@@ -9,7 +9,6 @@ import pytest
 
 import billiards_env  # noqa: F401 (registers the ids)
 from billiards_env.envs.games import GameConfig, GameCore
-from billiards_env.physics import SimResult
 from billiards_env.envs.games.setup import HEAD_STRING
 from billiards_env.envs.games.vector import GameVectorEnv
 from billiards_env.rules import records as R
@@ -200,8 +199,6 @@ def shoot_with(core, a):
     return core.step(a, [0])
 
 
-@pytest.mark.skipif("cushion_hits_after_contact" not in SimResult.__dataclass_fields__,
-                    reason="the simulator does not report cushion hits after the first contact yet")
 @pytest.mark.parametrize("speed", [1.0, 1.1])
 def test_sim_rail_before_contact_does_not_count(speed):
     """The cue ball banks off the head rail, then nudges the 1: nothing

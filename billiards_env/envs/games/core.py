@@ -354,10 +354,6 @@ class GameCore(BilliardsCore):
 
 def rails_after_contact(res) -> np.ndarray:
     """Cushion hits [E, B] of every ball after the cue ball's first contact
-    (``SimResult.cushion_hits_after_contact``). Object balls rest until
-    touched, so all their hits count."""
-    after = getattr(res, "cushion_hits_after_contact", None)
-    if after is not None:
-        return after
-    # TEMP until the simulator reports it: the cue ball's hits before contact counted too
-    return res.cushion_hits * (res.first_contact >= 0)[:, None]
+    (``SimResult.cushion_hits_after_contact``; object balls rest until
+    touched, so all their hits count)."""
+    return res.cushion_hits_after_contact
