@@ -14,13 +14,16 @@ and constraints and turn ``Shots`` into actions with ``core.actions_for``.
   push-out, it passes when it has no pot. When no pot is likely (every pot
   blocked or cut more than 70 deg) it hits the nearest legal target in
   sight full at 1.5 m/s (a legal contact that reaches a rail), or, with no
-  legal target in sight, searches for a legal shot like a safety; with
+  legal target in sight, searches for a legal shot like a safety (8
+  candidates); with
   ``safety=True`` (``ghost-safety``) it always plays a safety: ``safety_k``
   candidate soft shots at the legal targets simulated in one batched call,
   judged by the rules, keeping a legal one that leaves the opponent no
   straight line to any of their legal targets (else any legal one). On the
   8 it chooses the speed and draw of its pot in the simulator
-  (``eight_ball_shot``).
+  (``eight_ball_shot``); in 8-ball every other pot or full hit is first
+  played in the simulator (no noise) and replaced by a searched legal shot
+  if it would lose the game.
 - ``GameSearchPolicy`` (``search<K>``): ``ghost-safety`` whose pots are
   chosen among K simulated candidates judged by the rules.
 """
@@ -53,6 +56,7 @@ FALLBACK_SPEED = 1.5                # m/s: the full hit played when no pot is li
 EIGHT_SPEEDS = (0.8, 1.0, 1.3)      # speed factors tried on the 8
 EIGHT_HEIGHTS = (-0.3, 0.0, 0.3)    # height offsets (R) tried on the 8
 EIGHT_DRAWS = 4                     # executions of each variant on the 8 (one noise-free)
+KICK_K = 8                          # candidates of the legal-shot search when no legal target is in sight
 SOFT_SPEED = 0.8                    # m/s: the shot on the 8 when the planned one would lose
 BREAK_SPEED = 8.0                   # m/s: the break's nominal speed (as the one-player NineBall's)
 
@@ -177,12 +181,12 @@ class GameGhostPolicy:
         return rec
 
     # --- safeties --------------------------------------------------------------
-    def safeties(self, idx: np.ndarray, pos: np.ndarray) -> tuple[Shots, np.ndarray]:
+    def safeties(self, idx: np.ndarray, pos: np.ndarray, k: int | None = None) -> tuple[Shots, np.ndarray]:
         """A safety per table ``idx`` (cue ball at ``pos[:, 0]``): the best of
         ``safety_k`` soft shots at the legal targets, simulated and judged.
         Returns the shots and whether each is a legal shot."""
         core = self.core
-        K, n = self.safety_k, len(idx)
+        K, n = (k or self.safety_k), len(idx)
         c = core.constraints()
         tg = c.targets[idx]
         on = core.state.pocket[idx] < 0
@@ -266,12 +270,30 @@ class GameGhostPolicy:
                 speed[k] = SOFT_SPEED
             search = none if self.safety else none[~seen]  # no target in sight: search for a legal shot
             if len(search):
-                sh, _ = self.safeties(idx[search], pos[search])
+                sh, _ = self.safeties(idx[search], pos[search], None if self.safety else KICK_K)
                 phi[search], speed[search], b[search] = sh.phi, sh.speed, sh.b
         speed = np.clip(speed, 0.05, p.max_speed)
         self.refine(idx, rows[has & ~c.call_needed[idx[rows]]], pos, pots["ball"][has & ~c.call_needed[idx[rows]]],
                     phi, speed, a, b)
+        lose = np.zeros(0, dtype=np.int64)
+        if core.rules.name == "eight_ball":  # a pot that would sink the 8 (early or on a scratch) loses the game:
+            chk = rows[~declare[rows] & ~c.call_needed[idx[rows]]]  # play pots and full hits in the simulator
+            chk = chk[~np.isin(chk, search)] if len(none) else chk  # first; if one loses, search instead
+            if len(chk):
+                rec = self.judge(idx[chk], pos[chk], Shots(phi[chk], speed[chk], a[chk], b[chk]), pocket[chk])
+                lose = chk[rec.winner == 1 - rec.shooter]
+                if len(lose):
+                    sh, _ = self.safeties(idx[lose], pos[lose], KICK_K)
+                    phi[lose], speed[lose], a[lose], b[lose] = sh.phi, sh.speed, sh.a, sh.b
+        mode = np.full(n, "pot", dtype=object)
+        mode[brk], mode[declare] = "break", "pass"
+        if len(none):
+            mode[none] = "full"
+            mode[search] = "search"
+        mode[lose] = "search"
         eight = np.nonzero(c.call_needed[idx] & play & np.isfinite(pots_cost(rows, pots, n)))[0]
+        mode[eight] = "eight"
+        self.last_mode = mode  # what each table's shot is (diagnostics)
         if len(eight):  # the game hangs on this shot: pick its speed and draw in the simulator
             phi[eight], speed[eight], b[eight] = self.eight_ball_shot(idx[eight], pos[eight], phi[eight],
                                                                       speed[eight], pocket[eight])
