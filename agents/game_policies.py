@@ -45,7 +45,7 @@ from billiards_env.rules import records as R
 from . import game_geometry as GG
 from . import geometry as G
 
-APPROACH_CORNER = math.radians(60)  # steepest approach to a corner pocket the ghost-ball shot accepts (as agents.geometry)
+APPROACH_CORNER = math.radians(60)  # steepest approach to a corner pocket a pot accepts (as agents.geometry)
 APPROACH_SIDE = math.radians(50)    # and to a side pocket
 BLOCK_CLEAR = 0.005                 # m: a pot's paths keep this clear of other balls beyond 2R (execution noise)
 MAX_CUT = math.radians(70)          # a pot with a larger cut angle is "not likely": play a safety instead
@@ -110,8 +110,8 @@ class GameGhostPolicy:
         out = dict(cost=np.empty(n), phi=np.zeros(n), d_cg=np.zeros(n), d_op=np.zeros(n), cut=np.zeros(n),
                    pocket=np.zeros(n, dtype=np.int64), ball=np.zeros(n, dtype=np.int64))
         GG.best_pots(np.ascontiguousarray(pos), np.ascontiguousarray(on), np.ascontiguousarray(targets), self._aims,
-                     self._axes, self._limits, p.R, BLOCK_CLEAR, MAX_CUT, self.dist_weight, out["cost"], out["phi"], out["d_cg"],
-                     out["d_op"], out["cut"], out["pocket"], out["ball"])
+                     self._axes, self._limits, p.R, BLOCK_CLEAR, MAX_CUT, self.dist_weight, out["cost"], out["phi"],
+                     out["d_cg"], out["d_op"], out["cut"], out["pocket"], out["ball"])
         out["speed"] = G.required_speed(out["d_cg"], out["d_op"], out["cut"], p, b=0.0, margin=1.0)
         return out
 

@@ -3,6 +3,7 @@
 
     python scripts/match.py --game nine_ball --policies random ghost ghost-safety --racks 100
     python scripts/match.py --game eight_ball --noise high --racks 50 --out results/matches
+    python scripts/match.py --summary    # every game and noise level of results/matches in one table
 
 Every pairing plays ``--racks`` racks twice (each side breaks once on each
 rack). Writes ``<out>/<game>_<noise>.json``, ``.md`` and ``.png`` (ratings
@@ -21,6 +22,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from agents.match import tournament  # noqa: E402
+
+NOISES = ["none", "tournament", "high", "variable"]
 
 
 def markdown(args, results, table, seconds) -> str:
@@ -58,17 +61,38 @@ def plot(table, path: Path, title: str) -> None:
     plt.close(fig)
 
 
+def summary(out: Path) -> str:
+    """One Markdown table of every ``<game>_<noise>.json`` in ``out``: each
+    entrant's rating [95% interval], and the best entrant's win rate against random."""
+    docs = [json.loads(p.read_text()) for p in sorted(out.glob("*_*.json"))]
+    if not docs:
+        return "no match results\n"
+    names = sorted({r["name"] for d in docs for r in d["ratings"]})
+    lines = ["| game | noise | " + " | ".join(names) + " | seconds |", "|---|---|" + "---|" * (len(names) + 1)]
+    for d in sorted(docs, key=lambda d: (d["game"], NOISES.index(d["noise"]))):
+        r = {x["name"]: x for x in d["ratings"]}
+        cells = [f"{r[n]['elo']:.0f} [{r[n]['ci95'][0]:.0f}, {r[n]['ci95'][1]:.0f}]" if n in r else "" for n in names]
+        lines.append(f"| {d['game']} | {d['noise']} | " + " | ".join(cells) + f" | {d['seconds']:.0f} |")
+    return "\n".join(lines) + "\n"
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--game", choices=["nine_ball", "eight_ball"], default="nine_ball")
     ap.add_argument("--policies", nargs="+", default=["random", "ghost"],
                     help="entrants: random, ghost, ghost-safety, search<K>, or paths of saved models")
     ap.add_argument("--racks", type=int, default=100, help="racks per pairing (each played twice)")
-    ap.add_argument("--noise", choices=["none", "tournament", "high", "variable"], default="tournament")
+    ap.add_argument("--noise", choices=NOISES, default="tournament")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--max-shots", type=int, default=200)
     ap.add_argument("--out", type=Path, default=ROOT / "results" / "matches")
+    ap.add_argument("--summary", action="store_true", help="only write <out>/summary.md from the JSON files there")
     args = ap.parse_args(argv)
+    if args.summary:
+        md = summary(args.out)
+        (args.out / "summary.md").write_text(md)
+        print(md)
+        return 0
     if len(set(args.policies)) < 2:
         ap.error("need at least two different policies")
     t0 = time.perf_counter()

@@ -65,7 +65,8 @@ def test_vector_env_equals_single_games(game):
             if alive[k]:
                 np.testing.assert_array_equal(obs[k], s.observe(s.possible_agents[0]))
                 if term[k] or trunc[k]:
-                    assert s.terminations[s.agent_selection] == term[k] and s.rewards["player_0"] == info["rewards"][k, 0]
+                    assert s.terminations[s.agent_selection] == term[k]
+                    assert s.rewards["player_0"] == info["rewards"][k, 0]
                     alive[k] = False
     assert compared >= 12
 

@@ -23,7 +23,8 @@ LINE_PX = 14             # pixel height of a status line
 TARGET_RING = (255, 255, 0)
 HEAD_STRING_COLOR = (200, 200, 200)
 GROUP_NAMES = {R.GROUP_OPEN: "open", R.GROUP_SOLIDS: "solids", R.GROUP_STRIPES: "stripes"}
-IN_HAND_NAMES = {R.IN_HAND_NONE: "", R.IN_HAND_ANYWHERE: "ball in hand", R.IN_HAND_KITCHEN: "ball in hand behind the head string"}
+IN_HAND_NAMES = {R.IN_HAND_NONE: "", R.IN_HAND_ANYWHERE: "ball in hand",
+                 R.IN_HAND_KITCHEN: "ball in hand behind the head string"}
 
 
 def ruling_text(info: dict | None, k: int = 0) -> str:

@@ -123,7 +123,8 @@ def markdown(results: list[dict]) -> str:
         if "games_per_second" in r:
             lines.append(f"| games/s, {' vs '.join(r['policies'])} | {r['game']} | {r['tables']} | "
                          f"**{r['games_per_second']:,.0f}** ({r['games']} games) | {r['shots_per_game']:.1f} | "
-                         f"{s['simulate']:.2f} | {s['rules']:.2f} | {s['policies']:.2f} (+{s['policy_simulate']:.2f}) | "
+                         f"{s['simulate']:.2f} | {s['rules']:.2f} | "
+                         f"{s['policies']:.2f} (+{s['policy_simulate']:.2f}) | "
                          f"{s['other']:.2f} | {r['seconds']:.2f} |")
         else:
             lines.append(f"| vector env steps/s, random actions | {r['game']} | {r['tables']} | "

@@ -77,7 +77,8 @@ class GameConfig:
         if self.game not in GAMES:
             raise ValueError(f"game must be one of {GAMES}, got {self.game!r}")
         if self.solver not in ("event", "step") or (self.solver == "step" and not self.dt):
-            raise ValueError(f"solver must be 'event' or 'step' (with a positive dt), got {self.solver!r}, dt={self.dt}")
+            raise ValueError(f"solver must be 'event' or 'step' (with a positive dt), "
+                             f"got {self.solver!r}, dt={self.dt}")
         if isinstance(self.max_shots, bool) or not isinstance(self.max_shots, int) or self.max_shots < 1:
             raise ValueError(f"max_shots must be a positive integer, got {self.max_shots!r}")
         object.__setattr__(self, "min_draw", _number(self.min_draw, "min_draw"))
