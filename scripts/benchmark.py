@@ -11,6 +11,7 @@ the history of the headline figures (history.png).
     python scripts/benchmark.py --only models   # each non-default model (models.md)
     python scripts/benchmark.py --only rllib    # RLlib vs SB3 vs bare env (docs/distributed.md; needs [ray])
     python scripts/benchmark.py --history       # only redraw history.png
+    python scripts/benchmark.py --only games    # two-player games/s and vector-env steps/s (games.md)
 
 ``--against REV`` checks REV out in a temporary git worktree, warms both
 trees' numba caches, then runs each section in both trees in turn, a fresh
@@ -570,7 +571,7 @@ def main(argv=None):
     ap.add_argument("--repeats", type=int, default=None, help="timed repeats per figure (default 5, quick 2)")
     ap.add_argument("--quick", action="store_true", help="batch 64, 2 repeats, 4 env steps")
     ap.add_argument("--only", nargs="*", default=["solver", "effects", "env", "cold"],
-                    choices=list(SECTION_NAMES),
+                    choices=list(SECTION_NAMES) + ["games"],
                     help="sections (default: all but models; models: every effect with each non-default "
                          "model, written to models.md)")
     ap.add_argument("--scene", action="append", default=None,
@@ -592,6 +593,14 @@ def main(argv=None):
         args.worker.write_text(json.dumps(run_sections(args)))
         return
     args.out.mkdir(parents=True, exist_ok=True)
+    if "games" in args.only:  # two-player games: billiards_env/studies/games_bench.py, its own table games.md
+        from billiards_env.studies import games_bench
+        md = games_bench.markdown(games_bench.rows(("nine_ball",), args.batch, 3 * args.batch))
+        print(md)
+        (args.out / "games.md").write_text(md)
+        args.only = [s for s in args.only if s != "games"]
+        if not args.only:
+            return
     stamp = datetime.datetime.now().isoformat(timespec="seconds")
     common = dict(timestamp=stamp, quick=args.quick)
     if args.against:

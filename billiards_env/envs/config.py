@@ -84,6 +84,8 @@ NOISE_PRESETS = {
     "none": dict(aim_deg=0.0, speed=0.0, side_mm=0.0, height_mm=0.0),
     # tournament-level execution error
     "tournament": dict(aim_deg=0.125, speed=0.075, side_mm=0.5, height_mm=0.5),
+    # five times the tournament standard deviations (the high-noise level of computer pool tournaments)
+    "high": dict(aim_deg=0.625, speed=0.375, side_mm=2.5, height_mm=2.5),
 }
 
 
@@ -91,7 +93,8 @@ NOISE_PRESETS = {
 class NoiseConfig:
     """Gaussian execution noise (standard deviations) on the aim angle
     (degrees), the cue-ball speed (m/s) and the side / height offsets (mm;
-    converted to units of R when applied). Presets: ``none``, ``tournament``."""
+    converted to units of R when applied). Presets: ``none``, ``tournament``, ``high``
+    (5x tournament)."""
 
     aim_deg: float = 0.0
     speed: float = 0.0

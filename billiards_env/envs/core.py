@@ -201,12 +201,15 @@ class BilliardsCore:
                        axis=1)
         return np.clip(out, -1.0, 1.0)
 
-    def apply_noise(self, shots: Shots, idx) -> Shots:
-        """Shot noise for tables ``idx``, drawn from their streams (4 normals each)."""
+    def apply_noise(self, shots: Shots, idx, scale: np.ndarray | None = None) -> Shots:
+        """Shot noise for tables ``idx``, drawn from their streams (4 normals
+        each); ``scale`` [n] multiplies each table's standard deviations."""
         nz = self.cfg.noise
         if not nz.enabled:
             return shots
         z = self.streams.normal(idx, 4)
+        if scale is not None:
+            z *= np.asarray(scale, dtype=np.float64)[:, None]
         R = self.params.R
         phi = shots.phi + z[:, 0] * math.radians(nz.aim_deg)
         speed = np.clip(shots.speed + z[:, 1] * nz.speed, 0.0, self.params.max_speed)

@@ -13,6 +13,20 @@ from .tasks import TASKS, register_gym_ids
 ENV_IDS = {t.env_id: (f"{t.class_prefix}Env", f"{t.class_prefix}VectorEnv") for t in TASKS.values()}
 
 
+# The two-player games: id -> (single-agent class against a fixed opponent, self-play vector entry point).
+GAME_IDS = {
+    "Billiards-NineBall2P-v0": ("billiards_env.envs.games.single:NineBall2PEnv",
+                                "billiards_env.envs.games.vector:nine_ball_vector"),
+    "Billiards-EightBall-v0": ("billiards_env.envs.games.single:EightBallEnv",
+                               "billiards_env.envs.games.vector:eight_ball_vector"),
+}
+
+
 def register_envs() -> None:
-    """Register every task's Gymnasium id (idempotent)."""
+    """Register every task's Gymnasium id and the two-player games' (idempotent)."""
+    from gymnasium.envs.registration import register, registry
+
     register_gym_ids()
+    for env_id, (entry, vector) in GAME_IDS.items():
+        if env_id not in registry:
+            register(id=env_id, entry_point=entry, vector_entry_point=vector)

@@ -8,6 +8,34 @@ from ...physics.state import diamond_slots, free_spot
 from .base import Judgement, ShotOutcome, Task
 
 
+def nine_ball_rack(table, R: float, u: np.ndarray) -> np.ndarray:
+    """Positions [n, 10, 2] of 9-ball racks from uniforms ``u`` [n, 7]: the
+    1 on the foot spot (apex), the 9 in the centre, balls 2..8 shuffled by
+    the ranks of ``u``, frozen (``diamond_slots``); the cue ball (row 0) is
+    left at the origin for the caller."""
+    n = len(u)
+    diamond = diamond_slots(table, R)  # slot 0 apex, 4 centre
+    pos = np.zeros((n, 10, 2))
+    pos[:, 1] = diamond[0]
+    pos[:, 9] = diamond[4]
+    others = diamond[[1, 2, 3, 5, 6, 7, 8]]
+    pos[np.arange(n)[:, None], 2 + np.argsort(u, axis=1)] = others
+    return pos
+
+
+def break_shots(table, apex: np.ndarray, break_speed: float, u: np.ndarray, z: np.ndarray):
+    """Seeded break shots from uniforms ``u`` [n, 5] and normals ``z`` [n]:
+    the cue ball within +-0.15 m across and +-0.03 m along the head string's
+    centre, aimed at ``apex`` [n, 2] (0.3 deg standard deviation), at
+    ``break_speed`` +-5 %, side offset in [-0.05, 0.05] R, height in [-0.1,
+    0.05] R. Returns (cue position [n, 2], phi, speed, a, b)."""
+    cue = np.column_stack([table.width / 2 + (-0.15 + 0.3 * u[:, 0]), 0.25 * table.length + (-0.03 + 0.06 * u[:, 1])])
+    d = apex - cue
+    phi = np.arctan2(d[:, 1], d[:, 0]) + np.radians(0.3 * z)
+    speed = break_speed * (1.0 + (-0.05 + 0.1 * u[:, 2]))
+    return cue, phi, speed, -0.05 + 0.1 * u[:, 3], -0.1 + 0.15 * u[:, 4]
+
+
 class NineBall(Task):
     """Billiards-NineBall-v0: simplified single-player 9-ball.
 
@@ -45,22 +73,10 @@ class NineBall(Task):
         ~break_speed towards the 1-ball with small random variation; a 9 or
         cue ball pocketed on the break is respotted (foot / head spot)."""
         t, p = core.table, core.params
-        n = len(idx)
         u = core.streams.uniform(idx, 12)  # 7 rack shuffle, 2 cue position, speed, 2 offsets
         z = core.streams.normal(idx, 1)[:, 0]  # aim
-        diamond = diamond_slots(t, p.R)  # slot 0 apex, 4 centre
-        pos = np.empty((n, 10, 2))
-        pos[:, 1] = diamond[0]  # apex: the 1-ball on the foot spot
-        pos[:, 9] = diamond[4]  # centre: the 9-ball
-        others = diamond[[1, 2, 3, 5, 6, 7, 8]]
-        pos[np.arange(n)[:, None], 2 + np.argsort(u[:, :7], axis=1)] = others  # balls 2..8 shuffled
-        pos[:, 0, 0] = t.width / 2 + (-0.15 + 0.3 * u[:, 7])
-        pos[:, 0, 1] = 0.25 * t.length + (-0.03 + 0.06 * u[:, 8])
-        d = pos[:, 1] - pos[:, 0]
-        phi = np.arctan2(d[:, 1], d[:, 0]) + np.radians(0.3 * z)
-        speed = core.cfg.break_speed * (1.0 + (-0.05 + 0.1 * u[:, 9]))
-        a = -0.05 + 0.1 * u[:, 10]
-        b = -0.1 + 0.15 * u[:, 11]
+        pos = nine_ball_rack(t, p.R, u[:, :7])
+        pos[:, 0], phi, speed, a, b = break_shots(t, pos[:, 1], core.cfg.break_speed, u[:, 7:], z)
         res = core.simulate(strike_velocity(BallState.from_positions(pos), phi, speed, a, b, p))
         out = core.at_rest(res.state)
         foot, head = (t.width / 2, 0.75 * t.length), (t.width / 2, 0.25 * t.length)

@@ -1,0 +1,360 @@
+"""Batched two-player games: ``GameCore`` holds ``n_envs`` tables, each with
+its game state, and plays one shot (or one pass) per table per step through
+the rules layer (``billiards_env.rules``).
+
+It reuses ``BilliardsCore``'s shot mapping (``actions_to_shots``,
+``shots_to_actions``), shot noise and simulation; what it adds is the
+two-player part: the rack, ball in hand, the declarations, the rulings and
+the respots.
+
+**Action** (``Box(-1, 1, (8,), float32)``):
+
+===  ========================================================================
+a0   aim: phi = angle(cue -> nominal target) + pi * a0; the nominal target is
+     the lowest-numbered legal target (the foot spot on the break), taken
+     after the cue ball is placed
+a1   cue draw, a2 side and a3 height offsets: as in the one-player tasks
+a4   cue-ball x with ball in hand: R + (a4 + 1) / 2 * (width - 2R)
+a5   cue-ball y with ball in hand: R + (a5 + 1) / 2 * (length - 2R); behind
+     the head string only when the constraints say so. An illegal spot
+     (overlapping a ball or a pocket, or beyond the head string) is moved to
+     the nearest legal one and ``info["placement_moved"]`` is set
+a6   > 0: declare a push-out (9-ball, when allowed), or, right after the
+     opponent's push-out, hand the shot back (``may_pass``: no shot is played)
+a7   the called pocket when a call is needed (8-ball, on the 8):
+     pocket floor((a7 + 1) / 2 * 6), in the order of ``Table.pockets``
+===  ========================================================================
+
+Components outside [-1, 1] are clipped (``info["action_clipped"]``);
+components the constraints do not use are ignored.
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+
+import numpy as np
+
+from ...physics import BallState, Effects, Models, PhysicsParams, Table, strike_velocity
+from ...rules import GameState, ShotInput, get_rules
+from ...rules import records as R
+from ..config import NoiseConfig, _number
+from ..core import BilliardsCore, ShotContext, _context, _observe
+from ..streams import TableStreams
+from .setup import FOOT_SPOT, HEAD_STRING, place_cue, rack, respot
+
+ACTION_DIM = 8
+N_POCKETS = 6
+EXTRA_OBS = 13  # observation entries after the one-player layout (see ``observation_doc``)
+GAMES = ("nine_ball", "eight_ball")
+NOISE_LEVELS = ("none", "tournament", "high", "variable")
+VARIABLE_NOISE_MAX = 5.0  # "variable" noise: the tournament deviations times a factor uniform in [0, 5] per game
+
+
+@dataclasses.dataclass(frozen=True)
+class GameConfig:
+    """A two-player game instance: ``game`` (``nine_ball`` or
+    ``eight_ball``), the table (``table_size_ft``), ``physics`` preset,
+    ``solver`` (and ``dt``), ``min_draw`` (m, the draw at a1 = -1),
+    ``max_shots`` (a game not over after this many shots is truncated, a
+    draw), ``noise`` (``none``, ``tournament``, ``high`` = 5x tournament,
+    ``variable`` = tournament times a factor uniform in [0, 5] drawn per
+    game, or a ``NoiseConfig`` / mapping), ``effects`` and ``models``."""
+
+    game: str = "nine_ball"
+    table_size_ft: int = 9
+    physics: str = "standard"
+    solver: str = "event"
+    dt: float | None = None
+    min_draw: float = 0.01
+    max_shots: int = 200
+    noise: object = "none"
+    effects: Effects = dataclasses.field(default_factory=Effects)
+    models: Models = dataclasses.field(default_factory=Models)
+
+    def __post_init__(self):
+        if self.game not in GAMES:
+            raise ValueError(f"game must be one of {GAMES}, got {self.game!r}")
+        if self.solver not in ("event", "step") or (self.solver == "step" and not self.dt):
+            raise ValueError(f"solver must be 'event' or 'step' (with a positive dt), "
+                             f"got {self.solver!r}, dt={self.dt}")
+        if isinstance(self.max_shots, bool) or not isinstance(self.max_shots, int) or self.max_shots < 1:
+            raise ValueError(f"max_shots must be a positive integer, got {self.max_shots!r}")
+        object.__setattr__(self, "min_draw", _number(self.min_draw, "min_draw"))
+        if isinstance(self.effects, dict):
+            object.__setattr__(self, "effects", Effects.from_dict(self.effects))
+        if isinstance(self.models, dict):
+            object.__setattr__(self, "models", Models.from_dict(self.models))
+        if not (isinstance(self.noise, str) and self.noise == "variable"):
+            object.__setattr__(self, "noise", NoiseConfig.from_any(self.noise))
+
+    @property
+    def noise_range(self) -> tuple[float, float]:
+        """The per-game factor on the noise deviations: drawn uniform in this range."""
+        return (0.0, VARIABLE_NOISE_MAX) if self.variable_noise else (1.0, 1.0)
+
+    @property
+    def variable_noise(self) -> bool:
+        return isinstance(self.noise, str)
+
+    @property
+    def shot_noise(self) -> NoiseConfig:
+        return NoiseConfig.preset("tournament") if self.variable_noise else self.noise
+
+
+@dataclasses.dataclass(frozen=True)
+class _CoreConfig:
+    """The fields ``BilliardsCore``'s shot mapping, noise and simulation read."""
+
+    noise: NoiseConfig
+    min_draw: float
+    solver: str
+    dt: float | None
+    aim: str = "relative"
+
+
+class GameCore(BilliardsCore):
+    """``n_envs`` tables of one game; see the module docstring for the action."""
+
+    def __init__(self, cfg: GameConfig, n_envs: int, record: bool = False):
+        if not isinstance(n_envs, (int, np.integer)) or n_envs < 1:
+            raise ValueError(f"num_envs must be a positive integer, got {n_envs!r}")
+        self.config = cfg
+        self.cfg = _CoreConfig(cfg.shot_noise, cfg.min_draw, cfg.solver, cfg.dt)
+        self.rules = get_rules(cfg.game)
+        self.n_envs = int(n_envs)
+        self.table = Table.pool(cfg.table_size_ft)
+        self.params = PhysicsParams.preset(cfg.physics)
+        self.effects, self.models, self.record = cfg.effects, cfg.models, record
+        self.n_balls = self.rules.n_balls + 1
+        self.obs_dim = 4 * self.n_balls + 1 + EXTRA_OBS
+        self.diag = math.hypot(self.table.width, self.table.length)
+        self.state: BallState | None = None
+        self.game: GameState | None = None
+        self.noise_scale = np.ones(self.n_envs)
+        self.streams = TableStreams(self.n_envs)
+        self._every = np.arange(self.n_envs)
+        self.pockets = np.ascontiguousarray(self.table.geometry(True)[3], dtype=np.float64)
+        self.last_start: list = [None] * self.n_envs
+        self.last_events: list = [None] * self.n_envs
+        self._context: ShotContext | None = None
+        self._constraints = None
+        self.timers = {"simulate": 0.0, "rules": 0.0}  # seconds spent, cumulative (``games_bench``)
+
+    # --- what the shooter faces -------------------------------------------------
+    def constraints(self) -> R.Constraints:
+        """The ``Constraints`` of every table's next shooter (cached until the state changes)."""
+        if self._constraints is None:
+            self._constraints = self.rules.constraints(self.game, self.state.pocket)
+        return self._constraints
+
+    def shot_context(self) -> ShotContext:
+        """``ShotContext`` of every table: the nominal target (lowest legal
+        target), the aim origin (cue -> nominal target; cue -> foot spot on
+        the break) and its potential."""
+        if self._context is None:
+            s, c = self.state, self.constraints()
+            tgt = np.ascontiguousarray(c.nominal_target())
+            phi, ang = np.empty(self.n_envs), np.empty(self.n_envs)
+            _context(s.pos, tgt, self.pockets, self.diag, True, phi, ang)
+            brk = c.is_break
+            if brk.any():
+                t = self.table
+                ang[brk] = np.arctan2(FOOT_SPOT * t.length - s.pos[brk, 0, 1], t.width / 2 - s.pos[brk, 0, 0])
+            self._context = ShotContext(tgt, ang, phi)
+        return self._context
+
+    def _changed(self) -> None:
+        self._context = None
+        self._constraints = None
+
+    def observe(self) -> np.ndarray:
+        s, g, c = self.state, self.game, self.constraints()
+        B = self.n_balls
+        obs = np.zeros((self.n_envs, self.obs_dim), dtype=np.float32)
+        _observe(s.pos, s.pocket, np.full(self.n_envs, -1, dtype=np.int64), g.shots, float(self.config.max_shots),
+                 self.table.width, self.table.length, obs)
+        obs[:, 3 * B:4 * B] = c.targets
+        x = obs[:, 4 * B + 1:]
+        ar = np.arange(self.n_envs)
+        x[:, 0] = g.shooter
+        x[ar, 1 + c.ball_in_hand] = 1.0
+        x[:, 4], x[:, 5], x[:, 6], x[:, 7] = c.push_out_allowed, c.may_pass, c.call_needed, c.is_break
+        x[ar, 8 + g.group[ar, g.shooter]] = 1.0
+        x[:, 11] = np.minimum(g.fouls[ar, g.shooter] / 3.0, 1.0)
+        x[:, 12] = np.minimum(g.fouls[ar, 1 - g.shooter] / 3.0, 1.0)
+        return obs
+
+    # --- new games --------------------------------------------------------------
+    def reset_tables(self, idx, breaker=None) -> None:
+        """New games on tables ``idx``: a rack drawn from each table's stream,
+        the cue ball on the head spot (in hand for the break); ``breaker`` [n]
+        (0 or 1; None: drawn from the stream); the noise factor of the game."""
+        idx = np.asarray(idx, dtype=np.int64)
+        n, B, t = len(idx), self.n_balls, self.table
+        u = self.streams.uniform(idx, 16)  # 14 rack, breaker, noise factor
+        pos = rack(self.config.game, t, self.params.R, u)
+        pos[:, 0] = (t.width / 2, HEAD_STRING * t.length)
+        brk = (u[:, 14] < 0.5).astype(np.int64) if breaker is None else np.broadcast_to(breaker, (n,))
+        lo, hi = self.config.noise_range
+        if self.state is None:
+            E = self.n_envs
+            self.state = BallState(np.zeros((E, B, 2)), np.zeros((E, B, 2)), np.zeros((E, B, 3)),
+                                   np.full((E, B), -1, dtype=np.int64))
+            self.game = GameState.new(np.zeros(E, dtype=np.int64))
+        self.state.pos[idx] = pos
+        self.state.pocket[idx] = -1
+        self.game.put(idx, GameState.new(brk))
+        self.noise_scale[idx] = lo + (hi - lo) * u[:, 15]
+        self._changed()
+        self._forget_last_shot(idx)
+
+    # --- actions ------------------------------------------------------------------
+    def validate_actions(self, actions, n: int) -> np.ndarray:
+        a = np.asarray(actions, dtype=np.float64)
+        if a.shape != (n, ACTION_DIM):
+            raise ValueError(f"actions must have shape ({n}, {ACTION_DIM}), got {a.shape}")
+        if not np.all(np.isfinite(a)):
+            bad = np.argwhere(~np.isfinite(a))[0]
+            raise ValueError(f"action contains NaN or infinite values (first at index {tuple(bad)})")
+        return a
+
+    def placement_to_actions(self, xy: np.ndarray) -> np.ndarray:
+        """Cue-ball positions [n, 2] (m) -> action components a4, a5 [n, 2]."""
+        R_, t = self.params.R, self.table
+        span = np.array([t.width - 2 * R_, t.length - 2 * R_])
+        return np.clip(2.0 * (np.asarray(xy) - R_) / span - 1.0, -1.0, 1.0)
+
+    def placement_of(self, a: np.ndarray) -> np.ndarray:
+        R_, t = self.params.R, self.table
+        return R_ + (a[:, 4:6] + 1.0) / 2.0 * np.array([t.width - 2 * R_, t.length - 2 * R_])
+
+    def legal_placement(self, xy: np.ndarray, idx) -> tuple[np.ndarray, np.ndarray]:
+        """The legal cue-ball spots nearest to ``xy`` [n, 2] on tables
+        ``idx`` under their ball-in-hand constraint: (spots [n, 2], moved [n])."""
+        idx = np.asarray(idx, dtype=np.int64)
+        s = self.state
+        kitchen = self.constraints().ball_in_hand[idx] == R.IN_HAND_KITCHEN
+        out, moved = np.empty((len(idx), 2)), np.zeros(len(idx), dtype=bool)
+        ok = place_cue(np.ascontiguousarray(xy, dtype=np.float64), s.pos[idx], s.pocket[idx], kitchen,
+                       self.table.width, self.table.length, self.params.R, self.pockets, out, moved)
+        if not ok:
+            raise RuntimeError("no free spot for the cue ball")
+        return out, moved
+
+    def called_pocket(self, a: np.ndarray) -> np.ndarray:
+        return np.minimum(np.floor((a[:, 7] + 1.0) / 2.0 * N_POCKETS), N_POCKETS - 1).astype(np.int64)
+
+    # --- one shot -------------------------------------------------------------------
+    def step(self, actions: np.ndarray, idx) -> dict:
+        """Play validated actions [n, 8] on tables ``idx`` (each table's
+        shooter's): place the cue ball, shoot (or pass), judge, respot;
+        return the record, the reward of the player who played and the info."""
+        idx = np.asarray(idx, dtype=np.int64)
+        n, B = len(idx), self.n_balls
+        clipped = (np.abs(actions) > 1.0).any(axis=1)
+        a = np.clip(actions, -1.0, 1.0)
+        c = self.constraints()
+        hand, may_pass = c.ball_in_hand[idx], c.may_pass[idx]
+        decl = a[:, 6] > 0
+        passed = may_pass & decl
+        push = c.push_out_allowed[idx] & decl
+        called = np.where(c.call_needed[idx], self.called_pocket(a), -1)
+        moved = np.zeros(n, dtype=bool)
+        h = np.nonzero((hand != R.IN_HAND_NONE) & ~passed)[0]
+        if len(h):
+            spots, moved[h] = self.legal_placement(self.placement_of(a[h]), idx[h])
+            self.state.pos[idx[h], 0] = spots
+            self.state.pocket[idx[h], 0] = -1
+            self._context = None
+        start = self.state.take(idx)
+        placed = start.pos[:, 0].copy()  # where each cue ball is played from
+        shoot = np.nonzero(~passed)[0]
+        if (start.pocket[shoot, 0] >= 0).any():
+            raise RuntimeError("the cue ball is pocketed without ball in hand: the game has ended, reset it")
+        pocket_after = start.pocket.copy()
+        pos_after = start.pos.copy()
+        first = np.full(n, -1, dtype=np.int64)
+        rails = np.zeros((n, B), dtype=np.int64)
+        object_rails = np.zeros((n, B), dtype=np.int64)
+        n_events, sim_time = np.zeros(n, dtype=np.int64), np.zeros(n)
+        if len(shoot):
+            sel = idx[shoot]
+            shots = self.apply_noise(self.actions_to_shots(np.ascontiguousarray(a[shoot, :4]), sel), sel,
+                                     self.noise_scale[sel])
+            t0 = time.perf_counter()
+            res = self.simulate(strike_velocity(start.take(shoot), *shots, self.params))
+            self.timers["simulate"] += time.perf_counter() - t0
+            pocket_after[shoot], pos_after[shoot] = res.state.pocket, res.state.pos
+            first[shoot] = res.first_contact
+            rails[shoot] = rails_after_contact(res)
+            object_rails[shoot] = res.cushion_hits
+            n_events[shoot], sim_time[shoot] = res.n_events, res.time
+            if res.events is not None:
+                for j, k in enumerate(sel):
+                    self.last_start[k] = start.take([shoot[j]])
+                    self.last_events[k] = res.events[j]
+        t0 = time.perf_counter()
+        shot = ShotInput(start.pocket, pocket_after, first, rails, object_rails, push, called, passed)
+        rec, game = self.rules.judge(self.game.take(idx), shot)
+        self.timers["rules"] += time.perf_counter() - t0
+        respot(pos_after, pocket_after, rec.respot, self.table, self.params.R, self.pockets)
+        self.state.pos[idx], self.state.pocket[idx] = pos_after, pocket_after
+        self.game.put(idx, game)
+        self._changed()
+        truncated = ~game.over & (game.shots >= self.config.max_shots)
+        reward = np.where(rec.winner < 0, 0.0, np.where(rec.winner == rec.shooter, 1.0, -1.0))
+        info = dict(legal=rec.legal, foul=rec.foul, turn_over=rec.turn_over, game_over=rec.game_over,
+                    winner=rec.winner, end=rec.end, push_out=rec.push_out, passed=rec.passed, shooter=rec.shooter,
+                    respotted=rec.respot, pocketed=shot.pocketed, first_contact=first, called_pocket=called,
+                    placement=placed, placement_moved=moved, action_clipped=clipped, n_events=n_events,
+                    sim_time=sim_time, shot=game.shots.copy())
+        return dict(record=rec, reward=reward, terminated=game.over.copy(), truncated=truncated, info=info)
+
+    # --- policies' helpers -----------------------------------------------------------
+    def actions_for(self, shots, idx, placement=None, declare=None, pocket=None) -> np.ndarray:
+        """Actions [n, 8] on tables ``idx`` that play ``shots`` (absolute aim)
+        with the cue ball at ``placement`` [n, 2] (rows of tables without ball
+        in hand are ignored; NaN rows: where it lies), ``declare`` [n] (push-out
+        or pass) and the called ``pocket`` [n]. The aim is taken relative to
+        the origin seen from the placed cue ball."""
+        idx = np.asarray(idx, dtype=np.int64)
+        n = len(idx)
+        out = np.zeros((n, ACTION_DIM))
+        origin = self.shot_context().aim_origin[idx].copy()
+        if placement is not None:
+            placement = np.asarray(placement, dtype=np.float64)
+            has = ~np.isnan(placement[:, 0]) & (self.constraints().ball_in_hand[idx] != R.IN_HAND_NONE)
+            out[:, 4:6] = self.placement_to_actions(np.where(has[:, None], placement, 0.5))
+            if has.any():
+                origin[has] = self._origin_from(placement[has], idx[has])
+        phi, speed, a, b = (np.broadcast_to(np.asarray(v, dtype=np.float64), (n,)) for v in shots)
+        rel = ((phi - origin) / math.pi + 1.0) % 2.0 - 1.0
+        lo, hi, lim = self.cfg.min_draw, self.params.max_draw, self.params.miscue_limit
+        from ...physics.strike import speed_to_draw
+        out[:, 0] = rel
+        out[:, 1] = 2.0 * (speed_to_draw(speed, self.params) - lo) / (hi - lo) - 1.0
+        out[:, 2], out[:, 3] = a / lim, b / lim
+        if declare is not None:
+            out[:, 6] = np.where(declare, 1.0, -1.0)
+        else:
+            out[:, 6] = -1.0
+        if pocket is not None:
+            out[:, 7] = -1.0 + (2.0 * np.asarray(pocket) + 1.0) / N_POCKETS
+        return np.clip(out, -1.0, 1.0)
+
+    def _origin_from(self, cue: np.ndarray, idx: np.ndarray) -> np.ndarray:
+        """The aim origin of tables ``idx`` with the cue ball at ``cue`` [n, 2]."""
+        c, t = self.constraints(), self.table
+        tgt = c.nominal_target()[idx]
+        aim = np.where(c.is_break[idx, None], np.array([t.width / 2, FOOT_SPOT * t.length]),
+                       self.state.pos[idx, np.maximum(tgt, 0)])
+        return np.arctan2(aim[:, 1] - cue[:, 1], aim[:, 0] - cue[:, 0])
+
+
+def rails_after_contact(res) -> np.ndarray:
+    """Cushion hits [E, B] of every ball after the cue ball's first contact
+    (``SimResult.cushion_hits_after_contact``; object balls rest until
+    touched, so all their hits count)."""
+    return res.cushion_hits_after_contact

@@ -1,0 +1,108 @@
+"""A single-agent Gymnasium env per game: the agent plays one side of a
+two-player game against a fixed opponent policy."""
+from __future__ import annotations
+
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+
+from .core import GameCore
+from .spaces import OBSERVATION_DOC, action_space, info_row, make_config, observation_space
+
+
+class GameEnv(gym.Env):
+    __doc__ = """One table of ``game``; the agent is player 0 and the opponent
+    (``opponent=``: a name of ``agents.game_policies.make_game_policy``,
+    default ``"ghost"``, or a callable ``core -> policy``) plays player 1.
+    Who breaks is drawn per game from the table's stream (``options=
+    {"breaker": 0 or 1}`` fixes it; a seeded reset also reseeds the opponent
+    with ``opponent_seed + seed``). ``step`` plays the agent's shot, then
+    the opponent's shots until the agent is to move again or the game ends,
+    so each observation is one the agent acts on (a game the opponent ends
+    before the agent's first shot is replaced by the next rack,
+    ``info["skipped_games"]``).
+
+    **Reward**: +1 when the agent wins, -1 when it loses, 0 otherwise (a
+    game cut at ``max_shots`` shots is a draw, truncated). **Info**: the
+    agent's shot record (see ``GameVectorEnv``), ``opponent_shots`` (how
+    many the opponent played since) and ``winner``.
+    """ + OBSERVATION_DOC
+
+    metadata = {"render_modes": []}
+    game = "nine_ball"
+    AGENT = 0
+
+    def __init__(self, opponent="ghost", config=None, opponent_seed: int = 0, **overrides: Any):
+        self.config = make_config(config, overrides, self.game)
+        self.core = GameCore(self.config, 1)
+        self.observation_space = observation_space(self.core)
+        self.action_space = action_space()
+        self._opponent_spec, self._opponent_seed = opponent, opponent_seed
+        self.opponent = None
+        self._done = True
+        self._seeded = False
+
+    def _make_opponent(self, seed: int):
+        spec = self._opponent_spec
+        if callable(spec):
+            return spec(self.core)
+        from agents.game_policies import make_game_policy  # the default opponents live in agents/
+        return make_game_policy(spec, self.core, seed=seed)
+
+    def _opponent_turns(self) -> tuple[float, bool, bool, int]:
+        """Opponent shots until the agent is to move or the game ends: (reward, terminated, truncated, shots)."""
+        shots = 0
+        while self.core.constraints().shooter[0] != self.AGENT:
+            out = self.core.step(self.core.validate_actions(self.opponent.act(None), 1), [0])
+            shots += 1
+            if out["terminated"][0] or out["truncated"][0]:
+                return -float(out["reward"][0]), bool(out["terminated"][0]), bool(out["truncated"][0]), shots
+        return 0.0, False, False, shots
+
+    def reset(self, *, seed: int | None = None, options: dict | None = None):
+        super().reset(seed=seed)
+        if seed is not None:
+            self.core.streams.seed([0], [seed])
+        elif not self._seeded:
+            self.core.streams.seed([0], [int(self.np_random.integers(2 ** 63))])
+        self._seeded = True
+        if self.opponent is None or seed is not None:  # a seeded reset reseeds the opponent too
+            self.opponent = self._make_opponent(self._opponent_seed + (seed or 0))
+        breaker = (options or {}).get("breaker")
+        skipped = -1
+        while True:  # a game the opponent ends before the agent's first shot is replaced by the next rack
+            skipped += 1
+            self.core.reset_tables([0], None if breaker is None else [int(breaker)])
+            _, term, trunc, n = self._opponent_turns()
+            if not (term or trunc):
+                break
+        self._done = False
+        return self.core.observe()[0], {"opponent_shots": n, "skipped_games": skipped}
+
+    def step(self, action):
+        if self._done:
+            raise RuntimeError("the game has ended (or never started): call reset() before step()")
+        if np.shape(action) != (8,):
+            raise ValueError(f"action must have shape (8,), got {np.shape(action)}")
+        out = self.core.step(self.core.validate_actions(np.reshape(action, (1, 8)), 1), [0])
+        info = info_row(out["info"], 0)
+        reward = float(out["reward"][0])
+        terminated, truncated = bool(out["terminated"][0]), bool(out["truncated"][0])
+        n = 0
+        if not (terminated or truncated):
+            reward, terminated, truncated, n = self._opponent_turns()
+        info["opponent_shots"] = n
+        info["winner"] = int(self.core.game.winner[0])
+        self._done = terminated or truncated
+        return self.core.observe()[0], reward, terminated, truncated, info
+
+
+class NineBall2PEnv(GameEnv):
+    __doc__ = "Billiards-NineBall2P-v0: 9-ball against a fixed opponent.\n\n    " + GameEnv.__doc__
+    game = "nine_ball"
+
+
+class EightBallEnv(GameEnv):
+    __doc__ = "Billiards-EightBall-v0: 8-ball against a fixed opponent.\n\n    " + GameEnv.__doc__
+    game = "eight_ball"

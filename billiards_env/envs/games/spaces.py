@@ -1,0 +1,53 @@
+"""Spaces, the observation table and the info layout shared by the game envs."""
+from __future__ import annotations
+
+import numpy as np
+from gymnasium import spaces
+
+from .core import ACTION_DIM, GameConfig
+
+OBSERVATION_DOC = """
+    **Observation** (``Box(0, 1, (4*B + 14,), float32)``, B = 10 balls in
+    9-ball, 16 in 8-ball; ball 0 the cue ball):
+
+    ==============  ===========================================================
+    index           meaning
+    ==============  ===========================================================
+    3*i, 3*i + 1    ball i x / table width, y / table length (0 if pocketed)
+    3*i + 2         1 if ball i is on the table
+    3*B + i         1 if ball i is a legal first contact for the shooter
+    4*B             shots played in this game / max_shots
+    4*B + 1         the player to move (0 or 1)
+    4*B + 2..4      ball in hand: none, anywhere, behind the head string
+    4*B + 5..8      push-out allowed, may pass (after a push-out), call
+                    needed (8-ball, on the 8), break shot
+    4*B + 9..11     the shooter's group: open (9-ball always), solids, stripes
+    4*B + 12, 13    consecutive fouls of the shooter, of the opponent, / 3
+    ==============  ===========================================================
+"""
+
+
+def make_config(config, overrides: dict, game: str | None = None) -> GameConfig:
+    if config is None:
+        return GameConfig(**({"game": game} if game else {}), **overrides)
+    if not isinstance(config, GameConfig):
+        raise TypeError(f"config must be a GameConfig, got {type(config).__name__}")
+    if game is not None and config.game != game:
+        raise ValueError(f"config is for {config.game!r}, this env plays {game!r}")
+    if overrides:
+        import dataclasses
+        return dataclasses.replace(config, **overrides)
+    return config
+
+
+def observation_space(core) -> spaces.Box:
+    return spaces.Box(0.0, 1.0, shape=(core.obs_dim,), dtype=np.float32)
+
+
+def action_space() -> spaces.Box:
+    return spaces.Box(-1.0, 1.0, shape=(ACTION_DIM,), dtype=np.float32)
+
+
+def info_row(info: dict, k: int) -> dict:
+    """Table ``k``'s entries of a batched step info, as Python scalars or small arrays."""
+    return {key: (v[k].item() if np.ndim(v) == 1 else np.array(v[k])) for key, v in info.items()}

@@ -1,0 +1,136 @@
+"""Batched self-play: a ``gymnasium.vector.VectorEnv`` of two-player games in
+which each table's player to move acts."""
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from gymnasium.utils import seeding
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from .core import GameCore
+from .spaces import OBSERVATION_DOC, action_space, make_config, observation_space
+
+
+class GameVectorEnv(VectorEnv):
+    __doc__ = """``num_envs`` tables of one game (``game=``), self-play: on every table
+    the player to move (observation entry 4*B + 1) plays the action of its
+    row. One step is one shot (or one pass after a push-out) on every table,
+    all shot with one batched simulator call.
+
+    **Reward**: to the player who just played: +1 if the shot won the game,
+    -1 if it lost it, else 0 (``info["rewards"]`` [N, 2] per player).
+    **Episode**: one game; terminated when it is won or lost, truncated
+    after ``max_shots`` shots (a draw). Autoreset: Gymnasium's next-step
+    mode (the step after a game ends starts a new game on that table; its
+    action is ignored; ``info["reset"]`` marks it).
+
+    **Seeding**: ``reset(seed=s)`` seeds table k like a single game seeded
+    with ``s + k`` (or pass a list of N seeds): the rack, the breaker (unless
+    ``options["breaker"]`` names it: 0, 1 or an array [N]) and the shot
+    noise of each table come from its own stream.
+
+    **Info**: the shot record (``legal``, ``foul``, ``turn_over``,
+    ``game_over``, ``winner``, ``end``, ``push_out``, ``passed``,
+    ``shooter``, ``respotted``), ``pocketed``, ``first_contact``,
+    ``called_pocket``, ``placement`` (where the cue ball was played from)
+    and ``placement_moved`` (a ball-in-hand spot was illegal and moved),
+    ``action_clipped``, ``n_events``, ``sim_time``, ``shot``; the next
+    shooter's constraints as ``ball_in_hand``, ``targets``,
+    ``push_out_allowed``, ``may_pass``, ``call_needed``, ``to_move``.
+    """ + OBSERVATION_DOC
+
+    metadata = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
+
+    def __init__(self, num_envs: int = 1, game: str = "nine_ball", config=None, **overrides: Any):
+        self.config = make_config(config, {**overrides, "game": game} if config is None else overrides)
+        self.num_envs = int(num_envs)
+        self.render_mode = None
+        self.core = GameCore(self.config, self.num_envs)
+        self.single_observation_space = observation_space(self.core)
+        self.single_action_space = action_space()
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+        self._seeded = False
+        self._autoreset_envs = np.zeros(self.num_envs, dtype=bool)
+
+    def reset(self, *, seed=None, options: dict | None = None):
+        N = self.num_envs
+        if seed is not None:
+            seeds = list(seed) if isinstance(seed, (list, tuple, np.ndarray)) else [int(seed) + k for k in range(N)]
+            if len(seeds) != N:
+                raise ValueError(f"seed must be an int or a list of {N} ints, got {len(seeds)}")
+            self._np_random, self._np_random_seed = seeding.np_random(int(seeds[0]))
+            self.core.streams.seed(np.arange(N), seeds)
+        elif not self._seeded:
+            self.core.streams.seed(np.arange(N), self.np_random.integers(2 ** 63, size=N))
+        self._seeded = True
+        options = options or {}
+        mask = options.get("reset_mask")
+        idx = np.arange(N) if mask is None else np.nonzero(np.asarray(mask, dtype=bool))[0]
+        breaker = options.get("breaker")
+        if breaker is not None and np.ndim(breaker) == 1 and mask is not None:
+            breaker = np.asarray(breaker)[idx]
+        self.core.reset_tables(idx, breaker)
+        self._autoreset_envs[idx] = False
+        return self.core.observe(), self._constraint_info()
+
+    def _constraint_info(self) -> dict:
+        c = self.core.constraints()
+        return dict(to_move=c.shooter.copy(), ball_in_hand=c.ball_in_hand.copy(), targets=c.targets.copy(),
+                    push_out_allowed=c.push_out_allowed.copy(), may_pass=c.may_pass.copy(),
+                    call_needed=c.call_needed.copy())
+
+    def step(self, actions):
+        if not self._seeded:
+            raise RuntimeError("call reset() before step()")
+        N, B = self.num_envs, self.core.n_balls
+        a = self.core.validate_actions(actions, N)
+        done_prev = self._autoreset_envs
+        act = np.nonzero(~done_prev)[0]
+        reward = np.zeros(N)
+        terminated = np.zeros(N, dtype=bool)
+        truncated = np.zeros(N, dtype=bool)
+        info: dict[str, Any] = {}
+        if len(act):
+            out = self.core.step(a[act], act)
+            if len(act) == N:
+                reward, terminated, truncated, info = out["reward"], out["terminated"], out["truncated"], out["info"]
+            else:
+                reward[act], terminated[act], truncated[act] = out["reward"], out["terminated"], out["truncated"]
+                for k, v in out["info"].items():
+                    full = np.zeros((N,) + np.shape(v)[1:], dtype=np.asarray(v).dtype)
+                    if k in ("winner", "first_contact", "called_pocket"):
+                        full[:] = -1
+                    full[act] = v
+                    info[k] = full
+        rst = np.nonzero(done_prev)[0]
+        if len(rst):
+            self.core.reset_tables(rst)
+        info["reset"] = done_prev.copy()
+        shooter = info.get("shooter", np.zeros(N, dtype=np.int64))
+        rewards = np.zeros((N, 2))
+        rewards[np.arange(N), shooter] = reward
+        rewards[np.arange(N), 1 - shooter] = -reward
+        info["rewards"] = rewards
+        info.update(self._constraint_info())
+        self._autoreset_envs = terminated | truncated
+        return self.core.observe(), reward, terminated, truncated, info
+
+    # the views the policies read
+    state = property(lambda self: self.core.state)
+    table = property(lambda self: self.core.table)
+    params = property(lambda self: self.core.params)
+
+    def constraints(self):
+        return self.core.constraints()
+
+
+def nine_ball_vector(num_envs: int = 1, **kwargs) -> GameVectorEnv:
+    return GameVectorEnv(num_envs, game="nine_ball", **kwargs)
+
+
+def eight_ball_vector(num_envs: int = 1, **kwargs) -> GameVectorEnv:
+    return GameVectorEnv(num_envs, game="eight_ball", **kwargs)
+

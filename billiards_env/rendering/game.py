@@ -1,0 +1,137 @@
+"""Images of a two-player game's state and a whole game as an animation.
+
+``render_game(core, k)`` draws table ``k`` of a ``GameCore`` with a status
+panel under it: the player to move, ball in hand (and the head string when
+it is behind it), the legal targets (ringed), the 8-ball groups, the
+consecutive fouls and the last shot's ruling. ``save_game_animation`` plays
+one game between two game policies and writes every shot, ball paths and
+rulings included, as a GIF (or MP4).
+"""
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+from PIL import Image, ImageDraw, ImageFont
+
+from ..rules import END_NAMES, FOUL_NAMES
+from ..rules import records as R
+from .draw import BORDER, PPM, positions_at, render_table, world_to_pixel, write_animation
+
+PANEL_LINES = 4
+LINE_PX = 14             # pixel height of a status line
+TARGET_RING = (255, 255, 0)
+HEAD_STRING_COLOR = (200, 200, 200)
+GROUP_NAMES = {R.GROUP_OPEN: "open", R.GROUP_SOLIDS: "solids", R.GROUP_STRIPES: "stripes"}
+IN_HAND_NAMES = {R.IN_HAND_NONE: "", R.IN_HAND_ANYWHERE: "ball in hand",
+                 R.IN_HAND_KITCHEN: "ball in hand behind the head string"}
+
+
+def ruling_text(info: dict | None, k: int = 0) -> str:
+    """One line saying what the last shot of table ``k`` was ruled (from a step's info)."""
+    if info is None:
+        return "new game"
+    who = f"P{int(info['shooter'][k])}"
+    if info["passed"][k]:
+        return f"{who} passes the shot back"
+    if info["game_over"][k]:
+        return f"{who}: {END_NAMES[int(info['end'][k])]}; P{int(info['winner'][k])} wins"
+    if not info["legal"][k]:
+        return f"{who}: foul ({FOUL_NAMES[int(info['foul'][k])]})"
+    what = "push-out" if info["push_out"][k] else ("legal, keeps the table" if not info["turn_over"][k] else "legal")
+    return f"{who}: {what}"
+
+
+def status_lines(core, k: int, info: dict | None = None) -> list[str]:
+    g, c = core.game, core.constraints()
+    shooter = int(c.shooter[k])
+    first = f"{core.config.game.replace('_', '-')}: " + ("game over" if c.over[k] else f"P{shooter} to move")
+    extras = [IN_HAND_NAMES[int(c.ball_in_hand[k])]]
+    if c.push_out_allowed[k]:
+        extras.append("push-out allowed")
+    if c.may_pass[k]:
+        extras.append("may pass the shot back")
+    if c.call_needed[k]:
+        extras.append("on the 8: call a pocket")
+    groups = (f"groups: P0 {GROUP_NAMES[int(g.group[k, 0])]}, P1 {GROUP_NAMES[int(g.group[k, 1])]}; "
+              if core.config.game == "eight_ball" else "")
+    return [first + (" - " + ", ".join(e for e in extras if e) if any(extras) else ""),
+            f"{groups}fouls in a row: P0 {int(g.fouls[k, 0])}, P1 {int(g.fouls[k, 1])}; shot {int(g.shots[k])}",
+            "last: " + ruling_text(info, k), ""]
+
+
+def render_game(core, k: int = 0, info: dict | None = None, pos=None, on=None, paths=None,
+                ppm: float = PPM) -> np.ndarray:
+    """RGB image of table ``k`` (balls at ``pos``/``on``, default the core's
+    state) with the legal targets ringed, the head string drawn when the ball
+    in hand is behind it, and the status panel (``info``: the last step's
+    info, for the ruling line)."""
+    s, c, t = core.state, core.constraints(), core.table
+    pos = s.pos[k] if pos is None else pos
+    on = (s.pocket[k] < 0) if on is None else on
+    img = render_table(t, core.params, pos, np.where(on, -1, 0), paths=paths, ppm=ppm)
+    H, W, _ = img.shape
+    canvas = Image.new("RGB", (W, H + PANEL_LINES * LINE_PX + 4), (20, 20, 20))
+    canvas.paste(Image.fromarray(img), (0, 0))
+    d = ImageDraw.Draw(canvas)
+    rp = core.params.R * ppm + 2
+    for b in np.nonzero(c.targets[k] & on)[0]:
+        cx, cy = world_to_pixel(t, pos[b], ppm, BORDER)
+        d.ellipse([cx - rp, cy - rp, cx + rp, cy + rp], outline=TARGET_RING, width=2)
+    if c.ball_in_hand[k] == R.IN_HAND_KITCHEN:
+        from ..envs.games.setup import HEAD_STRING
+        a, b = world_to_pixel(t, [(0.0, HEAD_STRING * t.length), (t.width, HEAD_STRING * t.length)], ppm, BORDER)
+        d.line([tuple(a), tuple(b)], fill=HEAD_STRING_COLOR, width=1)
+    font = ImageFont.load_default()
+    for i, line in enumerate(status_lines(core, k, info)):
+        d.text((4, H + 2 + i * LINE_PX), line, fill=(235, 235, 235), font=font)
+    return np.asarray(canvas, dtype=np.uint8).copy()
+
+
+def _shot_frames(core, start_pos, start_on, log, info, fps: int, speedup: float, max_seconds: float, ppm: float):
+    """Frames of one recorded shot: balls the log never mentions stay where they were."""
+    from .draw import ball_paths
+    B = core.n_balls
+    t_end = float(log.time[-1]) if len(log) else 0.0
+    n = int(min(t_end / speedup, max_seconds) * fps) + 1
+    paths = ball_paths(log, core.params, B, effects=core.effects)
+    moved = np.array([len(x) > 0 for x in paths])
+    frames = []
+    for tt in np.minimum(np.arange(n) * speedup / fps, t_end):
+        p, o = positions_at(log, core.params, B, tt, core.effects)
+        p = np.where(moved[:, None], p, start_pos)
+        o = np.where(moved, o, start_on)
+        frames.append(render_game(core, 0, info, p, o, paths, ppm))
+    return frames
+
+
+def save_game_animation(path, game: str = "nine_ball", policies=("ghost", "ghost"), seed: int = 0, fps: int = 10,
+                        speedup: float = 2.0, hold: int = 5, max_shots: int = 60, max_seconds: float = 8.0,
+                        ppm: float = PPM, noise: str = "tournament") -> Path:
+    """Play one seeded game between two game policies (names for
+    ``agents.game_policies.make_game_policy``) and write it as a GIF (or
+    MP4): every shot animated at ``speedup`` x real time, then ``hold``
+    frames of the resting table with the ruling. Returns the path."""
+    from agents.game_policies import make_game_policy
+
+    from ..envs.games import GameConfig, GameCore
+    core = GameCore(GameConfig(game=game, noise=noise, max_shots=max_shots), 1, record=True)
+    core.streams.seed([0], [seed])
+    core.reset_tables([0], [0])
+    pol = [make_game_policy(policies[0], core, seed), make_game_policy(policies[1], core, seed + 1)]
+    frames = [render_game(core, 0, None, ppm=ppm)] * hold
+    info = None
+    while True:
+        who = int(core.constraints().shooter[0])
+        start_pos, start_on = core.state.pos[0].copy(), core.state.pocket[0] < 0
+        out = core.step(pol[who].act(None, np.array([0])).astype(np.float64), [0])
+        log = core.last_events[0]
+        placed = out["info"]["placement"][0]
+        start_pos[0], start_on[0] = placed, True
+        if not out["info"]["passed"][0] and log is not None:
+            frames += _shot_frames(core, start_pos, start_on, log, info, fps, speedup, max_seconds, ppm)
+        info = out["info"]
+        frames += [render_game(core, 0, info, ppm=ppm)] * hold
+        if out["terminated"][0] or out["truncated"][0]:
+            break
+    return write_animation(path, np.stack(frames), fps)

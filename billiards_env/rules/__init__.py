@@ -1,0 +1,27 @@
+"""Rules of two-player pool, apart from the physics: pure numpy, batched over tables.
+
+A ruleset (``NineBallRules``, ``EightBallRules``) turns a table before and
+after a shot (``ShotInput``) into a ruling (``ShotRecord``) and the next
+game state (``GameState``), and tells the next shooter what they may do
+(``Constraints``). Every rule and simplification: docs/rules.md.
+"""
+from .common import BREAK_RAIL_BALLS, Rules, lowest_on_table
+from .eight_ball import EightBallRules
+from .nine_ball import NineBallRules
+from .records import (END_NAMES, FOUL_NAMES, IN_HAND_ANYWHERE, IN_HAND_KITCHEN, IN_HAND_NONE, Constraints, GameState,
+                      ShotInput, ShotRecord)
+
+RULES = {"nine_ball": NineBallRules(), "eight_ball": EightBallRules()}
+
+
+def get_rules(name: str) -> Rules:
+    """The ruleset of a game by name (``nine_ball``, ``eight_ball``)."""
+    try:
+        return RULES[name]
+    except KeyError:
+        raise ValueError(f"unknown game {name!r}; choose one of {sorted(RULES)}") from None
+
+
+__all__ = ["BREAK_RAIL_BALLS", "Rules", "lowest_on_table", "EightBallRules", "NineBallRules", "END_NAMES",
+           "FOUL_NAMES", "IN_HAND_ANYWHERE", "IN_HAND_KITCHEN", "IN_HAND_NONE", "Constraints", "GameState",
+           "ShotInput", "ShotRecord", "RULES", "get_rules"]

@@ -1,0 +1,100 @@
+"""Rule pieces shared by the games: the facts of a shot every ruling reads,
+and the ruleset interface."""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from .records import (FOUL_BAD_BREAK, FOUL_NO_CONTACT, FOUL_NO_RAIL, FOUL_NONE, FOUL_SCRATCH, FOUL_WRONG_BALL,
+                      Constraints, GameState, ShotInput, ShotRecord)
+
+BREAK_RAIL_BALLS = 4  # a legal break pockets a ball or drives at least this many object balls to a rail
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Facts:
+    """What every ruling needs from a ``ShotInput`` [E]: ``pocketed`` [E, B],
+    ``scratch``, ``object_pocketed`` (any object ball), ``rail`` (some
+    ball, the cue ball included, touched a rail after the first contact),
+    ``break_rails`` (object balls that touched a rail), ``first``."""
+
+    pocketed: np.ndarray
+    scratch: np.ndarray
+    object_pocketed: np.ndarray
+    rail: np.ndarray
+    break_rails: np.ndarray
+    first: np.ndarray
+
+    @classmethod
+    def of(cls, shot: ShotInput) -> "Facts":
+        pk = shot.pocketed
+        return cls(pocketed=pk, scratch=pk[:, 0].copy(), object_pocketed=pk[:, 1:].any(axis=1),
+                   rail=(np.asarray(shot.rails) > 0).any(axis=1),
+                   break_rails=(np.asarray(shot.object_rails)[:, 1:] > 0).sum(axis=1),
+                   first=np.asarray(shot.first_contact, dtype=np.int64))
+
+
+def lowest_on_table(pocket: np.ndarray) -> np.ndarray:
+    """The lowest-numbered object ball on each table (-1 none)."""
+    on = np.asarray(pocket)[:, 1:] < 0
+    return np.where(on.any(axis=1), np.argmax(on, axis=1) + 1, -1).astype(np.int64)
+
+
+def foul_code(f: Facts, first_ok: np.ndarray, is_break: np.ndarray, exempt: np.ndarray) -> np.ndarray:
+    """The foul of each shot (FOUL_*), the most serious first: scratch, no
+    contact, wrong ball first, illegal break, no rail after contact.
+    ``first_ok``: the first contact was a legal target; ``exempt``: shots
+    free of the contact and rail requirements (a 9-ball push-out)."""
+    code = np.full(len(f.first), FOUL_NONE, dtype=np.int64)
+    no_rail = ~is_break & ~exempt & ~f.object_pocketed & ~f.rail
+    bad_break = is_break & ~f.object_pocketed & (f.break_rails < BREAK_RAIL_BALLS)
+    code[no_rail] = FOUL_NO_RAIL
+    code[bad_break] = FOUL_BAD_BREAK
+    code[~exempt & (f.first >= 1) & ~first_ok] = FOUL_WRONG_BALL
+    code[~exempt & (f.first < 1)] = FOUL_NO_CONTACT
+    code[f.scratch] = FOUL_SCRATCH
+    return code
+
+
+class Rules:
+    """A game's rules: ``n_balls`` object balls, ``judge`` (state and shot ->
+    record and the next state, pure) and ``constraints`` (state and pockets
+    -> what the next shooter may do)."""
+
+    name: str = ""
+    n_balls: int = 0
+
+    def judge(self, game: GameState, shot: ShotInput) -> tuple[ShotRecord, GameState]:
+        raise NotImplementedError
+
+    def constraints(self, game: GameState, pocket: np.ndarray) -> Constraints:
+        raise NotImplementedError
+
+    def check(self, game: GameState, shot: ShotInput) -> None:
+        """Shapes agree and no finished game is shot (ValueError otherwise)."""
+        B = self.n_balls + 1
+        if np.shape(shot.pocket_before) != (game.n, B):
+            raise ValueError(f"{self.name}: shot must cover {game.n} tables of {B} balls, "
+                             f"got pockets of shape {np.shape(shot.pocket_before)}")
+        if np.any(game.over):
+            raise ValueError(f"{self.name}: tables {np.nonzero(game.over)[0].tolist()} have finished their games")
+        if np.any(np.asarray(shot.pocket_before)[:, 0] >= 0):
+            raise ValueError(f"{self.name}: the cue ball must be on the table before a shot (place it first)")
+
+
+def next_state(game: GameState, rec: ShotRecord, foul: np.ndarray, played: np.ndarray) -> GameState:
+    """The state after ``rec`` common to both games: the shooter (switched
+    on ``turn_over``), consecutive fouls (counted for the shooter on a foul,
+    cleared on a legal shot; untouched when no shot was played), the shot
+    count, over and winner. Phase, ball in hand and groups are the game's."""
+    g = game.copy()
+    ar = np.arange(g.n)
+    s = game.shooter
+    f = g.fouls[ar, s]
+    g.fouls[ar, s] = np.where(played, np.where(foul > 0, f + 1, 0), f)
+    g.shots += played
+    g.shooter = np.where(rec.turn_over, 1 - s, s)
+    g.over = rec.game_over.copy()
+    g.winner = rec.winner.copy()
+    return g

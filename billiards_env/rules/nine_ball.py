@@ -1,0 +1,70 @@
+"""9-ball (World Pool-Billiard Association rules; simplifications in docs/rules.md).
+
+Balls 1-9; the lowest-numbered ball on the table is the only legal first
+contact. The break (cue ball in hand behind the head string) must hit the 1
+first and pocket a ball or drive at least four object balls to a rail. A
+shot pocketing a ball legally keeps the shooter at the table; the 9
+pocketed on a legal shot wins, the break included; a 9 pocketed on a foul
+or a push-out is respotted. The shot right after the break may be declared
+a push-out (no contact or rail needed); the opponent then shoots or passes
+the shot back. Every foul gives the opponent ball in hand anywhere; a
+player's third consecutive foul loses the game.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .common import Facts, Rules, foul_code, lowest_on_table, next_state
+from .records import (END_NINE, END_NONE, END_THREE_FOULS, FOUL_NONE, IN_HAND_ANYWHERE, IN_HAND_NONE,
+                      PHASE_AFTER_BREAK, PHASE_BREAK, PHASE_PLAY, PHASE_PUSHED, Constraints, GameState, ShotInput,
+                      ShotRecord)
+
+NINE = 9
+THREE_FOULS = 3
+
+
+class NineBallRules(Rules):
+    name = "nine_ball"
+    n_balls = 9
+
+    def judge(self, game: GameState, shot: ShotInput) -> tuple[ShotRecord, GameState]:
+        self.check(game, shot)
+        f = Facts.of(shot)
+        E = game.n
+        ar = np.arange(E)
+        is_break = game.phase == PHASE_BREAK
+        passed = np.asarray(shot.passed, dtype=bool) & (game.phase == PHASE_PUSHED)
+        played = ~passed
+        pushed = np.asarray(shot.push_out, dtype=bool) & (game.phase == PHASE_AFTER_BREAK) & played
+        lowest = lowest_on_table(shot.pocket_before)
+        foul = np.where(played, foul_code(f, f.first == lowest, is_break, pushed), FOUL_NONE)
+        legal = foul == FOUL_NONE
+        nine = f.pocketed[:, NINE] & played
+        win = legal & nine & ~pushed
+        three = (foul > 0) & (game.fouls[ar, game.shooter] + 1 >= THREE_FOULS)
+        over = win | three
+        winner = np.where(win, game.shooter, np.where(three, 1 - game.shooter, -1))
+        end = np.where(win, END_NINE, np.where(three, END_THREE_FOULS, END_NONE))
+        keeps = played & legal & ~pushed & f.object_pocketed
+        respot = np.zeros_like(f.pocketed)
+        respot[:, NINE] = nine & ~over
+        rec = ShotRecord(legal=legal, foul=foul, turn_over=~keeps & ~over, game_over=over, winner=winner, end=end,
+                         push_out=pushed, passed=passed, respot=respot, shooter=game.shooter.copy())
+        g = next_state(game, rec, foul, played)
+        g.phase = np.where(is_break, PHASE_AFTER_BREAK,
+                           np.where(pushed & legal, PHASE_PUSHED, PHASE_PLAY)).astype(np.int64)
+        g.ball_in_hand = np.where(foul > 0, IN_HAND_ANYWHERE, IN_HAND_NONE).astype(np.int64)
+        return rec, g
+
+    def constraints(self, game: GameState, pocket: np.ndarray) -> Constraints:
+        E, B = np.shape(pocket)
+        targets = np.zeros((E, B), dtype=bool)
+        low = lowest_on_table(pocket)
+        has = low > 0
+        targets[np.nonzero(has)[0], low[has]] = True
+        targets[game.over] = False
+        live = ~game.over
+        return Constraints(shooter=game.shooter.copy(), ball_in_hand=np.where(live, game.ball_in_hand, IN_HAND_NONE),
+                           targets=targets, push_out_allowed=live & (game.phase == PHASE_AFTER_BREAK),
+                           may_pass=live & (game.phase == PHASE_PUSHED), call_needed=np.zeros(E, dtype=bool),
+                           is_break=live & (game.phase == PHASE_BREAK), over=game.over.copy())

@@ -1,0 +1,194 @@
+"""What the rules read and return, as arrays batched over tables.
+
+- ``GameState``: where each table's game stands (who shoots, the phase,
+  ball in hand, consecutive fouls, 8-ball groups, over / winner).
+- ``ShotInput``: one shot of each table as the simulator saw it (pockets
+  before and after, first contact, rail contacts after it) plus the
+  shooter's declarations (push-out, called pocket, passing the shot back).
+- ``ShotRecord``: the ruling on that shot (legal or the foul and its
+  reason, turn over, game over, winner, balls to respot).
+- ``Constraints``: what the next shooter may and must do (ball in hand,
+  legal targets, push-out, pass, call).
+
+Codes are small ints so that records stay plain arrays; ``FOUL_NAMES`` and
+``END_NAMES`` name them.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+# --- foul reasons (ShotRecord.foul) ------------------------------------------
+FOUL_NONE = 0
+FOUL_NO_CONTACT = 1      # the cue ball touched no object ball
+FOUL_WRONG_BALL = 2      # the first ball touched was not a legal target
+FOUL_NO_RAIL = 3         # nothing pocketed and no ball touched a rail after the contact
+FOUL_SCRATCH = 4         # the cue ball was pocketed
+FOUL_BAD_BREAK = 5       # break: no ball pocketed and fewer than four object balls reached a rail
+FOUL_NAMES = {FOUL_NONE: "none", FOUL_NO_CONTACT: "no contact", FOUL_WRONG_BALL: "wrong ball first",
+              FOUL_NO_RAIL: "no rail after contact", FOUL_SCRATCH: "scratch", FOUL_BAD_BREAK: "illegal break"}
+
+# --- how a game ended (ShotRecord.end) ----------------------------------------
+END_NONE = 0
+END_NINE = 1             # the 9 pocketed on a legal shot: the shooter wins
+END_THREE_FOULS = 2      # third consecutive foul: the shooter loses
+END_EIGHT = 3            # the 8 pocketed legally in the called pocket: the shooter wins
+END_EIGHT_EARLY = 4      # the 8 pocketed before the shooter's group was cleared: the shooter loses
+END_EIGHT_FOUL = 5       # the 8 pocketed on a foul: the shooter loses
+END_EIGHT_POCKET = 6     # the 8 pocketed in another pocket than the one called: the shooter loses
+END_NAMES = {END_NONE: "none", END_NINE: "9 pocketed", END_THREE_FOULS: "three consecutive fouls",
+             END_EIGHT: "8 pocketed", END_EIGHT_EARLY: "8 pocketed early", END_EIGHT_FOUL: "8 pocketed on a foul",
+             END_EIGHT_POCKET: "8 in an uncalled pocket"}
+
+# --- ball in hand (GameState.ball_in_hand, Constraints.ball_in_hand) ----------
+IN_HAND_NONE = 0         # the cue ball is played from where it lies
+IN_HAND_ANYWHERE = 1     # anywhere on the table
+IN_HAND_KITCHEN = 2      # behind the head string (the break, and after a scratch on the 8-ball break)
+
+# --- phases (GameState.phase) ---------------------------------------------------
+PHASE_BREAK = 0          # the next shot is the opening break
+PHASE_AFTER_BREAK = 1    # the first shot after the break (9-ball: push-out allowed)
+PHASE_PUSHED = 2         # 9-ball: a push-out was played; the next player may pass the shot back
+PHASE_PLAY = 3           # any other shot
+
+# --- 8-ball groups (GameState.group) ------------------------------------------------
+GROUP_OPEN = 0
+GROUP_SOLIDS = 1         # balls 1-7
+GROUP_STRIPES = 2        # balls 9-15
+
+
+@dataclasses.dataclass(eq=False)
+class GameState:
+    """Per table [E]: ``shooter`` (0 or 1), ``breaker`` (who broke),
+    ``phase`` (PHASE_*), ``ball_in_hand`` (IN_HAND_*), ``fouls`` [E, 2]
+    consecutive fouls per player, ``group`` [E, 2] each player's 8-ball
+    group (GROUP_*), ``shots`` taken, ``over`` and ``winner`` (-1 none)."""
+
+    shooter: np.ndarray
+    breaker: np.ndarray
+    phase: np.ndarray
+    ball_in_hand: np.ndarray
+    fouls: np.ndarray
+    group: np.ndarray
+    shots: np.ndarray
+    over: np.ndarray
+    winner: np.ndarray
+
+    @classmethod
+    def new(cls, breaker) -> "GameState":
+        """Fresh games before the break; ``breaker`` [E] (0 or 1) breaks."""
+        b = np.asarray(breaker, dtype=np.int64).copy()
+        E = len(b)
+        if np.any((b != 0) & (b != 1)):
+            raise ValueError("breaker must be 0 or 1 for every table")
+        return cls(shooter=b.copy(), breaker=b, phase=np.full(E, PHASE_BREAK, dtype=np.int64),
+                   ball_in_hand=np.full(E, IN_HAND_KITCHEN, dtype=np.int64), fouls=np.zeros((E, 2), dtype=np.int64),
+                   group=np.zeros((E, 2), dtype=np.int64), shots=np.zeros(E, dtype=np.int64),
+                   over=np.zeros(E, dtype=bool), winner=np.full(E, -1, dtype=np.int64))
+
+    @property
+    def n(self) -> int:
+        return len(self.shooter)
+
+    def copy(self) -> "GameState":
+        return GameState(**{f.name: getattr(self, f.name).copy() for f in dataclasses.fields(self)})
+
+    def take(self, idx) -> "GameState":
+        return GameState(**{f.name: getattr(self, f.name)[idx] for f in dataclasses.fields(self)})
+
+    def put(self, idx, other: "GameState") -> None:
+        """Write ``other`` (len(idx) tables) into tables ``idx``."""
+        for f in dataclasses.fields(self):
+            getattr(self, f.name)[idx] = getattr(other, f.name)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class ShotInput:
+    """One shot per table [E]: ``pocket_before`` / ``pocket_after`` [E, B]
+    (pocket id, -1 on the table; ball 0 the cue ball), ``first_contact`` (the
+    first ball the cue ball touched, -1 none), ``rails`` [E, B] cushion hits
+    of each ball after the cue ball's first contact (object balls rest until
+    touched, so all of theirs count), ``object_rails`` [E, B] every ball's
+    cushion hits during the shot (the break's four-ball count), and the
+    declarations: ``push_out`` (bool), ``called_pocket`` (int, -1 none),
+    ``passed`` (bool: after a push-out, the player handed the shot back and
+    no shot was played)."""
+
+    pocket_before: np.ndarray
+    pocket_after: np.ndarray
+    first_contact: np.ndarray
+    rails: np.ndarray
+    object_rails: np.ndarray | None = None
+    push_out: np.ndarray | None = None
+    called_pocket: np.ndarray | None = None
+    passed: np.ndarray | None = None
+
+    def __post_init__(self):
+        E, B = np.shape(self.pocket_before)
+        for name in ("pocket_after", "rails"):
+            if np.shape(getattr(self, name)) != (E, B):
+                raise ValueError(f"ShotInput.{name} must have shape ({E}, {B}), got {np.shape(getattr(self, name))}")
+        if np.shape(self.first_contact) != (E,):
+            raise ValueError(f"ShotInput.first_contact must have shape ({E},), got {np.shape(self.first_contact)}")
+        fill = dict(object_rails=np.asarray(self.rails), push_out=np.zeros(E, dtype=bool),
+                    called_pocket=np.full(E, -1, dtype=np.int64), passed=np.zeros(E, dtype=bool))
+        for k, v in fill.items():
+            if getattr(self, k) is None:
+                object.__setattr__(self, k, v)
+
+    @property
+    def n(self) -> int:
+        return len(self.first_contact)
+
+    @property
+    def pocketed(self) -> np.ndarray:
+        """[E, B] balls pocketed by this shot."""
+        return (np.asarray(self.pocket_after) >= 0) & (np.asarray(self.pocket_before) < 0)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class ShotRecord:
+    """The ruling on one shot per table [E]: ``legal`` (no foul), ``foul``
+    (FOUL_*), ``turn_over`` (the other player shoots next), ``game_over``,
+    ``winner`` (-1 none), ``end`` (END_*), ``push_out`` (this shot was a
+    push-out), ``passed`` (no shot: the shot was handed back),
+    ``respot`` [E, B] balls the table must put back on the foot spot, and
+    ``shooter`` (who played it)."""
+
+    legal: np.ndarray
+    foul: np.ndarray
+    turn_over: np.ndarray
+    game_over: np.ndarray
+    winner: np.ndarray
+    end: np.ndarray
+    push_out: np.ndarray
+    passed: np.ndarray
+    respot: np.ndarray
+    shooter: np.ndarray
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class Constraints:
+    """What the next shooter of each table [E] may and must do: ``shooter``,
+    ``ball_in_hand`` (IN_HAND_*), ``targets`` [E, B] the balls the cue ball
+    may legally touch first, ``push_out_allowed``, ``may_pass`` (after the
+    opponent's push-out: hand the shot back instead of shooting),
+    ``call_needed`` (8-ball: the shot is on the 8, a pocket must be called),
+    ``is_break`` and ``over`` (the game has ended: no shot)."""
+
+    shooter: np.ndarray
+    ball_in_hand: np.ndarray
+    targets: np.ndarray
+    push_out_allowed: np.ndarray
+    may_pass: np.ndarray
+    call_needed: np.ndarray
+    is_break: np.ndarray
+    over: np.ndarray
+
+    def nominal_target(self) -> np.ndarray:
+        """The lowest-numbered legal target of each table (-1 none): what
+        relative aim and the geometric policies aim at."""
+        t = self.targets
+        any_ = t.any(axis=1)
+        return np.where(any_, np.argmax(t, axis=1), -1).astype(np.int64)

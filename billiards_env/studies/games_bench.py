@@ -1,0 +1,153 @@
+"""Throughput of the two-player games: complete games per second between two
+policies on a batch of tables, and steps per second of the self-play vector
+env, with the time split between the simulator, the rules and the policies.
+
+    python -m billiards_env.studies.games_bench --tables 1024 --games 3072
+    (or ``python scripts/benchmark.py --only games``)
+
+``games_per_second``: every table plays game after game (a finished table
+is re-racked at once, from its own stream), each step shoots every table
+with one simulator call, and the clock runs until ``games`` games have
+finished. The split: ``simulate`` is the simulator time of the env's shots,
+``rules`` the rulings (``rules.judge``), ``policies`` the time in the
+policies' ``act`` (which includes the simulator calls of the safety search,
+reported as ``policy_simulate``); ``other`` is the rest of the env step
+(placement, respots, bookkeeping, re-racks).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import time
+
+import numpy as np
+
+from ..envs.games import GameConfig, GameCore
+from ..envs.games.vector import GameVectorEnv
+
+
+def _timed_simulate(calls: dict):
+    """Wrap ``physics.simulate`` as seen by the policies' module so its time is counted."""
+    import agents.game_policies as gp
+    inner = gp.simulate
+
+    def timed(*a, **kw):
+        t0 = time.perf_counter()
+        try:
+            return inner(*a, **kw)
+        finally:
+            calls["t"] += time.perf_counter() - t0
+    gp.simulate = timed
+    return lambda: setattr(gp, "simulate", inner)
+
+
+def games_per_second(game: str = "nine_ball", n_tables: int = 1024, n_games: int = 3072, policies=("ghost", "ghost"),
+                     noise: str = "tournament", seed: int = 0, max_shots: int = 200) -> dict:
+    """Complete games per second (see the module docstring) and the time split."""
+    from agents.game_policies import make_game_policy
+    core = GameCore(GameConfig(game=game, noise=noise, max_shots=max_shots), n_tables)
+    all_ = np.arange(n_tables)
+    core.streams.seed(all_, seed * 1_000_003 + all_)
+    core.reset_tables(all_)
+    pol = [make_game_policy(policies[0], core, seed), make_game_policy(policies[1], core, seed + 1)]
+    psim = {"t": 0.0}
+    restore = _timed_simulate(psim)
+    t_pol = t_reset = 0.0
+    shots, games, steps = [], 0, 0
+    try:
+        t0 = time.perf_counter()
+        while games < n_games:
+            tp = time.perf_counter()
+            to_move = core.constraints().shooter
+            actions = np.zeros((n_tables, 8))
+            for p in (0, 1):
+                m = np.nonzero(to_move == p)[0]
+                if len(m):
+                    actions[m] = pol[p].act(None, m)
+            t_pol += time.perf_counter() - tp
+            out = core.step(actions, all_)
+            steps += 1
+            done = np.nonzero(out["terminated"] | out["truncated"])[0]
+            if len(done):
+                shots.extend(core.game.shots[done].tolist())
+                games += len(done)
+                tr = time.perf_counter()
+                core.reset_tables(done)
+                t_reset += time.perf_counter() - tr
+        wall = time.perf_counter() - t0
+    finally:
+        restore()
+    sim, rules = core.timers["simulate"], core.timers["rules"]
+    return dict(game=game, tables=n_tables, policies=list(policies), noise=noise, games=games, steps=steps,
+                seconds=wall, games_per_second=games / wall, shots_per_game=float(np.mean(shots)),
+                split=dict(simulate=sim, rules=rules, policies=t_pol - psim["t"], policy_simulate=psim["t"],
+                           other=wall - sim - rules - t_pol))
+
+
+def vector_steps_per_second(game: str = "nine_ball", n_tables: int = 1024, n_steps: int = 30, seed: int = 0,
+                            noise: str = "tournament") -> dict:
+    """Steps per second (tables x steps / s) of the self-play vector env under uniform random actions."""
+    env = GameVectorEnv(n_tables, game=game, noise=noise)
+    env.reset(seed=seed)
+    rng = np.random.default_rng(seed)
+    acts = rng.uniform(-1, 1, (n_steps, n_tables, 8)).astype(np.float32)
+    t0 = time.perf_counter()
+    for k in range(n_steps):
+        env.step(acts[k])
+    wall = time.perf_counter() - t0
+    c = env.core.timers
+    return dict(game=game, tables=n_tables, steps=n_steps, seconds=wall, env_steps_per_second=n_tables * n_steps / wall,
+                split=dict(simulate=c["simulate"], rules=c["rules"], other=wall - c["simulate"] - c["rules"]))
+
+
+def warm(game: str) -> None:
+    """Compile (or load) every kernel the measurements use."""
+    games_per_second(game, 8, 4)
+    vector_steps_per_second(game, 8, 2)
+
+
+def rows(games=("nine_ball",), n_tables: int = 1024, n_games: int = 3072, n_steps: int = 30) -> list[dict]:
+    out = []
+    for g in games:
+        warm(g)
+        out.append(games_per_second(g, n_tables, n_games))
+        out.append(vector_steps_per_second(g, n_tables, n_steps))
+    return out
+
+
+def markdown(results: list[dict]) -> str:
+    lines = ["| measure | game | tables | figure | shots per game | simulator s | rules s | policies s "
+             "(+ their simulator) | other s | wall s |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in results:
+        s = r["split"]
+        if "games_per_second" in r:
+            lines.append(f"| games/s, {' vs '.join(r['policies'])} | {r['game']} | {r['tables']} | "
+                         f"**{r['games_per_second']:,.0f}** ({r['games']} games) | {r['shots_per_game']:.1f} | "
+                         f"{s['simulate']:.2f} | {s['rules']:.2f} | "
+                         f"{s['policies']:.2f} (+{s['policy_simulate']:.2f}) | "
+                         f"{s['other']:.2f} | {r['seconds']:.2f} |")
+        else:
+            lines.append(f"| vector env steps/s, random actions | {r['game']} | {r['tables']} | "
+                         f"**{r['env_steps_per_second']:,.0f}** ({r['steps']} steps) | | {s['simulate']:.2f} | "
+                         f"{s['rules']:.2f} | | {s['other']:.2f} | {r['seconds']:.2f} |")
+    return "\n".join(lines) + "\n"
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--games", nargs="+", default=["nine_ball"], choices=["nine_ball", "eight_ball"])
+    ap.add_argument("--tables", type=int, default=1024)
+    ap.add_argument("--n-games", type=int, default=3072)
+    ap.add_argument("--steps", type=int, default=30)
+    ap.add_argument("--json", default=None, help="also write the rows to this JSON file")
+    args = ap.parse_args(argv)
+    res = rows(args.games, args.tables, args.n_games, args.steps)
+    print(markdown(res))
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(res, f, indent=2)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
