@@ -9,7 +9,7 @@ import numpy as np
 from . import constants as C
 from .effects import Effects
 from .params import PhysicsParams
-from .kernels import make_kernel
+from .kernels import call, make_kernel
 from .layout import Balls, EventScratch, Geometry, LogBuffers, Outputs
 from .models import Models
 from .state import BallState
@@ -95,8 +95,11 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
         check_placement(state, table, params, effects.pockets)
 
     s = state.copy()
-    s = BallState(np.ascontiguousarray(s.pos), np.ascontiguousarray(s.vel),
-                  np.ascontiguousarray(s.omega), np.ascontiguousarray(s.pocket, dtype=np.int64))
+    s = BallState(np.ascontiguousarray(s.pos, dtype=np.float64), np.ascontiguousarray(s.vel, dtype=np.float64),
+                  np.ascontiguousarray(s.omega, dtype=np.float64), np.ascontiguousarray(s.pocket, dtype=np.int64))
+    if (s.pos.ndim, s.vel.ndim, s.omega.ndim, s.pocket.ndim) != (3, 3, 3, 2):  # the kernels' one signature
+        raise ValueError("state arrays must be pos and vel [E, B, 2], omega [E, B, 3] and pocket [E, B], got "
+                         f"{s.pos.shape}, {s.vel.shape}, {s.omega.shape} and {s.pocket.shape}")
     E, B = s.pos.shape[:2]
     segs, norms, tips, pockets = (np.ascontiguousarray(a, dtype=np.float64) for a in table.geometry(effects.pockets))
     geo = Geometry(segs, norms, tips, pockets, float(table.width), float(table.length))
@@ -121,9 +124,9 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
             scr = EventScratch(tt=np.zeros((E, B)), tb=np.zeros((E, B)), bkind=np.zeros((E, B), dtype=np.int64),
                                bidx=np.zeros((E, B), dtype=np.int64), tpair=np.zeros((E, B, B)),
                                paths=np.zeros((E, B, 6)))
-            kernel(balls, geo, p, scr, out, log, int(max_events))
+            call(kernel, balls, geo, p, scr, out, log, int(max_events))
         else:
-            kernel(balls, geo, p, out, log, int(max_events), float(dt), int(C.MAX_STEPS))
+            call(kernel, balls, geo, p, out, log, int(max_events), float(dt), int(C.MAX_STEPS))
     finally:
         numba.set_num_threads(threads)
 
