@@ -99,7 +99,9 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
                   np.ascontiguousarray(s.omega), np.ascontiguousarray(s.pocket, dtype=np.int64))
     E, B = s.pos.shape[:2]
     segs, norms, tips, pockets = (np.ascontiguousarray(a, dtype=np.float64) for a in table.geometry(effects.pockets))
-    geo = Geometry(segs, norms, tips, pockets, float(table.width), float(table.length))
+    g = table.groups(effects.pockets)
+    geo = Geometry(segs, norms, tips, pockets, float(table.width), float(table.length),
+                   g.rails, g.free_tips, g.near, g.gsegs, g.gtips)
     balls = Balls(s.pos, s.vel, s.omega, np.zeros((E, B), dtype=np.int64), s.pocket)
     p = params.as_array()
     kernel = make_kernel(solver, effects, models, diagnostics)
@@ -120,7 +122,7 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
         if solver == "event":
             scr = EventScratch(tt=np.zeros((E, B)), tb=np.zeros((E, B)), bkind=np.zeros((E, B), dtype=np.int64),
                                bidx=np.zeros((E, B), dtype=np.int64), tpair=np.zeros((E, B, B)),
-                               paths=np.zeros((E, B, 6)))
+                               paths=np.zeros((E, B, 6)), tlast=np.zeros((E, B)))
             kernel(balls, geo, p, scr, out, log, int(max_events))
         else:
             kernel(balls, geo, p, out, log, int(max_events), float(dt), int(C.MAX_STEPS))
