@@ -11,7 +11,7 @@ Gap functions are signed so that contact is f(t) = 0 and f > 0 is apart.
 """
 import math
 
-from ._jit import njit
+from ._jit import njit, njit_inline
 from . import constants as C
 from .vec import norm
 from .roots import first_entry, first_entry_quadratic
@@ -49,7 +49,7 @@ def _apart(lo1, hi1, lo2, hi2, gap):
     return lo1 - hi2 > gap or lo2 - hi1 > gap
 
 
-@njit
+@njit_inline
 def sweep_path(pos, vel, st, e, i, ax, ay, H, paths):
     """Store ball i's acceleration (ax, ay) and the box its path sweeps over
     [now, now + H] in paths[e, i] = (ax, ay, x_lo, x_hi, y_lo, y_hi)."""
@@ -65,10 +65,14 @@ def sweep_path(pos, vel, st, e, i, ax, ay, H, paths):
         paths[e, i, 4] = -math.inf; paths[e, i, 5] = math.inf
 
 
-@njit
-def pair_time(pos, vel, st, paths, e, i, j, H, p):
+@njit_inline
+def pair_time(pos, vel, st, paths, e, i, j, H, p, lag):
     """Time from now until balls i and j meet (inf if not within H).
-    ``paths`` holds each ball's acceleration and swept box (``sweep_path``)."""
+    ``paths`` holds each ball's acceleration and swept box (``sweep_path``).
+    Ball i's state is at the current time, ball j's ``lag`` seconds earlier
+    (the event solver evolves a ball only when an event involves it): j's
+    quadratic path is shifted to now, the same arithmetic as
+    ``motion.evolve``."""
     si, sj = st[e, i], st[e, j]
     if si == C.POCKETED or sj == C.POCKETED or not (_moving(si) or _moving(sj)):
         return math.inf
@@ -77,10 +81,18 @@ def pair_time(pos, vel, st, paths, e, i, j, H, p):
     if (_apart(paths[e, i, 2], paths[e, i, 3], paths[e, j, 2], paths[e, j, 3], R2 + BOX_SLACK)
             or _apart(paths[e, i, 4], paths[e, i, 5], paths[e, j, 4], paths[e, j, 5], R2 + BOX_SLACK)):
         return math.inf
-    dx = pos[e, i, 0] - pos[e, j, 0]
-    dy = pos[e, i, 1] - pos[e, j, 1]
-    dvx = vel[e, i, 0] - vel[e, j, 0]
-    dvy = vel[e, i, 1] - vel[e, j, 1]
+    xj, yj = pos[e, j, 0], pos[e, j, 1]
+    vxj, vyj = vel[e, j, 0], vel[e, j, 1]
+    if lag > 0.0 and _moving(sj):
+        axj, ayj = paths[e, j, 0], paths[e, j, 1]
+        xj += vxj * lag + 0.5 * axj * lag * lag
+        yj += vyj * lag + 0.5 * ayj * lag * lag
+        vxj += axj * lag
+        vyj += ayj * lag
+    dx = pos[e, i, 0] - xj
+    dy = pos[e, i, 1] - yj
+    dvx = vel[e, i, 0] - vxj
+    dvy = vel[e, i, 1] - vyj
     dax = paths[e, i, 0] - paths[e, j, 0]
     day = paths[e, i, 1] - paths[e, j, 1]
     if si == C.ROLLING and sj == C.ROLLING and dvx * dvx + dvy * dvy <= C.SPEED_EPS * C.SPEED_EPS:
@@ -115,11 +127,66 @@ def _circle_time(px, py, vx, vy, ax, ay, cx, cy, r, H, f_tol, f_floor):
 
 
 @njit
+def _segment_time(segs, norms, s, x, y, vx, vy, ax, ay, H, R, quadratic):
+    """Time until the ball touches cushion segment s within H (inf if not);
+    the contact point must lie on the segment (tips handle its ends)."""
+    nx, ny = norms[s, 0], norms[s, 1]
+    c0 = (x - segs[s, 0]) * nx + (y - segs[s, 1]) * ny - R
+    c1 = vx * nx + vy * ny
+    c2 = 0.5 * (ax * nx + ay * ny)
+    if quadratic:
+        t = first_entry_quadratic(0.0, c1, c0, H, C.CONTACT_TOL, -R)
+    else:
+        t = first_entry(0.0, 0.0, c2, c1, c0, H, C.CONTACT_TOL, -R)
+    if t < math.inf:
+        qx = x + vx * t + 0.5 * ax * t * t - segs[s, 0]
+        qy = y + vy * t + 0.5 * ay * t * t - segs[s, 1]
+        ex, ey = segs[s, 2] - segs[s, 0], segs[s, 3] - segs[s, 1]
+        lam = (qx * ex + qy * ey) / (ex * ex + ey * ey)
+        if not 0.0 <= lam <= 1.0:
+            return math.inf
+    return t
+
+
+@njit
+def _segment_box_apart(segs, s, bx0, bx1, by0, by1, gap):
+    return (_apart(bx0, bx1, min(segs[s, 0], segs[s, 2]), max(segs[s, 0], segs[s, 2]), gap)
+            or _apart(by0, by1, min(segs[s, 1], segs[s, 3]), max(segs[s, 1], segs[s, 3]), gap))
+
+
+@njit
+def _tip_time(tips, v, x, y, vx, vy, ax, ay, H, R, quadratic):
+    """Time until the ball touches jaw tip v within H (inf if not)."""
+    if quadratic:
+        dx, dy = x - tips[v, 0], y - tips[v, 1]
+        c0 = dx * dx + dy * dy - R * R
+        return first_entry_quadratic(vx * vx + vy * vy, 2.0 * (dx * vx + dy * vy), c0,
+                                     H, 2.0 * R * C.CONTACT_TOL, -math.inf)
+    return _circle_time(x, y, vx, vy, ax, ay, tips[v, 0], tips[v, 1], R, H, 2.0 * R * C.CONTACT_TOL, -math.inf)
+
+
+@njit
+def _pocket_time(pockets, k, x, y, vx, vy, ax, ay, H, quadratic):
+    """Time until the ball's centre enters pocket k's capture circle within H."""
+    cx, cy, r = pockets[k, 0], pockets[k, 1], pockets[k, 2]
+    if quadratic:
+        dx, dy = x - cx, y - cy
+        return first_entry_quadratic(vx * vx + vy * vy, 2.0 * (dx * vx + dy * vy),
+                                     dx * dx + dy * dy - r * r, H, 0.0, -math.inf)
+    return _circle_time(x, y, vx, vy, ax, ay, cx, cy, r, H, 0.0, -math.inf)
+
+
+@njit_inline
 def boundary_time(pos, vel, st, e, i, ax, ay, H, p, geo, quadratic):
     """Earliest contact of ball i, moving with acceleration (ax, ay), with a
     cushion segment, a jaw tip or a pocket of ``geo`` (layout.Geometry)
     within H. Returns (time, kind, index). With ``quadratic`` the ball moves
-    in a straight line (step solver; pass ax = ay = 0)."""
+    in a straight line (step solver; pass ax = ay = 0).
+
+    Broad phase: the rails (and tips near no pocket) are tested first; a
+    pocket's jaws, tips and capture circle only if the box the path sweeps
+    until the earliest rail contact (or H) reaches the pocket's
+    neighbourhood (``geo.near``, table.pocket_groups)."""
     segs, norms, tips, pockets = geo.segs, geo.norms, geo.tips, geo.pockets
     best = math.inf
     kind = -1
@@ -129,55 +196,60 @@ def boundary_time(pos, vel, st, e, i, ax, ay, H, p, geo, quadratic):
     R = p[C.P_R]
     x, y = pos[e, i, 0], pos[e, i, 1]
     vx, vy = vel[e, i, 0], vel[e, i, 1]
-    # broad phase: the box swept by the ball's path until its next transition
+    # the box swept by the ball's path until its next transition
     bx0, bx1, by0, by1 = -math.inf, math.inf, -math.inf, math.inf
     if H < math.inf:  # (H is infinite only without sliding friction)
         bx0, bx1 = _extent(x, vx, ax, H)
         by0, by1 = _extent(y, vy, ay, H)
-    for s in range(segs.shape[0]):
-        if (_apart(bx0, bx1, min(segs[s, 0], segs[s, 2]), max(segs[s, 0], segs[s, 2]), R + BOX_SLACK)
-                or _apart(by0, by1, min(segs[s, 1], segs[s, 3]), max(segs[s, 1], segs[s, 3]), R + BOX_SLACK)):
+    rails = geo.rails
+    for q in range(rails.shape[0]):
+        s = rails[q]
+        if _segment_box_apart(segs, s, bx0, bx1, by0, by1, R + BOX_SLACK):
             continue
-        nx, ny = norms[s, 0], norms[s, 1]
-        c0 = (x - segs[s, 0]) * nx + (y - segs[s, 1]) * ny - R
-        c1 = vx * nx + vy * ny
-        c2 = 0.5 * (ax * nx + ay * ny)
-        if quadratic:
-            t = first_entry_quadratic(0.0, c1, c0, min(H, best), C.CONTACT_TOL, -R)
-        else:
-            t = first_entry(0.0, 0.0, c2, c1, c0, min(H, best), C.CONTACT_TOL, -R)
+        t = _segment_time(segs, norms, s, x, y, vx, vy, ax, ay, min(H, best), R, quadratic)
         if t < best:
-            # the contact point must lie on the segment (tips handle its ends)
-            qx = x + vx * t + 0.5 * ax * t * t - segs[s, 0]
-            qy = y + vy * t + 0.5 * ay * t * t - segs[s, 1]
-            ex, ey = segs[s, 2] - segs[s, 0], segs[s, 3] - segs[s, 1]
-            lam = (qx * ex + qy * ey) / (ex * ex + ey * ey)
-            if 0.0 <= lam <= 1.0:
-                best = t; kind = C.EV_CUSHION; idx = s
-    for v in range(tips.shape[0]):
+            best = t; kind = C.EV_CUSHION; idx = s
+    free_tips = geo.free_tips
+    for q in range(free_tips.shape[0]):
+        v = free_tips[q]
         if (_apart(bx0, bx1, tips[v, 0], tips[v, 0], R + BOX_SLACK)
                 or _apart(by0, by1, tips[v, 1], tips[v, 1], R + BOX_SLACK)):
             continue
-        if quadratic:
-            dx, dy = x - tips[v, 0], y - tips[v, 1]
-            c0 = dx * dx + dy * dy - R * R
-            t = first_entry_quadratic(vx * vx + vy * vy, 2.0 * (dx * vx + dy * vy), c0,
-                                      min(H, best), 2.0 * R * C.CONTACT_TOL, -math.inf)
-        else:
-            t = _circle_time(x, y, vx, vy, ax, ay, tips[v, 0], tips[v, 1], R, min(H, best),
-                             2.0 * R * C.CONTACT_TOL, -math.inf)
+        t = _tip_time(tips, v, x, y, vx, vy, ax, ay, min(H, best), R, quadratic)
         if t < best:
             best = t; kind = C.EV_JAW_TIP; idx = v
+    if pockets.shape[0] == 0:
+        return best, kind, idx
+    if best < H:  # nothing after the first rail contact matters
+        bx0, bx1 = _extent(x, vx, ax, best)
+        by0, by1 = _extent(y, vy, ay, best)
+    near, gsegs, gtips = geo.near, geo.gsegs, geo.gtips
+    gap = R + BOX_SLACK
     for k in range(pockets.shape[0]):
+        if _apart(bx0, bx1, near[k, 0], near[k, 1], gap) or _apart(by0, by1, near[k, 2], near[k, 3], gap):
+            continue
+        for q in range(gsegs.shape[1]):
+            s = gsegs[k, q]
+            if s < 0:
+                break
+            if _segment_box_apart(segs, s, bx0, bx1, by0, by1, gap):
+                continue
+            t = _segment_time(segs, norms, s, x, y, vx, vy, ax, ay, min(H, best), R, quadratic)
+            if t < best:
+                best = t; kind = C.EV_CUSHION; idx = s
+        for q in range(gtips.shape[1]):
+            v = gtips[k, q]
+            if v < 0:
+                break
+            if _apart(bx0, bx1, tips[v, 0], tips[v, 0], gap) or _apart(by0, by1, tips[v, 1], tips[v, 1], gap):
+                continue
+            t = _tip_time(tips, v, x, y, vx, vy, ax, ay, min(H, best), R, quadratic)
+            if t < best:
+                best = t; kind = C.EV_JAW_TIP; idx = v
         cx, cy, r = pockets[k, 0], pockets[k, 1], pockets[k, 2]
         if _apart(bx0, bx1, cx, cx, r + BOX_SLACK) or _apart(by0, by1, cy, cy, r + BOX_SLACK):
             continue
-        if quadratic:
-            dx, dy = x - cx, y - cy
-            t = first_entry_quadratic(vx * vx + vy * vy, 2.0 * (dx * vx + dy * vy),
-                                      dx * dx + dy * dy - r * r, min(H, best), 0.0, -math.inf)
-        else:
-            t = _circle_time(x, y, vx, vy, ax, ay, cx, cy, r, min(H, best), 0.0, -math.inf)
+        t = _pocket_time(pockets, k, x, y, vx, vy, ax, ay, min(H, best), quadratic)
         if t < best:
             best = t; kind = C.EV_POCKET; idx = k
     return best, kind, idx

@@ -3,6 +3,14 @@ scheme of pooltool): jump to the earliest of all ball-ball, ball-cushion,
 ball-pocket and motion-transition times; after an event only the times of the
 balls it changed are recomputed.
 
+Evolution is lazy: a ball's state in ``Balls`` refers to the time of its last
+event (``EventScratch.tlast``); an event first brings the balls it involves
+to the event time, pair checks shift the other ball's quadratic path to now
+(``detection.pair_time``), and every ball is brought to the final time at the
+end. An event costs work in proportion to the balls it touches, not to all
+balls. (With diagnostics on, every ball is brought to every event's time:
+they check the whole table.)
+
 ``make_run`` returns the kernel's Python function for one effect set and
 impact functions (``impacts.make_impacts``); ``kernels`` compiles it,
 parallel over tables (prange).
@@ -14,11 +22,20 @@ import numpy as np
 
 from . import constants as C
 from . import diagnostics, event_log
-from ._jit import njit, variant_njit
+from ._jit import njit, njit_inline, variant_njit
 from .detection import boundary_time, pair_time, sweep_path
 from .layout import impact_scratch
 from .motion import acceleration, apply_transition, classify, evolve, transition_time
 from .vec import norm
+
+
+# Most tables a worker thread simulates with one scratch (prange over
+# chunks): enough to amortise the scratch's allocation, few enough to keep
+# the threads balanced (``run`` uses smaller chunks for small batches).
+TABLES_PER_CHUNK = 8
+# Smaller chunks for small batches: at least this many, 4 per thread on a
+# 4-core machine, so a batch of a few dozen tables still spreads over them.
+MIN_CHUNKS = 16
 
 
 @njit
@@ -29,7 +46,7 @@ def refresh(balls, scr, geo, e, i, t, p):
     that event refreshes the ball again, so pair checks read them instead
     of recomputing them for the other ball of every pair."""
     pos, vel, om, st = balls.pos, balls.vel, balls.om, balls.st
-    tt, tb, tpair, paths = scr.tt, scr.tb, scr.tpair, scr.paths
+    tt, tb, tpair, paths, tlast = scr.tt, scr.tb, scr.tpair, scr.paths, scr.tlast
     B = pos.shape[1]
     if st[e, i] == C.POCKETED:
         tt[e, i] = math.inf; tb[e, i] = math.inf
@@ -50,15 +67,21 @@ def refresh(balls, scr, geo, e, i, t, p):
         if j == i:
             continue
         hj = min(next_i, tt[e, j], tb[e, j]) - t
-        tij = t + pair_time(pos, vel, st, paths, e, i, j, hj, p)
+        tij = t + pair_time(pos, vel, st, paths, e, i, j, hj, p, t - tlast[e, j])
         tpair[e, i, j] = tij; tpair[e, j, i] = tij
+
+
+# The event loop's copy, inlined at its one call site: a call passes the
+# named structures (~200 machine words), more than a pair check costs.
+refresh_inline = njit_inline(getattr(refresh, "py_func", refresh))  # (plain function under NUMBA_DISABLE_JIT)
 
 
 @njit
 def break_collapse(balls, scr, geo, e, t, p, stuck, rounds, spin_on):
     """Stop the translation and rolling of the slow balls of an inelastic
     collapse (constants.ZENO_EVENTS; the speed limit doubles with each
-    earlier round at this instant) and recompute their events."""
+    earlier round at this instant) and recompute their events. The stuck
+    balls' states are at time t (``catch_up``)."""
     vel, om, st = balls.vel, balls.om, balls.st
     R = p[C.P_R]
     limit = C.ZENO_FREEZE_SPEED * 2.0 ** rounds
@@ -75,7 +98,14 @@ def break_collapse(balls, scr, geo, e, t, p, stuck, rounds, spin_on):
             refresh(balls, scr, geo, e, i, t, p)
 
 
-@njit
+@njit_inline
+def catch_up(balls, tlast, e, i, t, p, zspin_on, spin_on):
+    """Bring ball i's state from its last event to time t."""
+    evolve(balls.pos, balls.vel, balls.om, balls.st, e, i, t - tlast[e, i], p, zspin_on, spin_on)
+    tlast[e, i] = t
+
+
+@njit_inline
 def next_event(scr, e, B):
     """Earliest event of table e: (time, kind, a, b); kind -2 is a motion
     transition of ball a. Ties go to the first found (pairs, then
@@ -102,20 +132,20 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
     resolve_impact_set = impacts.resolve_impact_set
 
     @variant_njit(__name__, spin_on, zspin_on, diag_on, *impacts.choices)
-    def table(balls, geo, p, scr, out, log, max_events, e, imp, stuck):
+    def table(balls, geo, p, scr, out, log, max_events, e, imp, stuck, todo):
         """Simulate table e to rest (imp: its impact scratch, stuck: a
-        flag per ball)."""
-        pos, vel, om, st, tpair = balls.pos, balls.vel, balls.om, balls.st, scr.tpair  # once, not per event
+        flag per ball, todo: room for an index per ball)."""
+        pos, vel, om, st, tpair, tlast = balls.pos, balls.vel, balls.om, balls.st, scr.tpair, scr.tlast
         B = pos.shape[1]
         prepare(balls, e, p)
         t = 0.0
         event_log.record_start(log, balls, e)
         for i in range(B):
+            tlast[e, i] = 0.0
             tpair[e, i, i] = math.inf
-            refresh(balls, scr, geo, e, i, 0.0, p)
+            todo[i] = i
+        n_todo = B  # balls whose events to recompute: at first every ball
         en_prev = 0.0
-        if diag_on:
-            en_prev = diagnostics.start(balls, geo, e, p, out.diag)
         out.first[e] = -1
         nev = 0
         sim_i, sim_j = imp.i, imp.j
@@ -123,6 +153,24 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
         n_stuck = 0  # events since time last advanced
         rounds = 0  # collapse rounds at the current instant
         while True:
+            # the balls the last event changed (one call site: inlined)
+            for q in range(n_todo):
+                refresh_inline(balls, scr, geo, e, todo[q], t, p)
+            n_todo = 0
+            if nev == 0:
+                if diag_on:
+                    en_prev = diagnostics.start(balls, geo, e, p, out.diag)
+            else:
+                if n_stuck > C.ZENO_EVENTS:
+                    for i in range(B):
+                        if stuck[i]:
+                            catch_up(balls, tlast, e, i, t, p, zspin_on, spin_on)
+                    break_collapse(balls, scr, geo, e, t, p, stuck, rounds, spin_on)
+                    n_stuck = 0
+                    rounds += 1
+                if diag_on:
+                    diagnostics.check_geometry(balls, geo, e, p, out.diag)
+                    en_prev = diagnostics.energy_step(balls, e, p, out.diag, en_prev)
             tmin, kind, a, b = next_event(scr, e, B)
             if tmin == math.inf:
                 break
@@ -137,9 +185,10 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
                 rounds = 0
                 stuck[:] = False
             n_stuck += 1
-            for i in range(B):
-                evolve(pos, vel, om, st, e, i, dt, p, zspin_on, spin_on)
             t = tmin
+            if diag_on:
+                for i in range(B):
+                    catch_up(balls, tlast, e, i, t, p, zspin_on, spin_on)
             nev += 1
             if kind == C.EV_BALL_BALL:
                 # gather simultaneous impacts
@@ -148,12 +197,17 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
                     for j in range(i + 1, B):
                         if tpair[e, i, j] <= tmin + C.SIMULTANEOUS_TIME and ns < C.MAX_SIMULTANEOUS:
                             sim_i[ns] = i; sim_j[ns] = j; ns += 1
+                for s in range(ns):
+                    catch_up(balls, tlast, e, sim_i[s], t, p, zspin_on, spin_on)
+                    catch_up(balls, tlast, e, sim_j[s], t, p, zspin_on, spin_on)
                 nb = resolve_impact_set(balls, e, t, imp, ns, p, out, log)
                 involved = imp.balls
                 for q in range(nb):
                     stuck[involved[q]] = True
-                    refresh(balls, scr, geo, e, involved[q], t, p)
+                    todo[q] = involved[q]
+                n_todo = nb
             else:
+                catch_up(balls, tlast, e, a, t, p, zspin_on, spin_on)
                 if kind == -2:
                     kind = apply_transition(vel, om, st, e, a, p)
                     b = -1
@@ -162,20 +216,25 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
                 if log.on:
                     event_log.record(log, balls, e, t, kind, a, b)
                 stuck[a] = True
-                refresh(balls, scr, geo, e, a, t, p)
-            if n_stuck > C.ZENO_EVENTS:
-                break_collapse(balls, scr, geo, e, t, p, stuck, rounds, spin_on)
-                n_stuck = 0
-                rounds += 1
-            if diag_on:
-                diagnostics.check_geometry(balls, geo, e, p, out.diag)
-                en_prev = diagnostics.energy_step(balls, e, p, out.diag, en_prev)
+                todo[0] = a
+                n_todo = 1
+        for i in range(B):
+            catch_up(balls, tlast, e, i, t, p, zspin_on, spin_on)
         out.time[e] = t
         out.nev[e] = nev
 
     def run(balls, geo, p, scr, out, log, max_events):
-        for e in numba.prange(balls.pos.shape[0]):
-            table(balls, geo, p, scr, out, log, max_events, e, impact_scratch(),
-                  np.zeros(balls.pos.shape[1], dtype=np.bool_))
+        # Tables in chunks of up to TABLES_PER_CHUNK (and at least
+        # MIN_CHUNKS chunks), each chunk with one scratch: an allocation per
+        # table cost a two-ball shot ~5% of its time. (The thread count is
+        # not read here: a kernel that reads it cannot be cached on disk.)
+        E = balls.pos.shape[0]
+        per = max(1, min(TABLES_PER_CHUNK, E // MIN_CHUNKS))
+        for c in numba.prange((E + per - 1) // per):
+            imp = impact_scratch()
+            stuck = np.zeros(balls.pos.shape[1], dtype=np.bool_)
+            todo = np.empty(balls.pos.shape[1], dtype=np.int64)
+            for e in range(c * per, min(E, (c + 1) * per)):
+                table(balls, geo, p, scr, out, log, max_events, e, imp, stuck, todo)
 
     return run

@@ -16,13 +16,16 @@ from ._jit import njit_alloc
 Balls = namedtuple("Balls", "pos vel om st pocket")
 # segs [S, 4] cushion segments (x0, y0, x1, y1), norms [S, 2] their unit
 # normals into the table, tips [T, 2] jaw tips, pockets [K, 3] (x, y, r);
-# width, length of the bed (m)
-Geometry = namedtuple("Geometry", "segs norms tips pockets width length")
+# width, length of the bed (m); the broad phase's split of them
+# (table.PocketGroups): rails, free_tips, near, gsegs, gtips
+Geometry = namedtuple("Geometry", "segs norms tips pockets width length rails free_tips near gsegs gtips")
 # Event solver scratch: per ball the absolute time of its next transition
 # (tt) and boundary event (tb, of kind bkind with boundary index bidx), per
 # pair the contact time (tpair [E, B, B]), per ball its acceleration and swept
-# box (paths [E, B, 6], detection.sweep_path)
-EventScratch = namedtuple("EventScratch", "tt tb bkind bidx tpair paths")
+# box (paths [E, B, 6], detection.sweep_path), and the time its state in
+# ``Balls`` refers to (tlast [E, B]: balls are evolved lazily, only when an
+# event involves them)
+EventScratch = namedtuple("EventScratch", "tt tb bkind bidx tpair paths tlast")
 # Per table: simulated time, events, first ball the cue ball touched (-1),
 # cushion hits per ball [E, B] (all, and those after the cue ball's first
 # contact), truncated flag, diagnostics [E, 4] (simulate.SimResult.diagnostics)

@@ -102,7 +102,11 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
                          f"{s.pos.shape}, {s.vel.shape}, {s.omega.shape} and {s.pocket.shape}")
     E, B = s.pos.shape[:2]
     segs, norms, tips, pockets = (np.ascontiguousarray(a, dtype=np.float64) for a in table.geometry(effects.pockets))
-    geo = Geometry(segs, norms, tips, pockets, float(table.width), float(table.length))
+    g = table.groups(effects.pockets)
+    as_int = lambda a: np.ascontiguousarray(a, dtype=np.int64)  # noqa: E731  (the kernels' one signature)
+    geo = Geometry(segs, norms, tips, pockets, float(table.width), float(table.length), as_int(g.rails),
+                   as_int(g.free_tips), np.ascontiguousarray(g.near, dtype=np.float64), as_int(g.gsegs),
+                   as_int(g.gtips))
     balls = Balls(s.pos, s.vel, s.omega, np.zeros((E, B), dtype=np.int64), s.pocket)
     p = params.as_array()
     kernel = make_kernel(solver, effects, models, diagnostics)
@@ -123,7 +127,7 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
         if solver == "event":
             scr = EventScratch(tt=np.zeros((E, B)), tb=np.zeros((E, B)), bkind=np.zeros((E, B), dtype=np.int64),
                                bidx=np.zeros((E, B), dtype=np.int64), tpair=np.zeros((E, B, B)),
-                               paths=np.zeros((E, B, 6)))
+                               paths=np.zeros((E, B, 6)), tlast=np.zeros((E, B)))
             call(kernel, balls, geo, p, scr, out, log, int(max_events))
         else:
             call(kernel, balls, geo, p, out, log, int(max_events), float(dt), int(C.MAX_STEPS))

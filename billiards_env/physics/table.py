@@ -23,6 +23,60 @@ SIDE_JAW_ANGLE = 104.0
 CORNER_JAW_LENGTH = 0.05  # m
 SIDE_JAW_LENGTH = 0.04
 CAPTURE_DEPTH = 0.004  # m a ball centre must pass the mouth line to drop
+# A jaw segment or tip belongs to a pocket's neighbourhood if it lies within
+# this of the pocket's centre (m): a pool pocket's jaws reach ~0.11 m from
+# it, and every rail between two pockets is longer than twice this, so rails
+# stay outside every neighbourhood.
+POCKET_GROUP_RADIUS = 0.2
+
+
+@dataclasses.dataclass(frozen=True)
+class PocketGroups:
+    """The boundary elements split for the event solver's broad phase.
+
+    ``rails [N]`` segments tested for every moving ball; ``free_tips [M]``
+    tips near no pocket (also always tested); per pocket k, ``near [K, 4]``
+    the box (x_lo, x_hi, y_lo, y_hi) holding its capture circle and the jaw
+    segments ``gsegs [K, G]`` and tips ``gtips [K, G]`` of its neighbourhood
+    (index lists padded with -1): they are tested only for a path whose box
+    reaches that neighbourhood.
+    """
+
+    rails: np.ndarray
+    free_tips: np.ndarray
+    near: np.ndarray
+    gsegs: np.ndarray
+    gtips: np.ndarray
+
+
+def pocket_groups(segs: np.ndarray, tips: np.ndarray, pockets: np.ndarray) -> PocketGroups:
+    """Assign every jaw segment (both ends within POCKET_GROUP_RADIUS of one
+    pocket centre) and tip to its nearest pocket; the rest are always tested."""
+    K = len(pockets)
+    seg_group = np.full(len(segs), -1)
+    tip_group = np.full(len(tips), -1)
+    for s, (x0, y0, x1, y1) in enumerate(segs):
+        for k, (cx, cy, _) in enumerate(pockets):
+            if max(math.hypot(x0 - cx, y0 - cy), math.hypot(x1 - cx, y1 - cy)) < POCKET_GROUP_RADIUS:
+                seg_group[s] = k
+    for v, (x, y) in enumerate(tips):
+        d = [math.hypot(x - cx, y - cy) for cx, cy, _ in pockets]
+        if K and min(d) < POCKET_GROUP_RADIUS:
+            tip_group[v] = int(np.argmin(d))
+    G = max([1] + [int(np.sum(seg_group == k)) for k in range(K)] + [int(np.sum(tip_group == k)) for k in range(K)])
+    near = np.zeros((K, 4))
+    gsegs = np.full((K, G), -1, dtype=np.int64)
+    gtips = np.full((K, G), -1, dtype=np.int64)
+    for k, (cx, cy, r) in enumerate(pockets):
+        xs = [cx - r, cx + r] + list(segs[seg_group == k][:, [0, 2]].ravel()) + list(tips[tip_group == k][:, 0])
+        ys = [cy - r, cy + r] + list(segs[seg_group == k][:, [1, 3]].ravel()) + list(tips[tip_group == k][:, 1])
+        near[k] = (min(xs), max(xs), min(ys), max(ys))
+        members = np.flatnonzero(seg_group == k)
+        gsegs[k, :len(members)] = members
+        members = np.flatnonzero(tip_group == k)
+        gtips[k, :len(members)] = members
+    return PocketGroups(np.flatnonzero(seg_group < 0).astype(np.int64), np.flatnonzero(tip_group < 0).astype(np.int64),
+                        near, gsegs, gtips)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -61,6 +115,15 @@ class Table:
         if pockets and self.has_pockets:
             return self.segments, self.normals, self.tips, self.pockets
         return self.box_segments, self.box_normals, np.zeros((0, 2)), np.zeros((0, 3))
+
+    def groups(self, pockets: bool) -> PocketGroups:
+        """``pocket_groups`` of ``geometry(pockets)``, computed once per table."""
+        cache = self.__dict__.setdefault("_groups", {})
+        if pockets not in cache:
+            segs, _, tips, pk = self.geometry(pockets)
+            cache[pockets] = pocket_groups(np.asarray(segs, dtype=np.float64), np.asarray(tips, dtype=np.float64),
+                                           np.asarray(pk, dtype=np.float64))
+        return cache[pockets]
 
     @classmethod
     def pocketless(cls, width: float = 1.27, length: float = 2.54) -> "Table":
