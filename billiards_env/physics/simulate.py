@@ -56,6 +56,21 @@ class SimResult:
         return self.state.pocket >= 0
 
 
+def kernel_geometry(table: Table, pockets: bool) -> Geometry:
+    """The kernels' ``Geometry`` of ``table`` with or without its pockets,
+    built once per table (cached on it, as ``Table.groups`` is), its arrays
+    in the one dtype of the kernels' signature (``kernels.call``)."""
+    cache = table.__dict__.setdefault("_kernel_geometry", {})
+    if pockets not in cache:
+        f64 = lambda a: np.ascontiguousarray(a, dtype=np.float64)  # noqa: E731
+        i64 = lambda a: np.ascontiguousarray(a, dtype=np.int64)  # noqa: E731
+        segs, norms, tips, pk = table.geometry(pockets)
+        g = table.groups(pockets)
+        cache[pockets] = Geometry(f64(segs), f64(norms), f64(tips), f64(pk), float(table.width), float(table.length),
+                                  i64(g.rails), i64(g.free_tips), f64(g.near), i64(g.gsegs), i64(g.gtips))
+    return cache[pockets]
+
+
 def simulate(state: BallState, table: Table, params: PhysicsParams | None = None, solver: str = "event",
              dt: float | None = None, record: bool = False, effects: Effects | None = None,
              max_events: int = C.MAX_EVENTS, diagnostics: bool = False, validate: bool = True,
@@ -101,12 +116,7 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
         raise ValueError("state arrays must be pos and vel [E, B, 2], omega [E, B, 3] and pocket [E, B], got "
                          f"{s.pos.shape}, {s.vel.shape}, {s.omega.shape} and {s.pocket.shape}")
     E, B = s.pos.shape[:2]
-    segs, norms, tips, pockets = (np.ascontiguousarray(a, dtype=np.float64) for a in table.geometry(effects.pockets))
-    g = table.groups(effects.pockets)
-    as_int = lambda a: np.ascontiguousarray(a, dtype=np.int64)  # noqa: E731  (the kernels' one signature)
-    geo = Geometry(segs, norms, tips, pockets, float(table.width), float(table.length), as_int(g.rails),
-                   as_int(g.free_tips), np.ascontiguousarray(g.near, dtype=np.float64), as_int(g.gsegs),
-                   as_int(g.gtips))
+    geo = kernel_geometry(table, effects.pockets)
     balls = Balls(s.pos, s.vel, s.omega, np.zeros((E, B), dtype=np.int64), s.pocket)
     p = params.as_array()
     kernel = make_kernel(solver, effects, models, diagnostics)
