@@ -27,6 +27,13 @@ from .config import TaskConfig
 from .core import BilliardsCore, ShotContext
 from .tasks.registry import TASKS, get_task
 
+# The per-table info of a step (BilliardsCore.step) and its dtypes; tables
+# that were not shot report -1 (no ball) for _NO_BALL_INFO, else zeros.
+_INFO_DTYPES = {"pocketed": bool, "n_pocketed": np.int64, "first_contact": np.int64, "legal_target": np.int64,
+                "foul": bool, "scratch": bool, "success": bool, "n_events": np.int64, "sim_time": np.float64,
+                "sim_truncated": bool, "action_clipped": bool, "shot": np.int64}
+_NO_BALL_INFO = ("first_contact", "legal_target")
+
 _COMMON_DOC = """
     **Observation** (``Box(0, 1, (4*B + 1,), float32)``, B = n_balls + 1 balls,
     ball 0 the cue ball, then object balls 1..n_balls; balls are never reordered):
@@ -304,6 +311,7 @@ class BilliardsVectorEnv(VectorEnv):
         self.action_space = batch_space(self.single_action_space, self.num_envs)
         self._seeded = False
         self._autoreset_envs = np.zeros(self.num_envs, dtype=bool)
+        self._idle_info: dict | None = None  # step's info of tables not shot (built on first use)
 
     table = property(lambda self: self._core.table)
     params = property(lambda self: self._core.params)
@@ -384,31 +392,27 @@ class BilliardsVectorEnv(VectorEnv):
                                "reset them with reset(options={'reset_mask': mask}) (autoreset_mode='disabled')")
         act = np.nonzero(~done_prev)[0]
         rst = np.nonzero(done_prev)[0] if mode == AutoresetMode.NEXT_STEP else np.zeros(0, dtype=np.int64)
-        reward = np.zeros(N)
-        terminated = np.zeros(N, dtype=bool)
-        truncated = np.zeros(N, dtype=bool)
-        info: dict[str, Any] = {
-            "pocketed": np.zeros((N, B), dtype=bool), "n_pocketed": np.zeros(N, dtype=np.int64),
-            "first_contact": np.full(N, -1, dtype=np.int64), "legal_target": np.full(N, -1, dtype=np.int64),
-            "foul": np.zeros(N, dtype=bool), "scratch": np.zeros(N, dtype=bool), "success": np.zeros(N, dtype=bool),
-            "n_events": np.zeros(N, dtype=np.int64), "sim_time": np.zeros(N), "sim_truncated": np.zeros(N, dtype=bool),
-            "action_clipped": np.zeros(N, dtype=bool), "shot": np.zeros(N, dtype=np.int64),
-        }
-        terms = {k: np.zeros(N) for k in self._core.task.reward_names}
         if len(act) == N:  # every table shot: the core's arrays are already complete
             out = self._core.step(a, act)
             reward, terminated, truncated = out["reward"], out["terminated"], out["truncated"]
-            info = {k: np.asarray(v, dtype=info[k].dtype) for k, v in out["info"].items()}
+            info = {k: np.asarray(v, dtype=_INFO_DTYPES[k]) for k, v in out["info"].items()}
             terms = out["terms"]
-        elif len(act):
-            out = self._core.step(a[act], act)
-            reward[act] = out["reward"]
-            terminated[act] = out["terminated"]
-            truncated[act] = out["truncated"]
-            for k, v in out["info"].items():
-                info[k][act] = v
-            for k, v in out["terms"].items():
-                terms[k][act] = v
+        else:  # some or no tables shot: the others report zeros
+            reward, terminated, truncated = np.zeros(N), np.zeros(N, dtype=bool), np.zeros(N, dtype=bool)
+            if self._idle_info is None:  # built once: copies are cheaper than np.full
+                self._idle_info = {k: np.full((N, B) if k == "pocketed" else N, -1 if k in _NO_BALL_INFO else 0,
+                                              dtype=dt) for k, dt in _INFO_DTYPES.items()}
+            info = {k: v.copy() for k, v in self._idle_info.items()}
+            terms = {k: np.zeros(N) for k in self._core.task.reward_names}
+            if len(act):
+                out = self._core.step(a[act], act)
+                reward[act] = out["reward"]
+                terminated[act] = out["terminated"]
+                truncated[act] = out["truncated"]
+                for k, v in out["info"].items():
+                    info[k][act] = v
+                for k, v in out["terms"].items():
+                    terms[k][act] = v
         if len(rst):
             self._core.reset_tables(rst)
         info["reward_terms"] = terms

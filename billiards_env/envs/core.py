@@ -1,7 +1,7 @@
 """Batched, task-agnostic env logic shared by the single-table and vector environments.
 
 ``BilliardsCore`` holds ``n_envs`` tables and steps any subset of them with
-one batched ``strike_velocity`` + ``simulate`` call. It knows no task: the
+one batched ``apply_strike`` + ``simulate`` call. It knows no task: the
 ``Task`` of its config (``envs/tasks/``) supplies the start states, the legal
 target, the rulings and the reward terms. Randomness (placement, break shot,
 shot noise) is drawn from per-table counter-based streams
@@ -24,8 +24,8 @@ import math
 import numba
 import numpy as np
 
-from ..physics import BallState, simulate, strike_velocity
-from ..physics.strike import Shots, draw_to_speed, speed_to_draw
+from ..physics import BallState, simulate
+from ..physics.strike import Shots, apply_strike, draw_to_speed, speed_to_draw
 from .config import TaskConfig
 from .streams import TableStreams, place_balls
 from .tasks.base import ShotOutcome
@@ -185,7 +185,7 @@ class BilliardsCore:
         out = np.empty((4, len(actions)))
         _action_to_shot(actions, self.shot_context().aim_origin[idx], self.cfg.min_draw, self.params.max_draw,
                         self.params.miscue_limit, out)
-        return Shots(out[0], draw_to_speed(out[1], self.params), out[2], out[3])
+        return Shots.of_arrays(out[0], draw_to_speed(out[1], self.params), out[2], out[3])
 
     def shots_to_actions(self, shots: Shots, idx) -> np.ndarray:
         """``Shots`` of tables ``idx`` -> actions [n, 4] (float64, clipped to
@@ -216,7 +216,7 @@ class BilliardsCore:
         a = shots.a + z[:, 2] * nz.side_mm * 1e-3 / R
         b = shots.b + z[:, 3] * nz.height_mm * 1e-3 / R
         _clip_offsets(a, b, self.params.miscue_limit)  # a, b are new arrays here
-        return Shots(phi, speed, a, b)
+        return Shots.of_arrays(phi, speed, a, b)
 
     # --- simulation -------------------------------------------------------
     def simulate(self, state: BallState):
@@ -306,8 +306,11 @@ class BilliardsCore:
         ctx = self.shot_context()
         tgt, phi0 = ctx.target[sel], ctx.potential[sel]
         shots = self.apply_noise(self.actions_to_shots(actions, sel), idx)
-        res = self.simulate(strike_velocity(start, *shots, p))
-        end = self.at_rest(res.state)
+        struck = start.copy()
+        apply_strike(struck, *shots, p.R)  # actions were checked at the env's boundary
+        res = self.simulate(struck)
+        rest = res.state  # simulate's own arrays: no copy needed
+        end = BallState(rest.pos, np.zeros_like(rest.vel), np.zeros_like(rest.omega), rest.pocket)
 
         shot = ShotOutcome(pocketed=(end.pocket >= 0) & (start.pocket < 0), pocket_after=end.pocket,
                            first_contact=res.first_contact, target=tgt)

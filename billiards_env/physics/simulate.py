@@ -132,7 +132,8 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
     # Waking worker threads costs more than a small batch takes: use no more
     # threads than tables (results do not depend on the thread count).
     threads = numba.get_num_threads()
-    numba.set_num_threads(max(1, min(threads, E)))
+    if threads > E:
+        numba.set_num_threads(E)
     try:
         if solver == "event":
             scr = EventScratch(tt=np.zeros((E, B)), tb=np.zeros((E, B)), bkind=np.zeros((E, B), dtype=np.int64),
@@ -142,7 +143,8 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
         else:
             call(kernel, balls, geo, p, out, log, int(max_events), float(dt), int(C.MAX_STEPS))
     finally:
-        numba.set_num_threads(threads)
+        if threads > E:
+            numba.set_num_threads(threads)
 
     events = None
     if record:

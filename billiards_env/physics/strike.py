@@ -44,6 +44,16 @@ class Shots:
     def __iter__(self):
         return iter((self.phi, self.speed, self.a, self.b))
 
+    @classmethod
+    def of_arrays(cls, phi: np.ndarray, speed: np.ndarray, a: np.ndarray, b: np.ndarray) -> "Shots":
+        """Shots over float64 arrays [N] of one length that the caller hands
+        over (not copied, not checked): for code that built them itself,
+        such as the envs' action mapping."""
+        shots = object.__new__(cls)
+        for f, v in zip(("phi", "speed", "a", "b"), (phi, speed, a, b)):
+            object.__setattr__(shots, f, v)
+        return shots
+
     def take(self, idx) -> "Shots":
         """The shots at ``idx`` (an index array or mask)."""
         return Shots(self.phi[idx], self.speed[idx], self.a[idx], self.b[idx])
@@ -86,12 +96,21 @@ def strike_velocity(state: BallState, phi, speed, a=0.0, b=0.0, params: PhysicsP
     if np.any(speed < 0):
         raise ValueError("speed must be >= 0")
     check_finite(state)
-    dx, dy = np.cos(phi), np.sin(phi)
     out = state.copy()
-    out.vel[:, 0, 0] = speed * dx
-    out.vel[:, 0, 1] = speed * dy
-    k = 2.5 * speed / params.R
-    out.omega[:, 0, 0] = k * b * (-dy)
-    out.omega[:, 0, 1] = k * b * dx
-    out.omega[:, 0, 2] = k * a
+    apply_strike(out, phi, speed, a, b, params.R)
     return out
+
+
+def apply_strike(state: BallState, phi: np.ndarray, speed: np.ndarray, a: np.ndarray, b: np.ndarray,
+                 R: float) -> None:
+    """Set the cue ball's velocity and spin in ``state`` (modified in place)
+    from checked float64 arrays [E] (the formulas of the module docstring):
+    ``strike_velocity`` after its checks, and the envs, whose shots come from
+    actions they checked once at their boundary."""
+    dx, dy = np.cos(phi), np.sin(phi)
+    state.vel[:, 0, 0] = speed * dx
+    state.vel[:, 0, 1] = speed * dy
+    k = 2.5 * speed / R
+    state.omega[:, 0, 0] = k * b * (-dy)
+    state.omega[:, 0, 1] = k * b * dx
+    state.omega[:, 0, 2] = k * a
