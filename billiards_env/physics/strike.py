@@ -65,11 +65,7 @@ def strike(state: BallState, phi, draw, a=0.0, b=0.0, params: PhysicsParams | No
     ``a``/``b`` side/height offsets in units of R. Each is a scalar or an
     array of shape [E]. The input state is not modified."""
     params = params or PhysicsParams.standard()
-    E = state.n_envs
-    phi = as_batch_vector(phi, E, "phi")
-    draw = as_batch_vector(draw, E, "draw")
-    a = as_batch_vector(a, E, "a")
-    b = as_batch_vector(b, E, "b")
+    phi, draw, a, b = _shot_arrays(state, phi, draw, a, b, "draw")
     if np.any(draw < 0):
         raise ValueError(f"draw must be >= 0 (a distance), got min {draw.min()}")
     if np.any(draw > params.max_draw * (1 + 1e-12)):
@@ -81,20 +77,27 @@ def strike(state: BallState, phi, draw, a=0.0, b=0.0, params: PhysicsParams | No
                          f"miscue limit {params.miscue_limit} R")
     if np.any(state.pocket[:, 0] >= 0):
         raise ValueError("the cue ball is pocketed in some environment; place it on the table before striking")
-    return strike_velocity(state, phi, draw_to_speed(draw, params), a, b, params)
+    return _struck(state, phi, draw_to_speed(draw, params), a, b, params)
 
 
 def strike_velocity(state: BallState, phi, speed, a=0.0, b=0.0, params: PhysicsParams | None = None) -> BallState:
     """As ``strike`` but with the cue-ball speed (m/s) given directly
     (``strike_velocity(state, *shots, params=params)`` strikes ``Shots``)."""
     params = params or PhysicsParams.standard()
-    E = state.n_envs
-    phi = as_batch_vector(phi, E, "phi")
-    speed = as_batch_vector(speed, E, "speed")
-    a = as_batch_vector(a, E, "a")
-    b = as_batch_vector(b, E, "b")
+    phi, speed, a, b = _shot_arrays(state, phi, speed, a, b, "speed")
     if np.any(speed < 0):
         raise ValueError("speed must be >= 0")
+    return _struck(state, phi, speed, a, b, params)
+
+
+def _shot_arrays(state: BallState, phi, x, a, b, x_name: str) -> tuple:
+    """The four shot arguments as checked float64 arrays [E] (``x`` the draw or the speed)."""
+    E = state.n_envs
+    return (as_batch_vector(phi, E, "phi"), as_batch_vector(x, E, x_name), as_batch_vector(a, E, "a"),
+            as_batch_vector(b, E, "b"))
+
+
+def _struck(state: BallState, phi, speed, a, b, params: PhysicsParams) -> BallState:
     check_finite(state)
     out = state.copy()
     apply_strike(out, phi, speed, a, b, params.R)
