@@ -115,10 +115,9 @@ def plot_curves(rows: list[dict], out) -> None:
     the rows' curve paths are relative to)."""
     import csv
 
-    import matplotlib
+    from .plotting import pyplot, save_figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     tasks = list(dict.fromkeys(r["env_id"] for r in rows))
     fig, axes = plt.subplots(1, len(tasks), figsize=(4.5 * len(tasks), 3.6), squeeze=False)
@@ -135,7 +134,4 @@ def plot_curves(rows: list[dict], out) -> None:
         ax.set_ylabel("held-seed success (no noise)")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-    fig.tight_layout()
-    Path(out).parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
+    save_figure(fig, out)

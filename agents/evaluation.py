@@ -272,10 +272,9 @@ def save_results(results: list[EvalResult], json_path, png_path=None, title: str
 
 
 def bar_chart(results: list[EvalResult], png_path, title: str = "") -> None:
-    import matplotlib
+    from .plotting import pyplot, save_figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     noises = sorted({r.noise for r in results}, key=lambda s: (s != "none", s))
     policies = list(dict.fromkeys(r.policy for r in results))
@@ -301,7 +300,4 @@ def bar_chart(results: list[EvalResult], png_path, title: str = "") -> None:
     env_ids = sorted({r.env_id for r in results})
     ax.set_title(title or f"{', '.join(env_ids)}: {results[0].n_episodes} seeded episodes")
     ax.legend(loc="lower right", fontsize=8)
-    fig.tight_layout()
-    Path(png_path).parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(png_path, dpi=120)
-    plt.close(fig)
+    save_figure(fig, png_path)

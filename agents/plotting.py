@@ -26,11 +26,29 @@ def smooth(d: dict, min_episodes: int = 2048) -> dict:
     return out
 
 
-def plot_runs(run_dirs, out, labels=None) -> None:
+def pyplot():
+    """matplotlib's pyplot on the file-only Agg backend, imported on first
+    use (plotting is optional: nothing imports matplotlib at module level)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
+    return plt
+
+
+def save_figure(fig, path) -> None:
+    """Lay ``fig`` out, write it to ``path`` (creating the folder) and close it."""
+    import matplotlib.pyplot as plt
+
+    fig.tight_layout()
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def plot_runs(run_dirs, out, labels=None) -> None:
+    plt = pyplot()
 
     fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
     for k, rd in enumerate(run_dirs):
@@ -47,7 +65,4 @@ def plot_runs(run_dirs, out, labels=None) -> None:
         ax.set_xlabel("env steps")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
-    fig.tight_layout()
-    Path(out).parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
+    save_figure(fig, out)

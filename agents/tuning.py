@@ -170,17 +170,14 @@ def write_summary(study, run_dir: Path, storage: str, resumed_with: int = 0) -> 
 
 
 def plot_importance(imp: dict, out, title: str) -> None:
-    import matplotlib
+    from .plotting import pyplot, save_figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     names = list(imp)[::-1]
     fig, ax = plt.subplots(figsize=(6, 0.4 * len(names) + 1.2))
     ax.barh(names, [imp[n] for n in names])
     ax.set_xlabel("importance (Optuna's default evaluator)")
     ax.set_title(title)
-    fig.tight_layout()
-    fig.savefig(out, dpi=120)
-    plt.close(fig)
+    save_figure(fig, out)
 
