@@ -18,13 +18,13 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
-from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
 from ..physics.strike import Shots
 from .config import TaskConfig
 from .core import BilliardsCore, ShotContext
+from .streams import seed_vector_env
 from .tasks.registry import TASKS, get_task
 
 # The per-table info of a step (BilliardsCore.step) and its dtypes; tables
@@ -353,20 +353,7 @@ class BilliardsVectorEnv(VectorEnv):
 
     def reset(self, *, seed=None, options: dict | None = None):
         N = self.num_envs
-        if seed is not None:
-            seeds = list(seed) if isinstance(seed, (list, tuple, np.ndarray)) else [int(seed) + k for k in range(N)]
-            if len(seeds) != N:
-                raise ValueError(f"seed must be an int or a list of {N} ints, got {len(seeds)}")
-            seeds = [int(s) for s in seeds]
-            for s in seeds:
-                if s < 0:
-                    raise gym.error.Error(f"Seed must be greater or equal to zero, actual value: {s}")
-            self._np_random, self._np_random_seed = seeding.np_random(seeds[0])
-            self._core.streams.seed(np.arange(N), seeds)
-            self._seeded = True
-        elif not self._seeded:  # first, unseeded reset: key the tables' streams from np_random
-            self._core.streams.seed(np.arange(N), self.np_random.integers(2 ** 63, size=N))
-            self._seeded = True
+        seed_vector_env(self, self._core.streams, seed)
         mask = (options or {}).get("reset_mask")
         if mask is None:
             idx = np.arange(N)

@@ -160,3 +160,29 @@ def place_balls(streams: TableStreams, idx, B, lo_x, lo_y, hi_x, hi_y, pockets, 
     ok = used >= 0
     streams.counters[idx] = start + (2 * np.where(ok, used, max_tries)).astype(np.uint64)
     return ok
+
+
+# ------------------------------------------------------- vector envs --
+def seed_vector_env(env, streams: TableStreams, seed) -> None:
+    """What ``reset(seed=...)`` of a vector env over ``streams`` does with
+    ``seed``: an int keys table k with ``seed + k`` (so table k reproduces a
+    single env seeded ``seed + k``), a list gives one int per table; the
+    first seed also seeds ``env.np_random``. ``None`` keys the streams from
+    ``env.np_random`` on the first reset and continues them afterwards."""
+    from gymnasium.error import Error
+    from gymnasium.utils import seeding
+
+    n = len(streams.keys)
+    if seed is not None:
+        seeds = list(seed) if isinstance(seed, (list, tuple, np.ndarray)) else [int(seed) + k for k in range(n)]
+        if len(seeds) != n:
+            raise ValueError(f"seed must be an int or a list of {n} ints, got {len(seeds)}")
+        seeds = [int(s) for s in seeds]
+        for s in seeds:
+            if s < 0:
+                raise Error(f"Seed must be greater or equal to zero, actual value: {s}")
+        env._np_random, env._np_random_seed = seeding.np_random(seeds[0])
+        streams.seed(np.arange(n), seeds)
+    elif not env._seeded:
+        streams.seed(np.arange(n), env.np_random.integers(2 ** 63, size=n))
+    env._seeded = True

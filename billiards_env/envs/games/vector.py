@@ -5,10 +5,10 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-from gymnasium.utils import seeding
 from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 
+from ..streams import seed_vector_env
 from .core import GameCore
 from .spaces import OBSERVATION_DOC, action_space, make_config, observation_space
 
@@ -57,15 +57,7 @@ class GameVectorEnv(VectorEnv):
 
     def reset(self, *, seed=None, options: dict | None = None):
         N = self.num_envs
-        if seed is not None:
-            seeds = list(seed) if isinstance(seed, (list, tuple, np.ndarray)) else [int(seed) + k for k in range(N)]
-            if len(seeds) != N:
-                raise ValueError(f"seed must be an int or a list of {N} ints, got {len(seeds)}")
-            self._np_random, self._np_random_seed = seeding.np_random(int(seeds[0]))
-            self.core.streams.seed(np.arange(N), seeds)
-        elif not self._seeded:
-            self.core.streams.seed(np.arange(N), self.np_random.integers(2 ** 63, size=N))
-        self._seeded = True
+        seed_vector_env(self, self.core.streams, seed)
         options = options or {}
         mask = options.get("reset_mask")
         idx = np.arange(N) if mask is None else np.nonzero(np.asarray(mask, dtype=bool))[0]
