@@ -55,8 +55,9 @@ def _cfg(overrides=()):
     return load_config(None, ENV_ID, list(overrides))
 
 
-def bare_env_rate(tables: int, shots: int, repeats: int) -> float:
-    """Env steps/s of the runner's vector env with random actions (median)."""
+def bare_env_rate(tables: int, shots: int, repeats: int) -> tuple[float, float]:
+    """Env steps/s of the runner's vector env with random actions, per wall
+    second and per CPU-second of this process (medians)."""
     import numba
 
     from .rllib_backend import env_context, make_vector_env
@@ -67,17 +68,18 @@ def bare_env_rate(tables: int, shots: int, repeats: int) -> float:
     acts = np.random.default_rng(0).uniform(-1, 1, (8, tables, 4)).astype(np.float32)
     env.reset(seed=0)
     env.step(acts[0]); env.step(acts[1])  # warm (kernels loaded)
-    rates = []
+    rates, cpu_rates = [], []
     for _ in range(repeats):
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         real = 0
         for k in range(2 * shots):  # one shot, then the autoreset step, as an EnvRunner steps it
             _, _, term, trunc, _ = env.step(acts[k % 8])
             real += int(np.sum(term | trunc)) if k % 2 == 0 else 0
         rates.append(real / (time.perf_counter() - t0))
+        cpu_rates.append(real / (time.process_time() - c0))
     env.close()
     numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
-    return statistics.median(rates)
+    return statistics.median(rates), statistics.median(cpu_rates)
 
 
 def sb3_rollout_rate(repeats: int) -> float:
@@ -111,21 +113,21 @@ CLOCK_TICKS = os.sysconf("SC_CLK_TCK") if hasattr(os, "sysconf") else 100
 
 
 def _proc_cpu(pid: int) -> tuple[str, float, float]:
-    """(command line, CPU seconds, seconds runnable but waiting for a core) of
-    process ``pid`` over its life, summed over its threads (Linux ``/proc``:
-    ``stat`` utime + stime, ``schedstat`` run-queue wait)."""
+    """(command line, CPU seconds of all its threads, seconds its main thread
+    was runnable but waiting for a core) of process ``pid`` over its life
+    (Linux ``/proc``: ``stat`` utime + stime, the main thread's ``schedstat``
+    run-queue wait; an EnvRunner samples in its main thread, while Ray's
+    helper threads wake often and would add waits that overlap it)."""
     with open(f"/proc/{pid}/cmdline", "rb") as f:
         cmd = f.read().replace(b"\0", b" ").decode(errors="replace").strip()
     with open(f"/proc/{pid}/stat") as f:
         fields = f.read().rsplit(")", 1)[1].split()
     cpu = (int(fields[11]) + int(fields[12])) / CLOCK_TICKS
-    wait = 0.0
-    for tid in os.listdir(f"/proc/{pid}/task"):
-        try:
-            with open(f"/proc/{pid}/task/{tid}/schedstat") as f:
-                wait += int(f.read().split()[1]) / 1e9
-        except OSError:
-            pass
+    try:
+        with open(f"/proc/{pid}/task/{pid}/schedstat") as f:
+            wait = int(f.read().split()[1]) / 1e9
+    except OSError:
+        wait = 0.0
     return cmd, cpu, wait
 
 
@@ -290,6 +292,40 @@ def sample_breakdown(tables: int, shots: int, lean: bool = True, repeats: int = 
     return {k: statistics.median(r[k] for r in rows) for k in rows[0]}
 
 
+def gc_sample_rates(tables: int = 256, shots: int = 16, samples: int = 6) -> dict:
+    """Env steps per CPU-second of each of ``samples`` consecutive samples of
+    one EnvRunner built in this process with RLlib's own filter and action
+    pass (``lean=False``), first with CPython's default collector, then with
+    ``tune_worker_gc``: what the collector alone costs a runner."""
+    import torch
+    from ray.rllib.env.single_agent_env_runner import SingleAgentEnvRunner
+
+    from .rllib_backend import algo_config
+    from .rllib_sampling import tune_worker_gc
+
+    torch.set_num_threads(1)
+    cfg = _cfg(["rllib.num_env_runners=0", f"rllib.num_envs_per_env_runner={tables}"])
+    runner = SingleAgentEnvRunner(config=algo_config(cfg, lean=False))
+    runner.sample(num_timesteps=2 * tables)  # warm
+    threshold = gc.get_threshold()
+    out = {}
+    try:
+        for name in ("default collector", "tuned collector"):
+            if name == "tuned collector":
+                tune_worker_gc()
+            rates = []
+            for _ in range(samples):
+                c0 = time.process_time()
+                steps = sum(len(e) for e in runner.sample(num_timesteps=tables * shots))
+                rates.append(steps / (time.process_time() - c0))
+            out[name] = rates
+    finally:
+        gc.unfreeze()
+        gc.set_threshold(*threshold)
+        runner.stop()
+    return out
+
+
 def episode_object_us(n: int = 4000) -> dict:
     """CPU microseconds per one-step episode of RLlib's ``SingleAgentEpisode``
     alone (no env, no module): an empty one, and the runner's full path
@@ -376,7 +412,9 @@ def rllib_rows(args) -> list[dict]:
                          env_steps_per_s=steps_per_s, **kw))
         print(f"  {kind:60s} {steps_per_s:10.0f} env steps/s", flush=True)
 
-    add("sampling: bare env", bare_env_rate(tables, shots, repeats), batch=tables, runners=1)
+    bare, bare_cpu = bare_env_rate(tables, shots, repeats)
+    add("sampling: bare env", bare, batch=tables, runners=1)
+    add("sampling: bare env, per CPU-second", bare_cpu, batch=tables, runners=1)
     add("sampling: sb3 rollout", sb3_rollout_rate(repeats), batch=256, runners=1)
     for lean in (True, False):  # one EnvRunner in this process: CPU microseconds per env step by part
         for part, us in sample_breakdown(tables, shots, lean, repeats).items():
@@ -424,7 +462,7 @@ def rllib_markdown(rows: list[dict]) -> list[str]:
         v = by.get(kind, {}).get("env_steps_per_s")
         return float(v) if v not in (None, "") else None
 
-    bare = val("sampling: bare env")
+    bare, bare_cpu = val("sampling: bare env"), val("sampling: bare env, per CPU-second")
     for lean, label in LEAN_LABELS.items():
         one, two = val(f"sampling: rllib 1 runner{label}"), val(f"sampling: rllib 2 runners{label}")
         c1, c2 = (val(f"sampling: rllib {k}{label}, per runner CPU-second") for k in ("1 runner", "2 runners"))
@@ -432,9 +470,8 @@ def rllib_markdown(rows: list[dict]) -> list[str]:
         name = "lean sampling (the backend's default)" if lean else "RLlib's own filter, GC and action pass"
         if bare and one:
             lines.append(f"{name}: RLlib sampling overhead over the bare env (1 runner, wall): {100 * (1 - one / bare):.0f}%")
-        if bare and c1:
-            lines.append(f"{name}: overhead per runner CPU-second (bare env per CPU-second = wall rate, one process): "
-                         f"{100 * (1 - c1 / bare):.0f}%")
+        if bare_cpu and c1:
+            lines.append(f"{name}: overhead per CPU-second (runner against bare env): {100 * (1 - c1 / bare_cpu):.0f}%")
         if one and two:
             lines.append(f"{name}: 2 runners / 1 runner: {two / one:.2f}x wall, "
                          + (f"{u2 / u1:.2f}x without run-queue wait, " if u1 and u2 else "")
