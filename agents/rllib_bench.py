@@ -292,6 +292,45 @@ def sample_breakdown(tables: int, shots: int, lean: bool = True, repeats: int = 
     return {k: statistics.median(r[k] for r in rows) for k in rows[0]}
 
 
+def runner_cpu_rate(tables: int = 256, shots: int = 16, repeats: int = 5, lean: bool = True,
+                    explore: bool | None = None, **env_runner_settings) -> float:
+    """Env steps per CPU-second of one EnvRunner built in this process with
+    ``algo_config(cfg, lean)`` plus ``PPOConfig.env_runners`` settings (for
+    example ``episodes_to_numpy=False``, ``batch_mode="complete_episodes"``,
+    ``add_default_connectors_to_env_to_module_pipeline=False``), sampling
+    ``shots`` steps of ``tables`` tables (median of ``repeats``), with the
+    collector tuned as in a remote lean runner. ``explore=False`` samples
+    with the deterministic forward pass (not usable for PPO's training: no
+    exploration; shown for the forward pass's cost)."""
+    import torch
+    from ray.rllib.env.single_agent_env_runner import SingleAgentEnvRunner
+
+    from .rllib_backend import algo_config
+    from .rllib_sampling import tune_worker_gc
+
+    torch.set_num_threads(1)
+    cfg = _cfg(["rllib.num_env_runners=0", f"rllib.num_envs_per_env_runner={tables}"])
+    config = algo_config(cfg, lean=lean)
+    if env_runner_settings:
+        config = config.env_runners(**env_runner_settings)
+    runner = SingleAgentEnvRunner(config=config)
+    runner.sample(num_timesteps=2 * tables, explore=explore)  # warm
+    threshold = gc.get_threshold()
+    if lean:
+        tune_worker_gc()
+    rates = []
+    try:
+        for _ in range(repeats):
+            c0 = time.process_time()
+            steps = sum(len(e) for e in runner.sample(num_timesteps=tables * shots, explore=explore))
+            rates.append(steps / (time.process_time() - c0))
+    finally:
+        gc.unfreeze()
+        gc.set_threshold(*threshold)
+        runner.stop()
+    return statistics.median(rates)
+
+
 def gc_sample_rates(tables: int = 256, shots: int = 16, samples: int = 6) -> dict:
     """Env steps per CPU-second of each of ``samples`` consecutive samples of
     one EnvRunner built in this process with RLlib's own filter and action
