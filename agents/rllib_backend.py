@@ -30,6 +30,7 @@ log-std ``log_std_init`` of a state-independent std, as SB3's PPO has);
 """
 from __future__ import annotations
 
+import contextlib
 import csv
 import json
 import os
@@ -296,11 +297,14 @@ def _tensorboard(run_dir: Path, enabled: bool):
 
 
 def train(cfg: TrainConfig, run_dir, command: str = "", address: str | None = None, resume: bool = False,
-          num_cpus: int | None = None, stop_after_iterations: int | None = None) -> dict:
+          num_cpus: int | None = None, stop_after_iterations: int | None = None, lean: bool = True) -> dict:
     """Train ``cfg`` with RLlib's PPO; everything is written to ``run_dir``.
     ``resume``: continue from the run's last checkpoint (progress.csv is
     appended; the env steps since that checkpoint are sampled again).
-    ``stop_after_iterations``: stop early (tests). Returns the summary dict."""
+    ``stop_after_iterations``: stop early (tests). ``lean`` (default):
+    ``algo_config``'s lean sampling, and this process's garbage collector
+    tuned while it trains (``rllib_sampling.tuned_gc``); False: RLlib's own
+    settings (benchmark comparisons). Returns the summary dict."""
     import numba
     import torch
 
@@ -318,20 +322,25 @@ def train(cfg: TrainConfig, run_dir, command: str = "", address: str | None = No
 
     if cfg.normalize.reward:
         print("note: normalize.reward applies to the sb3 backend only; the rllib backend trains on raw rewards")
+    from .rllib_sampling import tuned_gc
+
     started_here = not ray.is_initialized()
     start_ray(address, num_cpus)
     try:
-        return _train(cfg, run_dir, last, stop_after_iterations)
+        # the learner in this process handles one episode object per env step too
+        with tuned_gc() if lean else contextlib.nullcontext():
+            return _train(cfg, run_dir, last, stop_after_iterations, lean)
     finally:
         if started_here:
             ray.shutdown()
 
 
-def _train(cfg: TrainConfig, run_dir: Path, last: Path | None, stop_after_iterations: int | None) -> dict:
+def _train(cfg: TrainConfig, run_dir: Path, last: Path | None, stop_after_iterations: int | None,
+           lean: bool = True) -> dict:
     from ray.rllib.utils.metrics import ENV_RUNNER_RESULTS, NUM_ENV_STEPS_SAMPLED_LIFETIME
 
     resume = last is not None
-    algo = algo_config(cfg).build_algo()
+    algo = algo_config(cfg, lean).build_algo()
     steps = 0
     if last is not None:
         algo.restore_from_path(str(last))

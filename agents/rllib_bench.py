@@ -413,7 +413,10 @@ def _iteration_rate(progress_csv) -> float:
 
 
 def train_rates(train_steps: int, tmp) -> dict:
-    """Env steps/s including updates of both backends on the default config."""
+    """Env steps/s including updates of both backends on the default config,
+    RLlib's with lean sampling (``rllib``) and with RLlib's own settings
+    (``rllib own``), and the driver's CPU seconds over each RLlib run (its
+    learner; start-up included: ``... driver cpu``)."""
     from pathlib import Path
 
     from . import rllib_backend
@@ -423,9 +426,13 @@ def train_rates(train_steps: int, tmp) -> dict:
     common = [f"train.total_timesteps={train_steps}", "train.checkpoint_every=0", "train.progress_bar=false",
               "train.tensorboard=false", "train.eval_episodes=0"]
     train(_cfg(common), tmp / "sb3")
-    rllib_backend.train(_cfg(common), tmp / "rllib")
-    return dict(sb3=_iteration_rate(tmp / "sb3" / "progress.csv"),
-                rllib=_iteration_rate(tmp / "rllib" / "progress.csv"))
+    out = dict(sb3=_iteration_rate(tmp / "sb3" / "progress.csv"))
+    for name, lean in (("rllib", True), ("rllib own", False)):
+        c0 = time.process_time()
+        rllib_backend.train(_cfg(common), tmp / name, lean=lean)
+        out[name + " driver cpu"] = time.process_time() - c0
+        out[name] = _iteration_rate(tmp / name / "progress.csv")
+    return out
 
 
 LEAN_LABELS = {True: "", False: " (RLlib's filter, GC, action pass)"}
@@ -482,7 +489,10 @@ def rllib_rows(args) -> list[dict]:
     finally:
         ray.shutdown()
     add("training: sb3 (default config)", rates["sb3"], batch=256, runners=1)
-    add("training: rllib (default config)", rates["rllib"], batch=256, runners=2)
+    for name, lean in (("rllib", True), ("rllib own", False)):
+        add(f"training: rllib (default config){LEAN_LABELS[lean]}", rates[name], batch=256, runners=2,
+            driver_cpu_s=round(rates[name + " driver cpu"], 2), train_steps=train_steps)
+        print(f"    driver CPU {rates[name + ' driver cpu']:.1f} s for {train_steps} env steps (start-up included)")
     return rows
 
 
@@ -516,6 +526,11 @@ def rllib_markdown(rows: list[dict]) -> list[str]:
                          + (f"{u2 / u1:.2f}x without run-queue wait, " if u1 and u2 else "")
                          + (f"{c2 / c1:.2f} per runner CPU-second" if c1 and c2 else ""))
         lines.append("")
+    for r in rows:
+        if str(r["kind"]).startswith("training: rllib") and r.get("driver_cpu_s") not in (None, ""):
+            lines.append(f"{r['kind']}: driver (learner) CPU {float(r['driver_cpu_s']):.1f} s for "
+                         f"{int(float(r['train_steps'])):,} env steps, start-up included")
+    lines.append("")
     parts = [r for r in rows if str(r["kind"]).startswith("runner CPU per env step")]
     if parts:
         lines += ["| one EnvRunner, CPU per env step | microseconds |", "|---|---:|"]

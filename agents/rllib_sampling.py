@@ -22,9 +22,12 @@ EnvRunner's env.
   million objects Ray and torch leave in the process, every few samples.
   Freezing the objects that exist after set-up and raising the young
   threshold leaves the collector only the sampling's own garbage.
+  ``tuned_gc`` does the same in the driver while it trains (its learner
+  handles the same episodes) and restores the collector afterwards.
 """
 from __future__ import annotations
 
+import contextlib
 import gc
 
 import numpy as np
@@ -46,6 +49,21 @@ def tune_worker_gc() -> None:
     gc.freeze()
     _, gen1, gen2 = gc.get_threshold()
     gc.set_threshold(WORKER_GC_GEN0_THRESHOLD, gen1, gen2)
+
+
+@contextlib.contextmanager
+def tuned_gc():
+    """``tune_worker_gc`` for the duration of a ``with`` block (the driver,
+    whose learner builds and batches the same episode objects), then the
+    collector's thresholds as they were and the frozen objects back in its
+    care."""
+    threshold = gc.get_threshold()
+    tune_worker_gc()
+    try:
+        yield
+    finally:
+        gc.unfreeze()
+        gc.set_threshold(*threshold)
 
 
 def push_batch(rs, x: np.ndarray) -> None:

@@ -284,6 +284,21 @@ def test_lean_runner_gives_the_learner_complete_episodes():
         runner.stop()
 
 
+def test_tuned_gc_is_undone_after_the_block():
+    """The driver's collector is tuned only while it trains: inside the block
+    the young threshold is raised and the objects frozen, afterwards the
+    thresholds are the old ones and nothing stays frozen."""
+    _ray()
+    import gc
+
+    from agents.rllib_sampling import WORKER_GC_GEN0_THRESHOLD, tuned_gc
+
+    before = gc.get_threshold()
+    with tuned_gc():
+        assert gc.get_threshold()[0] == WORKER_GC_GEN0_THRESHOLD and gc.get_freeze_count() > 0
+    assert gc.get_threshold() == before and gc.get_freeze_count() == 0
+
+
 def test_process_cpu_account_sees_a_busy_child():
     """The benchmark's CPU account (``/proc``) finds a child process of this
     one and charges it the CPU it burnt."""
