@@ -17,7 +17,9 @@ process (the driver's Gymnasium registry is not visible there), so one
 batched simulator call steps all of a runner's tables. The env is made with
 next-step autoreset, the convention RLlib's EnvRunner expects. Each runner
 sets numba and torch to one thread per CPU it is given
-(``num_cpus_per_env_runner``).
+(``num_cpus_per_env_runner``) and samples lean (``algo_config``: a batched
+observation filter, a tuned garbage collector, no second action clip;
+``agents.rllib_sampling``).
 
 The ``rllib:`` block: ``num_env_runners``, ``num_envs_per_env_runner``,
 ``num_cpus_per_env_runner`` (EnvRunners), ``num_learners``,
@@ -184,7 +186,7 @@ def algo_config(cfg: TrainConfig, lean: bool = True):
     to the env unclipped (the env clips them to its Box [-1, 1], exactly
     RLlib's unsquash for that Box); False gives RLlib's own filter, collector
     and action pass (benchmark comparisons). The Learner gets the same
-    episodes either way (observations, actions, log-probs, value estimates)."""
+    episodes either way (observations, sampled actions, log-probs, terminated flags)."""
     from ray.rllib.algorithms.ppo import PPOConfig
     from ray.rllib.core.rl_module.default_model_config import DefaultModelConfig
     from ray.tune.registry import register_env
