@@ -17,7 +17,9 @@ process (the driver's Gymnasium registry is not visible there), so one
 batched simulator call steps all of a runner's tables. The env is made with
 next-step autoreset, the convention RLlib's EnvRunner expects. Each runner
 sets numba and torch to one thread per CPU it is given
-(``num_cpus_per_env_runner``).
+(``num_cpus_per_env_runner``) and samples lean (``algo_config``: a batched
+observation filter, a tuned garbage collector, no second action clip;
+``agents.rllib_sampling``).
 
 The ``rllib:`` block: ``num_env_runners``, ``num_envs_per_env_runner``,
 ``num_cpus_per_env_runner`` (EnvRunners), ``num_learners``,
@@ -30,6 +32,7 @@ log-std ``log_std_init`` of a state-independent std, as SB3's PPO has);
 """
 from __future__ import annotations
 
+import contextlib
 import csv
 import json
 import os
@@ -52,6 +55,7 @@ PROGRESS_FIELDS = ["timesteps", "time_s", "episodes", "success_rate", "mean_rewa
 SAMPLE_TIMEOUT_S = 900.0
 RAY_ENV_NAME = "billiards_env_vector"  # make_vector_env's name in Ray's registry (seen by every worker)
 WORKER_LOGS_VAR = "BILLIARDS_RAY_LOGS"  # =1: show the Ray workers' output in the driver (hidden by default)
+DASHBOARD_VAR = "BILLIARDS_RAY_DASHBOARD"  # =1: a local Ray instance starts its dashboard (off by default)
 EPISODE_FLAGS = ("success", "scratch", "foul")
 
 
@@ -60,7 +64,10 @@ def make_vector_env(ctx) -> "gym.vector.VectorEnv":
     """RLlib's env creator: the native vector env of ``ctx["env_id"]`` with
     ``ctx["num_envs"]`` tables (next-step autoreset), with the agent-side
     features and action transform of the config. Runs inside each EnvRunner
-    process: importing ``billiards_env`` there registers the ids."""
+    process: importing ``billiards_env`` there registers the ids. In a Ray
+    actor (a remote EnvRunner) it also tunes that process's garbage
+    collector unless ``ctx["worker_gc"]`` is False
+    (``rllib_sampling.tune_worker_gc``)."""
     import numba
     import torch
 
@@ -68,6 +75,9 @@ def make_vector_env(ctx) -> "gym.vector.VectorEnv":
 
     from .features import VectorShotFeatures
 
+    if ctx.get("worker_gc", True) and _in_ray_actor():
+        from .rllib_sampling import tune_worker_gc
+        tune_worker_gc()  # in EnvRunner processes only, never in the driver
     threads = max(1, int(ctx.get("numba_threads", 1)))  # the CPUs this EnvRunner is given
     numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
     torch.set_num_threads(threads)  # its policy forward passes: no more threads than its CPUs either
@@ -77,6 +87,13 @@ def make_vector_env(ctx) -> "gym.vector.VectorEnv":
         env = VectorShotFeatures(env, bool(ctx.get("features")), float(ctx.get("aim_scale", 1.0)),
                                  ctx.get("action_mode", "direct"))
     return EpisodeFlagTotals(env)
+
+
+def _in_ray_actor() -> bool:
+    """True inside a Ray actor process (a remote EnvRunner)."""
+    import ray
+
+    return ray.is_initialized() and ray.get_runtime_context().get_actor_id() is not None
 
 
 def env_context(cfg: TrainConfig) -> dict:
@@ -161,8 +178,15 @@ def _split_rllib_block(block: dict) -> tuple[dict, dict, dict, dict]:
     return runners, learners, fault, training
 
 
-def algo_config(cfg: TrainConfig):
-    """The ``PPOConfig`` (new API stack) of ``cfg``."""
+def algo_config(cfg: TrainConfig, lean: bool = True):
+    """The ``PPOConfig`` (new API stack) of ``cfg``. ``lean`` (default):
+    the observation filter updates once per vector step
+    (``rllib_sampling.MeanStdFilter``), EnvRunner processes tune
+    their garbage collector (``rllib_sampling.tune_worker_gc``) and actions go
+    to the env unclipped (the env clips them to its Box [-1, 1], exactly
+    RLlib's unsquash for that Box); False gives RLlib's own filter, collector
+    and action pass (benchmark comparisons). The Learner gets the same
+    episodes either way (observations, sampled actions, log-probs, terminated flags)."""
     from ray.rllib.algorithms.ppo import PPOConfig
     from ray.rllib.core.rl_module.default_model_config import DefaultModelConfig
     from ray.tune.registry import register_env
@@ -174,7 +198,10 @@ def algo_config(cfg: TrainConfig):
     runners.setdefault("sample_timeout_s", SAMPLE_TIMEOUT_S)
     register_env(RAY_ENV_NAME, make_vector_env)
     config = (PPOConfig()
-              .environment(env=RAY_ENV_NAME, env_config=env_context(cfg))
+              .environment(env=RAY_ENV_NAME, env_config={**env_context(cfg), "worker_gc": lean},
+                           # RLlib's unsquash for the Box [-1, 1] is a clip to [-1, 1], which the env's action
+                           # transform does itself: lean skips RLlib's per-table copy and clip
+                           normalize_actions=not lean, clip_actions=False)
               .env_runners(gym_env_vectorize_mode=gym.VectorizeMode.VECTOR_ENTRY_POINT, **runners)
               .learners(**learners)
               .training(**training)
@@ -186,11 +213,13 @@ def algo_config(cfg: TrainConfig):
               .debugging(seed=cfg.train.seed)
               .reporting(min_time_s_per_iteration=0, min_sample_timesteps_per_iteration=0))
     if cfg.normalize.obs:
-        from ray.rllib.connectors.env_to_module import MeanStdFilter
-
+        if lean:
+            from .rllib_sampling import MeanStdFilter as filter_class
+        else:
+            from ray.rllib.connectors.env_to_module import MeanStdFilter as filter_class
         clip = cfg.normalize.clip_obs
         config = config.env_runners(env_to_module_connector=lambda env, spaces=None, device=None:
-                                    MeanStdFilter(clip_by_value=clip, multi_agent=False))
+                                    filter_class(clip_by_value=clip, multi_agent=False))
     return config
 
 
@@ -200,7 +229,9 @@ def start_ray(address: str | None = None, num_cpus: int | None = None) -> None:
     a local Ray instance on this machine (``num_cpus``: its CPU count; default
     all cores). Workers import the project from the same Python environment
     (``PYTHONPATH`` is passed on when set, so a source checkout works too).
-    The workers' output reaches the driver only with ``BILLIARDS_RAY_LOGS=1``."""
+    The workers' output reaches the driver only with ``BILLIARDS_RAY_LOGS=1``;
+    a local instance starts Ray's dashboard only with
+    ``BILLIARDS_RAY_DASHBOARD=1``."""
     import ray
 
     if ray.is_initialized():
@@ -211,7 +242,8 @@ def start_ray(address: str | None = None, num_cpus: int | None = None) -> None:
     if address:
         ray.init(address=address, runtime_env=runtime_env, log_to_driver=logs)
     else:
-        ray.init(num_cpus=num_cpus, include_dashboard=False, runtime_env=runtime_env, log_to_driver=logs)
+        ray.init(num_cpus=num_cpus, include_dashboard=os.environ.get(DASHBOARD_VAR) == "1", runtime_env=runtime_env,
+                 log_to_driver=logs)
 
 
 # ---------------------------------------------------------------- train --
@@ -267,11 +299,14 @@ def _tensorboard(run_dir: Path, enabled: bool):
 
 
 def train(cfg: TrainConfig, run_dir, command: str = "", address: str | None = None, resume: bool = False,
-          num_cpus: int | None = None, stop_after_iterations: int | None = None) -> dict:
+          num_cpus: int | None = None, stop_after_iterations: int | None = None, lean: bool = True) -> dict:
     """Train ``cfg`` with RLlib's PPO; everything is written to ``run_dir``.
     ``resume``: continue from the run's last checkpoint (progress.csv is
     appended; the env steps since that checkpoint are sampled again).
-    ``stop_after_iterations``: stop early (tests). Returns the summary dict."""
+    ``stop_after_iterations``: stop early (tests). ``lean`` (default):
+    ``algo_config``'s lean sampling, and this process's garbage collector
+    tuned while it trains (``rllib_sampling.tuned_gc``); False: RLlib's own
+    settings (benchmark comparisons). Returns the summary dict."""
     import numba
     import torch
 
@@ -289,20 +324,25 @@ def train(cfg: TrainConfig, run_dir, command: str = "", address: str | None = No
 
     if cfg.normalize.reward:
         print("note: normalize.reward applies to the sb3 backend only; the rllib backend trains on raw rewards")
+    from .rllib_sampling import tuned_gc
+
     started_here = not ray.is_initialized()
     start_ray(address, num_cpus)
     try:
-        return _train(cfg, run_dir, last, stop_after_iterations)
+        # the learner in this process handles one episode object per env step too
+        with tuned_gc() if lean else contextlib.nullcontext():
+            return _train(cfg, run_dir, last, stop_after_iterations, lean)
     finally:
         if started_here:
             ray.shutdown()
 
 
-def _train(cfg: TrainConfig, run_dir: Path, last: Path | None, stop_after_iterations: int | None) -> dict:
+def _train(cfg: TrainConfig, run_dir: Path, last: Path | None, stop_after_iterations: int | None,
+           lean: bool = True) -> dict:
     from ray.rllib.utils.metrics import ENV_RUNNER_RESULTS, NUM_ENV_STEPS_SAMPLED_LIFETIME
 
     resume = last is not None
-    algo = algo_config(cfg).build_algo()
+    algo = algo_config(cfg, lean).build_algo()
     steps = 0
     if last is not None:
         algo.restore_from_path(str(last))

@@ -184,6 +184,147 @@ def test_resume_continues_from_the_last_checkpoint(local_ray, tmp_path):
     assert (run / "command.txt").read_text().split() == ["first", "second"]
 
 
+# ------------------------------------------------------------ lean sampling --
+def test_push_batch_equals_rllibs_pushes_row_by_row():
+    """``push_batch`` leaves RLlib's ``RunningStat`` (count, mean, sum of
+    squared deviations and their deltas since the last merge) as pushing the
+    rows one by one does, from an empty stat and after a merge reset."""
+    _ray()
+    from ray.rllib.utils.filter import RunningStat
+
+    from agents.rllib_sampling import push_batch
+
+    rng = np.random.default_rng(0)
+    one, batched = RunningStat((5,)), RunningStat((5,))
+    for k, m in enumerate((1, 7, 300, 2)):
+        x = rng.normal(3.0, 2.0, (m, 5))
+        for row in x:
+            one.push(row)
+        push_batch(batched, x)
+        if k == 1:  # what a merge does to the deltas
+            for rs in (one, batched):
+                rs.num_pushes_delta = 0
+                rs.mean_delta_array[:] = 0.0
+                rs.sum_sq_diff_delta_array[:] = 0.0
+    assert batched.num_pushes == one.num_pushes == 310 and batched.num_pushes_delta == one.num_pushes_delta == 302
+    for field in ("mean_array", "mean_delta_array", "sum_sq_diff_array", "sum_sq_diff_delta_array"):
+        np.testing.assert_allclose(getattr(batched, field), getattr(one, field), rtol=1e-12, atol=1e-9)
+
+
+def test_lean_observation_filter_matches_rllibs_filter():
+    """The batched filter ends each step with RLlib's filter state, scales
+    every table with the statistics after the step (RLlib's filter: the last
+    table of the step alike) and writes the scaled observations and the
+    filter's space into the episodes."""
+    _ray()
+    import gymnasium as gym
+    from ray.rllib.connectors.env_to_module import MeanStdFilter as RLlibFilter
+    from ray.rllib.env.single_agent_episode import SingleAgentEpisode
+
+    from agents.rllib_sampling import MeanStdFilter
+
+    obs_space = gym.spaces.Box(-np.inf, np.inf, (6,), np.float32)
+    act_space = gym.spaces.Box(-1.0, 1.0, (2,), np.float32)
+    ref, lean = RLlibFilter(clip_by_value=3.0), MeanStdFilter(clip_by_value=3.0)
+    for filt in (ref, lean):  # as RLlib's pipeline sets them
+        filt.input_action_space = act_space
+        filt.input_observation_space = obs_space
+    assert type(lean).__name__ == type(ref).__name__  # the name RLlib files the state under in checkpoints
+    rng = np.random.default_rng(1)
+    for _ in range(3):
+        raw = rng.normal(2.0, 5.0, (16, 6)).astype(np.float32)
+        outs = []
+        for filt in (ref, lean):
+            eps = []
+            for row in raw:
+                e = SingleAgentEpisode(observation_space=obs_space, action_space=act_space)
+                e.add_env_reset(observation=row.copy(), infos={})
+                eps.append(e)
+            filt(rl_module=None, batch={}, episodes=eps)
+            outs.append(np.stack([e.get_observations(-1) for e in eps]))
+            assert all(e.observation_space is filt.observation_space for e in eps)
+        rs = lean._filters[None].running_stats
+        expect = np.clip((raw - rs.mean) / (rs.std + 1e-8), -3.0, 3.0)
+        np.testing.assert_allclose(outs[1], expect, rtol=1e-5, atol=1e-5)
+        np.testing.assert_allclose(outs[1][-1], outs[0][-1], rtol=1e-5, atol=1e-5)
+        assert np.max(np.abs(outs[1])) <= 3.0
+    from ray.rllib.utils.filter import RunningStat
+
+    a, b = (RunningStat.from_state(f.get_state()[None]["running_stats"][0]) for f in (ref, lean))
+    assert a.num_pushes == b.num_pushes == 48 and a.num_pushes_delta == b.num_pushes_delta == 48
+    for key in ("mean_array", "mean_delta_array", "sum_sq_diff_array", "sum_sq_diff_delta_array"):
+        np.testing.assert_allclose(getattr(b, key), getattr(a, key), rtol=1e-9)
+
+
+def test_lean_runner_gives_the_learner_complete_episodes():
+    """A lean EnvRunner (built in this process, 16 tables) returns one-step
+    PotOne episodes with filtered observations, the sampled (unclipped)
+    actions, their log-probs and terminated flags; the lean and RLlib's own
+    configurations share the filter's checkpoint name."""
+    _ray()
+    from ray.rllib.env.single_agent_env_runner import SingleAgentEnvRunner
+
+    from agents.rllib_backend import algo_config
+
+    cfg = load_config(None, "Billiards-PotOne-v0", ["rllib.num_env_runners=0", "rllib.num_envs_per_env_runner=16"])
+    runner = SingleAgentEnvRunner(config=algo_config(cfg, lean=True))
+    try:
+        eps = runner.sample(num_timesteps=64)
+        assert sum(len(e) for e in eps) >= 64
+        for e in eps:
+            assert len(e) == 1 and e.is_terminated
+            obs = e.get_observations()
+            assert obs.shape == (2,) + runner.env.single_observation_space.shape and np.all(np.abs(obs) <= 10.0)
+            assert np.all(np.isfinite(e.get_extra_model_outputs("action_logp")))
+        actions = np.concatenate([e.get_actions() for e in eps])
+        assert np.max(np.abs(actions)) > 1.0  # stored as sampled (std 1 before log_std_init): the env clips them
+        names = [type(c).__name__ for c in runner._env_to_module.connectors]
+        assert "MeanStdFilter" in names
+    finally:
+        runner.stop()
+
+
+def test_tuned_gc_is_undone_after_the_block():
+    """The driver's collector is tuned only while it trains: inside the block
+    the young threshold is raised and the objects frozen, afterwards the
+    thresholds are the old ones and nothing stays frozen."""
+    _ray()
+    import gc
+
+    from agents.rllib_sampling import WORKER_GC_GEN0_THRESHOLD, tuned_gc
+
+    before = gc.get_threshold()
+    with tuned_gc():
+        assert gc.get_threshold()[0] == WORKER_GC_GEN0_THRESHOLD and gc.get_freeze_count() > 0
+    assert gc.get_threshold() == before and gc.get_freeze_count() == 0
+
+
+def test_process_cpu_account_sees_a_busy_child():
+    """The benchmark's CPU account (``/proc``) finds a child process of this
+    one and charges it the CPU it burnt."""
+    import subprocess
+    import sys
+
+    from agents.rllib_bench import cpu_account, process_tree_cpu
+
+    if not os.path.isdir("/proc"):
+        pytest.skip("no /proc (not Linux)")
+    child = subprocess.Popen([sys.executable, "-c",
+                              "import time, sys\nt = time.process_time()\nwhile time.process_time() - t < 0.4: pass\n"
+                              "sys.stdout.write('done\\n'); sys.stdout.flush(); time.sleep(5)"],
+                             stdout=subprocess.PIPE, text=True)
+    try:
+        before = process_tree_cpu(os.getpid())
+        assert child.stdout.readline().strip() == "done"
+        after = process_tree_cpu(os.getpid())
+        assert child.pid in after
+        cpu, waits = cpu_account(before, after, os.getpid(), {child.pid})
+        assert 0.2 <= cpu["runner"] <= 1.0 and set(waits) == {child.pid}
+    finally:
+        child.kill()
+        child.wait()
+
+
 @pytest.mark.slow
 def test_two_node_cluster_places_env_runners_on_both_nodes(tmp_path):
     ray = _ray()
