@@ -61,7 +61,17 @@ def profile(top: int) -> int:
             if stack:
                 stack[-1][2] += dt
 
-    with event.install_listener("numba:compile", CpuListener()):
+    llvm = [0.0, 0.0]  # CPU seconds holding numba's LLVM lock (optimising, emitting machine code), start
+
+    class LlvmListener(event.Listener):
+        def on_start(self, ev):
+            llvm[1] = time.process_time()
+
+        def on_end(self, ev):
+            llvm[0] += time.process_time() - llvm[1]
+
+    with event.install_listener("numba:compile", CpuListener()), \
+            event.install_listener("numba:llvm_lock", LlvmListener()):
         from billiards_env.physics import PhysicsParams, Table, rack, simulate, strike_velocity
         t_import = time.process_time()
         P = PhysicsParams.standard()
@@ -70,7 +80,8 @@ def profile(top: int) -> int:
         simulate(s, T, P)
     total = time.process_time() - t_start
     print(f"process CPU: {total:.2f} s (import {t_import - t_start:.2f} s); "
-          f"in numba compilations: {sum(exclusive.values()):.2f} s\n")
+          f"in numba compilations: {sum(exclusive.values()):.2f} s, of which in LLVM {llvm[0]:.2f} s; "
+          f"{sum(calls.values())} compilations of {len(calls)} functions\n")
     print("| function | compilations | CPU s, inclusive | CPU s, exclusive |\n|---|---:|---:|---:|")
     for name, ex in exclusive.most_common(top):
         print(f"| `{name}` | {calls[name]} | {inclusive[name]:.2f} | {ex:.2f} |")

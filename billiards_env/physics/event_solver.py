@@ -44,7 +44,12 @@ def refresh(balls, scr, geo, e, i, t, p):
     and ball i's entry in ``scr.paths``: its acceleration and the box its
     path sweeps until its next transition or boundary event. Both hold until
     that event refreshes the ball again, so pair checks read them instead
-    of recomputing them for the other ball of every pair."""
+    of recomputing them for the other ball of every pair.
+
+    Inlined at its one call site, the event loop: a call passes the named
+    structures (~200 machine words), more than a pair check costs; an
+    inlined copy is type-inferred and optimised again, so one call site
+    only (docs/performance.md, cold start)."""
     pos, vel, om, st = balls.pos, balls.vel, balls.om, balls.st
     tt, tb, tpair, paths, tlast = scr.tt, scr.tb, scr.tpair, scr.paths, scr.tlast
     B = pos.shape[1]
@@ -69,7 +74,6 @@ def refresh(balls, scr, geo, e, i, t, p):
         hj = min(next_i, tt[e, j], tb[e, j]) - t
         tij = t + pair_time(pos, vel, st, paths, e, i, j, hj, p, t - tlast[e, j])
         tpair[e, i, j] = tij; tpair[e, j, i] = tij
-
 
 
 @njit
@@ -148,9 +152,10 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
         while True:
             if n_stuck > C.ZENO_EVENTS:
                 # An inelastic collapse: the stuck balls (every ball of the
-                # events since time last advanced, the last event's among
-                # them) are slowed, and all their events recomputed, in
-                # the order of their index.
+                # events since time last advanced) are slowed, and all their
+                # events recomputed, in the order of their index. The last
+                # event's balls are among them: their own recomputation is
+                # this one (any earlier one would be overwritten).
                 n_todo = 0
                 for i in range(B):
                     if stuck[i]:
