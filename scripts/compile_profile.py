@@ -1,5 +1,5 @@
 """Where the cold start's compile time goes: runs "import + first 9-ball
-break" (the cold-start scene of ``scripts/benchmark.py``) in this process
+break" (``COLD_START_CODE`` of ``scripts/benchmark.py``) in this process
 with an empty numba cache and prints, per compiled function, how often it
 was compiled and the process CPU seconds of its compilations, inclusive
 (with the functions it compiled on the way) and exclusive (its own type
@@ -17,6 +17,7 @@ import os
 import sys
 import tempfile
 import time
+from pathlib import Path
 
 
 def main(argv=None) -> int:
@@ -30,7 +31,8 @@ def main(argv=None) -> int:
 
 def profile(top: int) -> int:
     t_start = time.process_time()
-    import numba  # noqa: F401
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from benchmark import COLD_START_CODE  # the scene is defined once, there (it imports numba, compiles nothing)
     from numba.core import event
     from numba.core.inline_closurecall import InlineWorker
 
@@ -72,14 +74,10 @@ def profile(top: int) -> int:
 
     with event.install_listener("numba:compile", CpuListener()), \
             event.install_listener("numba:llvm_lock", LlvmListener()):
-        from billiards_env.physics import PhysicsParams, Table, rack, simulate, strike_velocity
-        t_import = time.process_time()
-        P = PhysicsParams.standard()
-        T = Table.pool(9)
-        s = strike_velocity(rack(T, P, "nine", 1, seed=0), 1.5708, 8.0, params=P)
-        simulate(s, T, P)
+        print("wall time of the scene (s): ", end="")
+        exec(COLD_START_CODE, {})  # (prints its wall time)
     total = time.process_time() - t_start
-    print(f"process CPU: {total:.2f} s (import {t_import - t_start:.2f} s); "
+    print(f"process CPU: {total:.2f} s; "
           f"in numba compilations: {sum(exclusive.values()):.2f} s, of which in LLVM {llvm[0]:.2f} s; "
           f"{sum(calls.values())} compilations of {len(calls)} functions\n")
     print("| function | compilations | CPU s, inclusive | CPU s, exclusive |\n|---|---:|---:|---:|")

@@ -31,19 +31,25 @@ class _HelperDispatcher(CPUDispatcher):
     constant (``b = -1``, ``rounds = 0``) is at first typed as that literal:
     the callee was compiled once for the literal and once more for int64
     when the caller's type inference widened the variable, and so were the
-    callees it passes it on to (half the helpers of a kernel). Boolean
-    literals (the effect flags) stay: branches on them are pruned."""
+    callees it passes it on to (16 helpers of the event kernel, 17 extra
+    compilations: docs/performance.md, cold start). Boolean literals (the
+    effect flags) stay: branches on them are pruned."""
 
     def get_call_template(self, args, kws):
         return super().get_call_template(tuple(map(_unliteral_int, args)),
                                          {k: _unliteral_int(v) for k, v in kws.items()})
 
 
-def _helper_jit(**options):
+def _helper_jit(options):
+    """``numba.njit(**options)`` compiling with ``_HelperDispatcher``
+    (never cached: see above)."""
+    targetoptions = {k: v for k, v in options.items() if k != "cache"}
+    targetoptions["nopython"] = True
+
     def decorate(function):
         if numba.config.DISABLE_JIT:
             return function
-        return _HelperDispatcher(py_func=function, locals={}, targetoptions=dict(options, nopython=True))
+        return _HelperDispatcher(py_func=function, locals={}, targetoptions=dict(targetoptions))
     return decorate
 
 
@@ -53,7 +59,7 @@ def _helper_jit(**options):
 # scene up to a third of its time. The few functions that allocate (the
 # kernels' prange loop, layout.impact_scratch) keep it: ``njit_alloc``.
 HELPER_JIT = dict(JIT, _nrt=False)
-njit = _helper_jit(**{k: v for k, v in HELPER_JIT.items() if k != "cache"})
+njit = _helper_jit(HELPER_JIT)
 njit_alloc = numba.njit(**JIT)
 # Inlined into the caller at numba's level: for a helper of the step loop,
 # which runs every few nanoseconds, a call that passes the named structures
