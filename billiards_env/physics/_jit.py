@@ -13,16 +13,53 @@ import hashlib
 import re
 
 import numba
+from numba.core import types
 from numba.core.caching import FunctionCache
+from numba.core.registry import CPUDispatcher
 
 JIT = dict(cache=False, nogil=True, fastmath=False, error_model="numpy")
+
+
+def _unliteral_int(ty):
+    return types.unliteral(ty) if isinstance(ty, types.IntegerLiteral) else ty
+
+
+class _HelperDispatcher(CPUDispatcher):
+    """numba's dispatcher, compiling a helper for plain integers where a
+    caller passes an integer constant. Type inference resolves a call as
+    soon as its arguments have a type, and a variable first assigned a
+    constant (``b = -1``, ``rounds = 0``) is at first typed as that literal:
+    the callee was compiled once for the literal and once more for int64
+    when the caller's type inference widened the variable, and so were the
+    callees it passes it on to (16 helpers of the event kernel, 17 extra
+    compilations: docs/performance.md, cold start). Boolean literals (the
+    effect flags) stay: branches on them are pruned."""
+
+    def get_call_template(self, args, kws):
+        return super().get_call_template(tuple(map(_unliteral_int, args)),
+                                         {k: _unliteral_int(v) for k, v in kws.items()})
+
+
+def _helper_jit(options):
+    """``numba.njit(**options)`` compiling with ``_HelperDispatcher``
+    (never cached: see above)."""
+    targetoptions = {k: v for k, v in options.items() if k != "cache"}
+    targetoptions["nopython"] = True
+
+    def decorate(function):
+        if numba.config.DISABLE_JIT:
+            return function
+        return _HelperDispatcher(py_func=function, locals={}, targetoptions=dict(targetoptions))
+    return decorate
+
+
 # Helpers are compiled without numba's runtime (NRT): they allocate nothing,
 # and with it every array they read out of a structure or receive is
 # reference-counted by an atomic call at entry and exit, which cost a small
 # scene up to a third of its time. The few functions that allocate (the
 # kernels' prange loop, layout.impact_scratch) keep it: ``njit_alloc``.
 HELPER_JIT = dict(JIT, _nrt=False)
-njit = numba.njit(**HELPER_JIT)
+njit = _helper_jit(HELPER_JIT)
 njit_alloc = numba.njit(**JIT)
 # Inlined into the caller at numba's level: for a helper of the step loop,
 # which runs every few nanoseconds, a call that passes the named structures

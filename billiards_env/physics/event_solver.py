@@ -38,13 +38,18 @@ TABLES_PER_CHUNK = 8
 MIN_CHUNKS = 16
 
 
-@njit
+@njit_inline
 def refresh(balls, scr, geo, e, i, t, p):
     """Recompute every event time that involves ball i (absolute times),
     and ball i's entry in ``scr.paths``: its acceleration and the box its
     path sweeps until its next transition or boundary event. Both hold until
     that event refreshes the ball again, so pair checks read them instead
-    of recomputing them for the other ball of every pair."""
+    of recomputing them for the other ball of every pair.
+
+    Inlined at its one call site, the event loop: a call passes the named
+    structures (~200 machine words), more than a pair check costs; an
+    inlined copy is type-inferred and optimised again, so one call site
+    only (docs/performance.md, cold start)."""
     pos, vel, om, st = balls.pos, balls.vel, balls.om, balls.st
     tt, tb, tpair, paths, tlast = scr.tt, scr.tb, scr.tpair, scr.paths, scr.tlast
     B = pos.shape[1]
@@ -71,17 +76,12 @@ def refresh(balls, scr, geo, e, i, t, p):
         tpair[e, i, j] = tij; tpair[e, j, i] = tij
 
 
-# The event loop's copy, inlined at its one call site: a call passes the
-# named structures (~200 machine words), more than a pair check costs.
-refresh_inline = njit_inline(getattr(refresh, "py_func", refresh))  # (plain function under NUMBA_DISABLE_JIT)
-
-
 @njit
-def break_collapse(balls, scr, geo, e, t, p, stuck, rounds, spin_on):
+def break_collapse(balls, e, p, stuck, rounds, spin_on):
     """Stop the translation and rolling of the slow balls of an inelastic
     collapse (constants.ZENO_EVENTS; the speed limit doubles with each
-    earlier round at this instant) and recompute their events. The stuck
-    balls' states are at time t (``catch_up``)."""
+    earlier round at this instant). The stuck balls' states are at the
+    current time (``catch_up``); the caller recomputes their events."""
     vel, om, st = balls.vel, balls.om, balls.st
     R = p[C.P_R]
     limit = C.ZENO_FREEZE_SPEED * 2.0 ** rounds
@@ -93,9 +93,6 @@ def break_collapse(balls, scr, geo, e, t, p, stuck, rounds, spin_on):
             vel[e, i, 0] = 0.0; vel[e, i, 1] = 0.0
             om[e, i, 0] = 0.0; om[e, i, 1] = 0.0
             classify(vel, om, st, e, i, R, spin_on)  # SPINNING or STATIONARY
-    for i in range(vel.shape[1]):
-        if stuck[i]:
-            refresh(balls, scr, geo, e, i, t, p)
 
 
 @njit_inline
@@ -153,21 +150,29 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
         n_stuck = 0  # events since time last advanced
         rounds = 0  # collapse rounds at the current instant
         while True:
-            # the balls the last event changed (one call site: inlined)
+            if n_stuck > C.ZENO_EVENTS:
+                # An inelastic collapse: the stuck balls (every ball of the
+                # events since time last advanced) are slowed, and all their
+                # events recomputed, in the order of their index. The last
+                # event's balls are among them: their own recomputation is
+                # this one (any earlier one would be overwritten).
+                n_todo = 0
+                for i in range(B):
+                    if stuck[i]:
+                        catch_up(balls, tlast, e, i, t, p, zspin_on, spin_on)
+                        todo[n_todo] = i; n_todo += 1
+                break_collapse(balls, e, p, stuck, rounds, spin_on)
+                n_stuck = 0
+                rounds += 1
+            # the balls the last event changed (the one call site of
+            # ``refresh``: inlined)
             for q in range(n_todo):
-                refresh_inline(balls, scr, geo, e, todo[q], t, p)
+                refresh(balls, scr, geo, e, todo[q], t, p)
             n_todo = 0
             if nev == 0:
                 if diag_on:
                     en_prev = diagnostics.start(balls, geo, e, p, out.diag)
             else:
-                if n_stuck > C.ZENO_EVENTS:
-                    for i in range(B):
-                        if stuck[i]:
-                            catch_up(balls, tlast, e, i, t, p, zspin_on, spin_on)
-                    break_collapse(balls, scr, geo, e, t, p, stuck, rounds, spin_on)
-                    n_stuck = 0
-                    rounds += 1
                 if diag_on:
                     diagnostics.check_geometry(balls, geo, e, p, out.diag)
                     en_prev = diagnostics.energy_step(balls, e, p, out.diag, en_prev)
