@@ -166,7 +166,7 @@ class BilliardsEnv(gym.Env):
         self._core = BilliardsCore(self.config, 1, record=render_mode is not None)
         self._renderer = _Renderer(render_mode, render_ppm, render_paths)
         d = self._core.obs_dim
-        self.observation_space = spaces.Box(0.0, 1.0, shape=(d,), dtype=np.float32)
+        self.observation_space = spaces.Box(self._core.obs_low, 1.0, shape=(d,), dtype=np.float32)
         self.action_space = spaces.Box(-1.0, 1.0, shape=(4,), dtype=np.float32)
         self._done = True
         self._seeded = False
@@ -305,7 +305,7 @@ class BilliardsVectorEnv(VectorEnv):
         self._core = BilliardsCore(self.config, self.num_envs, record=render_mode is not None)
         self._renderer = _Renderer(render_mode, render_ppm, render_paths)
         d = self._core.obs_dim
-        self.single_observation_space = spaces.Box(0.0, 1.0, shape=(d,), dtype=np.float32)
+        self.single_observation_space = spaces.Box(self._core.obs_low, 1.0, shape=(d,), dtype=np.float32)
         self.single_action_space = spaces.Box(-1.0, 1.0, shape=(4,), dtype=np.float32)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)

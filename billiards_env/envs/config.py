@@ -20,6 +20,8 @@ from .tasks.base import CONFIG_DIR
 from .tasks.registry import get_task
 
 CONFIG_VERSION = 1
+AIMS = ("relative", "absolute", "impact")        # meaning of action a0 (billiards._COMMON_DOC)
+OBSERVATIONS = ("table", "target_frame")          # observation layouts (billiards._COMMON_DOC)
 __all__ = ["TaskConfig", "RewardConfig", "NoiseConfig", "CONFIG_DIR", "CONFIG_VERSION", "check_keys"]
 
 
@@ -146,7 +148,12 @@ class TaskConfig:
     - ``n_balls``: object balls (pot_one: 1, nine_ball: 9);
     - ``max_shots``: shots per episode before truncation;
     - ``aim``: ``relative`` (a0 turns the aim away from the line cue -> legal
-      target ball) or ``absolute`` (a0 * pi from +x);
+      target ball), ``absolute`` (a0 * pi from +x) or ``impact`` (a0 sets the
+      fullness of the hit on the legal target: the cue ball's path passes
+      its centre at 2R * a0, ``envs/impact.py``);
+    - ``observation``: ``table`` (ball positions in table coordinates) or
+      ``target_frame`` (positions and pockets relative to the legal target
+      and the line cue -> target, ``envs/target_frame.py``);
     - ``min_draw``: cue draw (m) at a1 = -1 (small and positive so the cue ball moves);
     - ``margin``: clearance (m) between randomly placed balls and from the cushions;
     - ``break_speed``: nine_ball break-shot speed (m/s);
@@ -165,6 +172,7 @@ class TaskConfig:
     n_balls: int = 1
     max_shots: int = 1
     aim: str = "relative"
+    observation: str = "table"
     min_draw: float = 0.01
     margin: float = 0.01
     break_speed: float = 8.0
@@ -184,8 +192,10 @@ class TaskConfig:
         if self.solver == "step":
             if self.dt is None or _number(self.dt, "dt") <= 0:
                 raise ValueError("the step solver needs a positive time step dt (s), e.g. dt: 1.0e-4")
-        if self.aim not in ("relative", "absolute"):
-            raise ValueError(f"aim must be 'relative' or 'absolute', got {self.aim!r}")
+        if self.aim not in AIMS:
+            raise ValueError(f"aim must be one of {AIMS}, got {self.aim!r}")
+        if self.observation not in OBSERVATIONS:
+            raise ValueError(f"observation must be one of {OBSERVATIONS}, got {self.observation!r}")
         for name in ("n_balls", "max_shots", "table_size_ft", "version"):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int) or v < 1:

@@ -26,7 +26,9 @@ import numpy as np
 
 from ..physics import BallState, simulate
 from ..physics.strike import Shots, apply_strike, draw_to_speed, speed_to_draw
+from . import target_frame
 from .config import TaskConfig
+from .impact import impact_actions, impact_phis
 from .streams import TableStreams, place_balls
 from .tasks.base import ShotOutcome
 from .tasks.registry import get_task
@@ -134,7 +136,6 @@ class BilliardsCore:
         self.models = cfg.models
         self.record = record
         self.n_balls = cfg.n_balls + 1  # cue ball + object balls
-        self.obs_dim = 4 * self.n_balls + 1
         self.diag = math.hypot(self.table.width, self.table.length)
         self.state: BallState | None = None
         self.shots = np.zeros(self.n_envs, dtype=np.int64)
@@ -143,6 +144,11 @@ class BilliardsCore:
         self.streams = TableStreams(self.n_envs)  # seeded by the env's reset
         self._every = np.arange(self.n_envs)
         self.pockets = np.ascontiguousarray(self.table.geometry(self.effects.pockets)[3], dtype=np.float64)
+        # observation: size and lower bound (the upper bound is 1); see billiards._COMMON_DOC, envs/target_frame.py
+        if cfg.observation == "target_frame":
+            self.obs_dim, self.obs_low = target_frame.obs_size(self.n_balls, len(self.pockets)), -1.0
+        else:
+            self.obs_dim, self.obs_low = 4 * self.n_balls + 1, 0.0
         self._context: ShotContext | None = None  # of the current state; None: to be computed
 
     # --- shot context: computed once per state change ------------------------
@@ -163,8 +169,12 @@ class BilliardsCore:
     def observe(self) -> np.ndarray:
         s = self.state
         obs = np.zeros((self.n_envs, self.obs_dim), dtype=np.float32)
-        _observe(s.pos, s.pocket, self.shot_context().target, self.shots, float(self.cfg.max_shots),
-                 self.table.width, self.table.length, obs)
+        if self.cfg.observation == "target_frame":
+            target_frame.observe_target_frame(s.pos, s.pocket, self.shot_context().target, self.shots,
+                                              float(self.cfg.max_shots), self.pockets, self.diag, obs)
+        else:
+            _observe(s.pos, s.pocket, self.shot_context().target, self.shots, float(self.cfg.max_shots),
+                     self.table.width, self.table.length, obs)
         return obs
 
     # --- actions <-> shots ----------------------------------------------------
@@ -183,8 +193,12 @@ class BilliardsCore:
         see billiards._COMMON_DOC for the mapping)."""
         actions = np.ascontiguousarray(actions, dtype=np.float64)
         out = np.empty((4, len(actions)))
-        _action_to_shot(actions, self.shot_context().aim_origin[idx], self.cfg.min_draw, self.params.max_draw,
+        ctx = self.shot_context()
+        _action_to_shot(actions, ctx.aim_origin[idx], self.cfg.min_draw, self.params.max_draw,
                         self.params.miscue_limit, out)
+        if self.cfg.aim == "impact":  # a0 is the impact parameter, not an angle (envs/impact.py)
+            impact_phis(np.ascontiguousarray(actions[:, 0]), ctx.aim_origin[idx], ctx.target[idx], self.state.pos[idx], self.params.R,
+                        out[0])
         return Shots.of_arrays(out[0], draw_to_speed(out[1], self.params), out[2], out[3])
 
     def shots_to_actions(self, shots: Shots, idx) -> np.ndarray:
@@ -194,8 +208,14 @@ class BilliardsCore:
         if not isinstance(shots, Shots):
             raise TypeError(f"shots must be a Shots, got {type(shots).__name__}")
         phi, speed, a, b = (np.broadcast_to(v, (n,)) for v in shots)
-        rel = (phi - self.shot_context().aim_origin[idx]) / math.pi
-        rel = (rel + 1.0) % 2.0 - 1.0
+        ctx = self.shot_context()
+        if self.cfg.aim == "impact":
+            rel = np.empty(n)
+            impact_actions(np.ascontiguousarray(phi, dtype=np.float64), ctx.aim_origin[idx], ctx.target[idx],
+                           self.state.pos[idx], self.params.R, rel)
+        else:
+            rel = (phi - ctx.aim_origin[idx]) / math.pi
+            rel = (rel + 1.0) % 2.0 - 1.0
         lo, hi, lim = self.cfg.min_draw, self.params.max_draw, self.params.miscue_limit
         out = np.stack([rel, 2.0 * (speed_to_draw(speed, self.params) - lo) / (hi - lo) - 1.0, a / lim, b / lim],
                        axis=1)
