@@ -352,7 +352,8 @@ def train(cfg: TrainConfig, run_dir, command: str = "", resume: bool = False, re
 
 def final_evaluation(cfg: TrainConfig, run_dir) -> list:
     """The trained model of ``run_dir`` and ``cfg.train.eval_baselines`` on
-    ``eval_episodes`` seeded episodes per noise setting; prints a Markdown
+    ``eval_episodes`` seeded episodes per noise setting, on the env of
+    ``cfg.env_kwargs`` (the one the model was trained on); prints a Markdown
     table and writes ``eval.json`` / ``eval.png`` into ``run_dir``."""
     from .evaluation import evaluate, format_table, load_trained, save_results
     from .policies import make_policy
@@ -363,11 +364,11 @@ def final_evaluation(cfg: TrainConfig, run_dir) -> list:
     results = []
     for noise in ts.eval_noise:
         results.append(evaluate(lambda env: trained.bind(env), cfg.env_id, ts.eval_episodes, ts.eval_seed,
-                                noise, name=trained.name))
+                                noise, env_kwargs=cfg.env_kwargs, name=trained.name))
         for b in ts.eval_baselines:
             bname = f"search{ts.search_k}" if b == "search" else b
             results.append(evaluate(lambda env, b=bname: make_policy(b, env, seed=ts.eval_seed), cfg.env_id,
-                                    ts.eval_episodes, ts.eval_seed, noise, name=bname))
+                                    ts.eval_episodes, ts.eval_seed, noise, env_kwargs=cfg.env_kwargs, name=bname))
     print(format_table(results))
     save_results(results, run_dir / "eval.json", run_dir / "eval.png")
     return results

@@ -21,6 +21,7 @@ from .tasks.registry import get_task
 
 CONFIG_VERSION = 1
 AIMS = ("relative", "absolute", "impact")        # meaning of action a0 (billiards._COMMON_DOC)
+SPEED_SCALES = ("linear", "log")                  # meaning of action a1 (billiards._COMMON_DOC)
 OBSERVATIONS = ("table", "target_frame")          # observation layouts (billiards._COMMON_DOC)
 __all__ = ["TaskConfig", "RewardConfig", "NoiseConfig", "CONFIG_DIR", "CONFIG_VERSION", "check_keys"]
 
@@ -151,6 +152,9 @@ class TaskConfig:
       target ball), ``absolute`` (a0 * pi from +x) or ``impact`` (a0 sets the
       fullness of the hit on the legal target: the cue ball's path passes
       its centre at 2R * a0, ``envs/impact.py``);
+    - ``speed_scale``: ``linear`` (a1 -> cue draw linearly from ``min_draw``
+      to ``max_draw``) or ``log`` (geometrically: equal steps of a1 are
+      equal speed ratios, so slow shots get as much of the range as fast ones);
     - ``observation``: ``table`` (ball positions in table coordinates) or
       ``target_frame`` (positions and pockets relative to the legal target
       and the line cue -> target, ``envs/target_frame.py``);
@@ -172,6 +176,7 @@ class TaskConfig:
     n_balls: int = 1
     max_shots: int = 1
     aim: str = "relative"
+    speed_scale: str = "linear"
     observation: str = "table"
     min_draw: float = 0.01
     margin: float = 0.01
@@ -194,6 +199,8 @@ class TaskConfig:
                 raise ValueError("the step solver needs a positive time step dt (s), e.g. dt: 1.0e-4")
         if self.aim not in AIMS:
             raise ValueError(f"aim must be one of {AIMS}, got {self.aim!r}")
+        if self.speed_scale not in SPEED_SCALES:
+            raise ValueError(f"speed_scale must be one of {SPEED_SCALES}, got {self.speed_scale!r}")
         if self.observation not in OBSERVATIONS:
             raise ValueError(f"observation must be one of {OBSERVATIONS}, got {self.observation!r}")
         for name in ("n_balls", "max_shots", "table_size_ft", "version"):

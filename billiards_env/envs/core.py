@@ -197,8 +197,11 @@ class BilliardsCore:
         _action_to_shot(actions, ctx.aim_origin[idx], self.cfg.min_draw, self.params.max_draw,
                         self.params.miscue_limit, out)
         if self.cfg.aim == "impact":  # a0 is the impact parameter, not an angle (envs/impact.py)
-            impact_phis(np.ascontiguousarray(actions[:, 0]), ctx.aim_origin[idx], ctx.target[idx], self.state.pos[idx], self.params.R,
-                        out[0])
+            impact_phis(np.ascontiguousarray(actions[:, 0]), ctx.aim_origin[idx], ctx.target[idx],
+                        self.state.pos[idx], self.params.R, out[0])
+        if self.cfg.speed_scale == "log":  # a1 spans min_draw..max_draw geometrically
+            lo, hi = self.cfg.min_draw, self.params.max_draw
+            out[1] = lo * (hi / lo) ** (0.5 * (np.clip(actions[:, 1], -1.0, 1.0) + 1.0))
         return Shots.of_arrays(out[0], draw_to_speed(out[1], self.params), out[2], out[3])
 
     def shots_to_actions(self, shots: Shots, idx) -> np.ndarray:
@@ -217,8 +220,12 @@ class BilliardsCore:
             rel = (phi - ctx.aim_origin[idx]) / math.pi
             rel = (rel + 1.0) % 2.0 - 1.0
         lo, hi, lim = self.cfg.min_draw, self.params.max_draw, self.params.miscue_limit
-        out = np.stack([rel, 2.0 * (speed_to_draw(speed, self.params) - lo) / (hi - lo) - 1.0, a / lim, b / lim],
-                       axis=1)
+        draw = speed_to_draw(speed, self.params)
+        if self.cfg.speed_scale == "log":
+            a1 = 2.0 * np.log(np.maximum(draw, lo) / lo) / math.log(hi / lo) - 1.0
+        else:
+            a1 = 2.0 * (draw - lo) / (hi - lo) - 1.0
+        out = np.stack([rel, a1, a / lim, b / lim], axis=1)
         return np.clip(out, -1.0, 1.0)
 
     def apply_noise(self, shots: Shots, idx, scale: np.ndarray | None = None) -> Shots:
