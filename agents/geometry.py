@@ -20,6 +20,7 @@ import math
 
 import numpy as np
 
+from billiards_env.envs.target_frame import pocket_axes as _pocket_axes
 from billiards_env.physics import PhysicsParams, Table
 from billiards_env.physics.strike import Shots
 
@@ -45,15 +46,7 @@ def pocket_aim_points(table: Table, inset: float = 0.02) -> np.ndarray:
 def pocket_axes(table: Table) -> np.ndarray:
     """Unit vectors [P, 2] pointing from each pocket into the table (the
     direction a ball must come from to enter the pocket head-on)."""
-    w, l = table.width, table.length
-    out = []
-    for cx, cy, _ in table.pockets:
-        if abs(cy - l / 2) < 1e-9:
-            out.append((1.0, 0.0) if cx < w / 2 else (-1.0, 0.0))
-        else:
-            v = np.array([1.0 if cx < w / 2 else -1.0, 1.0 if cy < l / 2 else -1.0]) / math.sqrt(2.0)
-            out.append(tuple(v))
-    return np.array(out, dtype=np.float64)
+    return _pocket_axes(table.pockets, table.width, table.length)  # the one the env's target frame shows
 
 
 def _seg_point_dist(a: np.ndarray, b: np.ndarray, p: np.ndarray) -> np.ndarray:

@@ -59,13 +59,31 @@ def test_impact_aim_misses_beyond_the_thinnest_touch():
     assert info["first_contact"] == 1
 
 
+@pytest.mark.parametrize("speed_scale", ["linear", "log"])
 @pytest.mark.parametrize("env_id", ["Billiards-PotOne-v0", "Billiards-RunOut-v0", "Billiards-NineBall-v0"])
-def test_impact_shot_round_trip(env_id):
-    v = gym.make_vec(env_id, num_envs=6, vectorization_mode="vector_entry_point", aim="impact").unwrapped
+def test_impact_shot_round_trip(env_id, speed_scale):
+    v = gym.make_vec(env_id, num_envs=6, vectorization_mode="vector_entry_point", aim="impact",
+                     speed_scale=speed_scale).unwrapped
     v.reset(seed=4)
     acts = np.random.default_rng(1).uniform(-1, 1, size=(6, 4))
     acts[:, 2:] *= 0.7
     np.testing.assert_allclose(v.shots_to_actions(v.actions_to_shots(acts)), acts, atol=1e-9)
+
+
+def test_log_speed_scale_spans_the_draw_geometrically():
+    """a1 = -1, 0, 1 give min_draw, the geometric mean and max_draw; equal
+    steps of a1 are equal speed ratios."""
+    from billiards_env.physics.strike import draw_to_speed
+    v = gym.make_vec("Billiards-PotOne-v0", num_envs=5, vectorization_mode="vector_entry_point",
+                     speed_scale="log").unwrapped
+    v.reset(seed=0)
+    lo, hi, p = v.config.min_draw, v.params.max_draw, v.params
+    acts = np.zeros((5, 4))
+    acts[:, 1] = [-1.0, -0.5, 0.0, 0.5, 1.0]
+    speed = v.actions_to_shots(acts).speed
+    np.testing.assert_allclose(speed[[0, 2, 4]], draw_to_speed(np.array([lo, math.sqrt(lo * hi), hi]), p),
+                               rtol=1e-12)
+    np.testing.assert_allclose(speed[1:] / speed[:-1], (hi / lo) ** 0.25, rtol=1e-12)
 
 
 def test_impact_aim_keeps_the_ghost_ball_shot():
@@ -95,7 +113,7 @@ def test_target_frame_observation_is_invariant_under_the_table_symmetries(env_id
     env.reset(seed=0)
     W, L = env.table.width, env.table.length
     B, P = env.state.n_balls, len(env.table.pockets)
-    y_cols = [2 + 3 * i for i in range(B)] + [2 + 4 * B + 3 * k + 1 for k in range(P)]
+    y_cols = [2 + 3 * i for i in range(B)] + [2 + 4 * B + 5 * k + j for k in range(P) for j in (1, 4)]
     for pos in _layouts(env, 5):
         obs = env.set_state(pos)
         rot = env.set_state(np.stack([W - pos[:, 0], L - pos[:, 1]], axis=1))
@@ -120,10 +138,14 @@ def test_target_frame_pockets_are_ordered_straightest_first():
     target = np.array([W / 2, L / 2]) + 0.5 * (corner - [W / 2, L / 2])
     cue = target - 0.3 * (corner - target) / np.hypot(*(corner - target))
     obs = env.set_state(np.array([cue, target]))
-    first = obs[2 + 4 * 2: 2 + 4 * 2 + 3]
+    first = obs[2 + 4 * 2: 2 + 4 * 2 + 5]
     np.testing.assert_allclose(first[:2], [1.0, 0.0], atol=1e-6)
     np.testing.assert_allclose(first[2], np.hypot(*(corner - target)) / math.hypot(W, L), atol=1e-6)
-    angles = np.abs(np.arctan2(obs[2 + 4 * 2 + 1::3], obs[2 + 4 * 2::3]))
+    # the corner pocket's axis points back into the table, at 45 degrees to the cushions
+    axis = np.array([-1.0, -1.0]) / math.sqrt(2.0)
+    u = (corner - cue) / np.hypot(*(corner - cue))
+    np.testing.assert_allclose(first[3:], [u @ axis, u[0] * axis[1] - u[1] * axis[0]], atol=1e-6)
+    angles = np.abs(np.arctan2(obs[2 + 4 * 2 + 1::5], obs[2 + 4 * 2::5]))
     assert np.all(np.diff(angles) >= 0)
 
 
@@ -146,5 +168,7 @@ def test_bad_option_values_name_the_choices():
         TaskConfig.default("pot_one", aim="fullness")
     with pytest.raises(ValueError, match="observation must be one of .*target_frame"):
         TaskConfig.default("pot_one", observation="cue_frame")
+    with pytest.raises(ValueError, match="speed_scale must be one of .*log"):
+        TaskConfig.default("pot_one", speed_scale="exp")
     with pytest.raises(ValueError, match="observation must be one of"):
         gym.make("Billiards-PotOne-v0", observation=3)

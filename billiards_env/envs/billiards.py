@@ -49,19 +49,43 @@ _COMMON_DOC = """
     4*B             shots taken this episode / max_shots
     ==============  ===========================================================
 
+    ``observation="target_frame"``: the table seen from the legal target
+    ball instead (``Box(-1, 1, (4*B + 2 + 3*P,), float32)``, P pockets):
+    cue -> target distance, every ball's position in the frame with origin
+    at the target and x-axis along cue -> target, the target one-hot, the
+    shot count, and per pocket (straightest first) its unit direction and
+    distance from the target; all lengths / table diagonal. Layout:
+    ``billiards_env/envs/target_frame.py``.
+
     **Action** (``Box(-1, 1, (4,), float32)``):
 
     ===  ========================================================================
     a0   aim: ``aim="relative"`` (default) phi = angle(cue -> legal target) + pi*a0,
          so a0 = 0 aims straight at the target's centre; ``aim="absolute"``:
-         phi = pi*a0 counter-clockwise from +x
+         phi = pi*a0 counter-clockwise from +x; ``aim="impact"``: a0 is the
+         fullness of the hit on the legal target, the cue ball's path
+         passing its centre at 2R*a0 (a0 = 0 full, +-1 the thinnest touch),
+         so the object ball leaves at asin(a0) counter-clockwise from the
+         cue ball's path (without throw): phi = angle(cue -> target) -
+         asin(2R*a0 / d), d the centres' distance (``envs/impact.py``)
     a1   cue draw: min_draw + (a1 + 1)/2 * (max_draw - min_draw) m
          (speed = ``draw_to_speed(draw)`` = k * contact_time * draw / m,
-         ~10 m/s at max_draw)
+         ~10 m/s at max_draw; 0.33 m/s at min_draw); ``speed_scale="log"``:
+         min_draw * (max_draw / min_draw) ** ((a1 + 1)/2), a1 = 0 ~1.8 m/s
     a2   side offset a = miscue_limit * a2 (units of R, + = right english)
     a3   height offset b = miscue_limit * a3 (+ = follow, - = draw); (a, b) is
          scaled radially into the disc of radius miscue_limit
     ===  ========================================================================
+
+    Why ``aim="impact"``: the pot depends on the direction the object ball
+    leaves in, and that is fixed by the impact parameter alone (it leaves
+    along the line of centres at contact, ``asin(b / 2R)`` from the cue
+    ball's path); pool players aim by the same quantity, the ball-hit
+    fraction ``1 - |a0|`` (D. Alciatore, billiards.colostate.edu, technical
+    proof TP A.16). With the relative aim an aim error turns the object
+    ball by about d / 2R times as much (17 times at d = 1 m); with the
+    impact aim an error in a0 turns it by the same amount at any distance. Balls in the way get no special
+    treatment: the simulator decides what the cue ball hits first.
 
     Values outside [-1, 1] are clipped (``info["action_clipped"]``); NaN or
     infinite values, or a wrong shape, raise ``ValueError``.

@@ -8,7 +8,7 @@ does not have to learn the same shot again for every rotation of it; with
 ``aim: impact`` the pocket's direction from the target maps almost linearly
 to the action that pots into it (a0 ~ sin of the pocket's angle).
 
-Layout (B balls, P pockets, size 4B + 2 + 3P; every entry in [-1, 1]):
+Layout (B balls, P pockets, size 4B + 2 + 5P; every entry in [-1, 1]):
 
 ==================  =========================================================
 index               meaning
@@ -18,8 +18,13 @@ index               meaning
 3 + 3*i             1 if ball i is on the table, 0 if pocketed
 1 + 3*B + i         1 if ball i is the legal target ball, else 0
 1 + 4*B             shots taken this episode / max_shots
-2 + 4*B + 3*k ...   k-th pocket: unit direction (ux, uy) from the target in
-                    the frame and distance target -> pocket centre / diagonal
+2 + 4*B + 5*k ...   k-th pocket: unit direction (ux, uy) from the target in
+                    the frame, distance target -> pocket centre / diagonal,
+                    and the pocket's axis (ax, ay) in the frame: the unit
+                    vector from the pocket into the table along which a ball
+                    enters it head-on (``pocket_axes``); a pot needs the
+                    object ball's path within some angle of it, narrower for
+                    side pockets than for corners
 ==================  =========================================================
 
 Pockets are listed by increasing angle |atan2(uy, ux)| from the x-axis
@@ -42,7 +47,22 @@ _jit = numba.njit(cache=True, nogil=True)
 
 def obs_size(n_balls: int, n_pockets: int) -> int:
     """Length of the observation for ``n_balls`` balls (cue ball included)."""
-    return 4 * n_balls + 2 + 3 * n_pockets
+    return 4 * n_balls + 2 + 5 * n_pockets
+
+
+def pocket_axes(pockets: np.ndarray, width: float, length: float) -> np.ndarray:
+    """Unit vectors [P, 2] from each pocket (centres ``pockets[:, :2]``) into
+    a ``width`` x ``length`` table: across the table for the side pockets
+    (centre at half length), along the diagonal 45 degrees between the
+    cushions for the corner pockets."""
+    out = np.empty((len(pockets), 2))
+    for k, (cx, cy) in enumerate(np.asarray(pockets, dtype=np.float64)[:, :2]):
+        sx = 1.0 if cx < width / 2 else -1.0
+        if abs(cy - length / 2) < 1e-9:
+            out[k] = (sx, 0.0)
+        else:
+            out[k] = np.array([sx, 1.0 if cy < length / 2 else -1.0]) / math.sqrt(2.0)
+    return out
 
 
 @_jit
@@ -51,7 +71,7 @@ def _clip1(v):
 
 
 @_jit
-def observe_target_frame(pos, pocket, tgt, shots, max_shots, pockets, diag, obs):
+def observe_target_frame(pos, pocket, tgt, shots, max_shots, pockets, axes, diag, obs):
     """Fill the zeroed observations ``obs`` [N, obs_size] (layout: module docstring)."""
     B = pos.shape[1]
     P = pockets.shape[0]
@@ -91,6 +111,8 @@ def observe_target_frame(pos, pocket, tgt, shots, max_shots, pockets, diag, obs)
             u, v = c * rx + s * ry, -s * rx + c * ry
             r = math.hypot(u, v)
             if r > 0.0:
-                obs[e, base + 3 * j] = u / r
-                obs[e, base + 3 * j + 1] = v / r
-            obs[e, base + 3 * j + 2] = _clip1(r / diag)
+                obs[e, base + 5 * j] = u / r
+                obs[e, base + 5 * j + 1] = v / r
+            obs[e, base + 5 * j + 2] = _clip1(r / diag)
+            obs[e, base + 5 * j + 3] = c * axes[k, 0] + s * axes[k, 1]
+            obs[e, base + 5 * j + 4] = -s * axes[k, 0] + c * axes[k, 1]
