@@ -112,6 +112,7 @@ class _CoreConfig:
     solver: str
     dt: float | None
     aim: str = "relative"
+    speed_scale: str = "linear"
 
 
 class GameCore(BilliardsCore):
