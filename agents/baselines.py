@@ -217,8 +217,9 @@ class SB3Policy:
     """A trained SB3 model; observations normalised with its VecNormalize stats."""
 
     def __init__(self, model, vecnormalize=None, name: str = "model", features: bool = False,
-                 aim_scale: float = 1.0, env=None, action_mode: str = "direct"):
+                 aim_scale: float = 1.0, env=None, action_mode: str = "direct", env_kwargs: dict | None = None):
         self.model, self.vecnormalize, self.name = model, vecnormalize, name
+        self.env_kwargs = dict(env_kwargs or {})  # the env options it was trained with (its run's config)
         self.features, self.aim_scale, self.action_mode = features, aim_scale, action_mode
         needs_env = features or action_mode != "direct"
         self.env = native_env(env) if (env is not None and needs_env) else env
@@ -226,7 +227,7 @@ class SB3Policy:
     def bind(self, env) -> "SB3Policy":
         """The same model playing on another (native) vector env."""
         return SB3Policy(self.model, self.vecnormalize, self.name, self.features, self.aim_scale, env,
-                         self.action_mode)
+                         self.action_mode, self.env_kwargs)
 
     def act(self, obs: np.ndarray) -> np.ndarray:
         if self.features:
@@ -282,4 +283,4 @@ class SB3Policy:
                 break
         return cls(model, vn, name=name or (algo or "model"), features=bool(meta.get("features", False)),
                    aim_scale=float(meta.get("aim_scale", 1.0)), env=env,
-                   action_mode=meta.get("action_mode", "direct"))
+                   action_mode=meta.get("action_mode", "direct"), env_kwargs=meta.get("env_kwargs"))

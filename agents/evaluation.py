@@ -206,24 +206,28 @@ def load_trained(path, name: str | None = None):
     return SB3Policy.load(path, name=name)
 
 
-def policy_factory(spec: str, seed: int = 0, search_k: int = 256) -> tuple[Callable, str]:
-    """``(policy_fn, display name)`` of a policy spec: ``random``, ``ghost``,
-    ``search`` (K = ``search_k``), ``search<K>``, ``lookahead``, or a run
-    directory / model file of either training backend."""
+def policy_factory(spec: str, seed: int = 0, search_k: int = 256) -> tuple[Callable, str, dict]:
+    """``(policy_fn, display name, env_kwargs)`` of a policy spec: ``random``,
+    ``ghost``, ``search`` (K = ``search_k``), ``search<K>``, ``lookahead``, or
+    a run directory / model file of either training backend. ``env_kwargs``
+    are the env options the policy plays with: a trained policy's are its
+    run's (``env_kwargs`` of its config.yaml: its observation and action
+    mapping), a baseline's none."""
     from .policies import BASELINE_NAMES, make_policy
 
     if spec in BASELINE_NAMES or spec.startswith("search"):
         if spec == "search":
             spec = f"search{search_k}"
-        return (lambda env, s=spec: make_policy(s, env, seed=seed)), spec  # noqa: E731
+        return (lambda env, s=spec: make_policy(s, env, seed=seed)), spec, {}  # noqa: E731
     loaded = load_trained(spec)
-    return (lambda env, p=loaded: p.bind(env)), f"{loaded.name}:{Path(spec).name}"  # noqa: E731
+    return (lambda env, p=loaded: p.bind(env)), f"{loaded.name}:{Path(spec).name}", dict(loaded.env_kwargs)  # noqa: E731
 
 
 def evaluate_spec(spec: str, policy_fn: Callable, env_id: str, n_episodes: int, seed: int, noise: str,
-                  batch_size: int, name: str, search_k: int = 256) -> EvalResult:
+                  batch_size: int, name: str, search_k: int = 256, env_kwargs: dict | None = None) -> EvalResult:
     """One entry of ``evaluate_policies``, in this process."""
-    return evaluate(policy_fn, env_id, n_episodes, seed, noise, batch_size=batch_size, name=name)
+    return evaluate(policy_fn, env_id, n_episodes, seed, noise, batch_size=batch_size, name=name,
+                    env_kwargs=env_kwargs)
 
 
 def evaluate_policies(specs: list[str], env_id: str, n_episodes: int = 1000, seed: int = 0,
@@ -236,10 +240,10 @@ def evaluate_policies(specs: list[str], env_id: str, n_episodes: int = 1000, see
     here; ``agents.ray_eval.evaluate_spec`` on Ray, with the same results)."""
     results = []
     for j, spec in enumerate(specs):
-        fn, display = policy_factory(spec, seed, search_k)
+        fn, display, env_kwargs = policy_factory(spec, seed, search_k)
         display = names[j] if names and j < len(names) and names[j] else display
         for nz in noises or ["none"]:
-            r = run(spec, fn, env_id, n_episodes, seed, nz, batch_size, display, search_k)
+            r = run(spec, fn, env_id, n_episodes, seed, nz, batch_size, display, search_k, env_kwargs=env_kwargs)
             print(f"{display:>20s} noise={nz:<10s} success {r.success_rate:.3f} "
                   f"[{r.success_ci95[0]:.3f}, {r.success_ci95[1]:.3f}]  ({r.wall_time_s:.1f} s)", flush=True)
             results.append(r)

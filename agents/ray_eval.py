@@ -87,11 +87,11 @@ def evaluate_ray(policy_fn: Callable, env_id: str, n_episodes: int = 1000, seed:
 
 
 def evaluate_spec(spec: str, policy_fn: Callable, env_id: str, n_episodes: int, seed: int, noise: str,
-                  batch_size: int, name: str, search_k: int = 256) -> EvalResult:
+                  batch_size: int, name: str, search_k: int = 256, env_kwargs: dict | None = None) -> EvalResult:
     """One entry of ``agents.evaluation.evaluate_policies(run=evaluate_spec)``
     on Ray: the search baseline plays its batches here with its candidates spread
     over the cluster; every other policy has its batches spread."""
     if spec.startswith("search"):
         fn = search_policy_fn(spec, seed, search_k, min(batch_size, n_episodes))
         return evaluate_ray(fn, env_id, n_episodes, seed, noise, batch_size, name=name, local_batches=True)
-    return evaluate_ray(policy_fn, env_id, n_episodes, seed, noise, batch_size, name=name)
+    return evaluate_ray(policy_fn, env_id, n_episodes, seed, noise, batch_size, env_kwargs=env_kwargs, name=name)

@@ -48,6 +48,11 @@ class RLlibPolicy:
 
         return RLlibPolicy(self.module, self.obs_filter, self.cfg, self.name, native_env(env))
 
+    @property
+    def env_kwargs(self) -> dict:
+        """The env options it was trained with (its run's config)."""
+        return dict(self.cfg.env_kwargs)
+
     def act(self, obs: np.ndarray) -> np.ndarray:
         import torch
 

@@ -214,7 +214,9 @@ def test_train_and_evaluate_scripts(tmp_path):
            "--set", "ppo.total_timesteps=512", "--set", "train.total_timesteps=512", "--set", "n_envs=16",
            "--set", "ppo.n_steps=32", "--set", "ppo.batch_size=128", "--set", "ppo.n_epochs=1",
            "--set", "train.eval_episodes=20", "--set", "train.search_k=8", "--set", "train.progress_bar=false",
-           "--set", "train.eval_noise=[none]", "--set", "policy.net_arch=[32, 32]"]
+           "--set", "train.eval_noise=[none]", "--set", "policy.net_arch=[32, 32]",
+           # an env option that changes the observation's size: evaluate.py must play the run on its own options
+           "--set", "env_kwargs.observation=target_frame"]
     out = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stderr[-3000:]
     run = tmp_path / "smoke"
