@@ -38,3 +38,34 @@ def test_plain_numba_compiles_literal_variants():
     helper = numba.njit(_with_flag)
     assert _caller_of(helper)(5) == 22
     assert len(helper.signatures) > 1
+
+
+_TWO_BALL = """
+import json, numpy as np
+from billiards_env.physics import BallState, PhysicsParams, Table, simulate, strike_velocity
+from billiards_env.testing.invariants import run_checked
+P, T = PhysicsParams.standard(), Table.pool(9)
+s = strike_velocity(BallState.from_positions(np.array([[[0.5, 0.5], [0.6, 1.2]]])), 1.2, 2.0, 0.2, 0.3, params=P)
+r = simulate(s, T, P)
+run_checked(s, T, P, "event")
+print(json.dumps([int(r.n_events[0]), r.state.pos.ravel().tolist()]))
+"""
+
+
+def test_simulate_runs_without_jit():
+    """With NUMBA_DISABLE_JIT=1 (for debugging the kernels in Python) the
+    simulator and the invariant checks run and agree with the compiled kernels."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    def run(disable):
+        env = {**os.environ, "NUMBA_DISABLE_JIT": "1" if disable else "0"}
+        out = subprocess.run([sys.executable, "-c", _TWO_BALL], capture_output=True, text=True, env=env, timeout=600)
+        assert out.returncode == 0, out.stderr[-2000:]
+        return json.loads(out.stdout.strip().splitlines()[-1])
+
+    (n_py, pos_py), (n_jit, pos_jit) = run(True), run(False)
+    assert n_py == n_jit
+    assert max(abs(a - b) for a, b in zip(pos_py, pos_jit)) < 1e-9

@@ -93,6 +93,9 @@ def call(kernel, *args):
     call, which costs a single-table call about a sixth of its time. The
     compiled entry point unboxes the arguments itself."""
     entry = _entries.get(kernel)
+    if entry is None and not hasattr(kernel, "overloads"):  # NUMBA_DISABLE_JIT=1: a plain Python function
+        kernel(*args)
+        return
     if entry is None:
         kernel(*args)  # compiles or loads the kernel, and types the arguments once
         if len(kernel.overloads) != 1:

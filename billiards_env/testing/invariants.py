@@ -27,7 +27,8 @@ def initial_energy(state, params) -> np.ndarray:
     """Total energy per table of the balls on the table (J), by the kernels'
     own formula (motion.kinetic_energy, on numpy arrays)."""
     v, w = state.vel, state.omega
-    e = kinetic_energy.py_func(v[..., 0], v[..., 1], w[..., 0], w[..., 1], w[..., 2], params.as_array())
+    energy = getattr(kinetic_energy, "py_func", kinetic_energy)  # the plain function under NUMBA_DISABLE_JIT=1
+    e = energy(v[..., 0], v[..., 1], w[..., 0], w[..., 1], w[..., 2], params.as_array())
     return (e * (state.pocket < 0)).sum(-1)
 
 
@@ -99,7 +100,7 @@ def run_checked(state, table, params, solver, *, dt=1e-3, effects=None, max_even
     models = models or Models()
     # the wall-time bound is for the simulation, not for compiling (or
     # loading from cache) a kernel variant on its first call in this process
-    compiled = bool(make_kernel(solver, effects, models, True).signatures)
+    compiled = bool(getattr(make_kernel(solver, effects, models, True), "signatures", True))  # no JIT: nothing to compile
     t0 = time.perf_counter()
     res = simulate(state, table, params, solver=solver, effects=effects, diagnostics=True,
                    record=record, models=models, **kw)
