@@ -25,32 +25,47 @@ EVAL_SEED = 12345
 NOISES = ("none", "tournament")
 
 
-def configured(algo: str, env_id: str) -> bool:
+def config_file(algo: str, config=None) -> Path:
+    """The YAML a run reads: ``config`` if given, else ``configs/<algo>.yaml``."""
+    return Path(config) if config is not None else CONFIG_DIR / f"{algo}.yaml"
+
+
+def config_label(path: Path) -> str:
+    """How the table names a config file: relative to the repository when inside it."""
+    path = Path(path).resolve()
+    root = CONFIG_DIR.resolve().parent
+    return str(path.relative_to(root)) if path.is_relative_to(root) else str(path)
+
+
+def configured(algo: str, env_id: str, config=None) -> bool:
     import yaml
-    doc = yaml.safe_load((CONFIG_DIR / f"{algo}.yaml").read_text()) or {}
-    return env_id in doc
+    doc = yaml.safe_load(config_file(algo, config).read_text()) or {}
+    return env_id in doc and (doc[env_id] or {}).get("algo", algo) == algo
 
 
 def run_one(env_id: str, algo: str, out_dir: Path, steps: int | None, episodes: int, curve_points: int,
-            curve_episodes: int, extra: tuple = (), command: str = "") -> dict:
+            curve_episodes: int, extra: tuple = (), command: str = "", config=None) -> dict:
     from .baselines import SB3Policy
     from .evaluation import evaluate
     from .training import train
 
-    cfg0 = load_config(None, env_id, list(extra), algo=algo)
+    path = config_file(algo, config)
+    cfg0 = load_config(path, env_id, list(extra), algo=algo)
     budget = int(steps or cfg0.train.total_timesteps)
     over = [f"train.total_timesteps={budget}", f"train.eval_every={max(budget // curve_points, 1)}",
             f"train.eval_every_episodes={curve_episodes}", "train.eval_episodes=0", "train.progress_bar=false",
             "train.tensorboard=false", "train.checkpoint_every=0", *extra]
-    cfg = load_config(None, env_id, over, algo=algo)
+    cfg = load_config(path, env_id, over, algo=algo)
     short = env_id.replace("Billiards-", "").replace("-v0", "").lower()
-    run_dir = out_dir / "runs" / f"{algo}_{short}"
+    variant = "" if config is None else "_" + Path(config).stem
+    run_dir = out_dir / "runs" / f"{algo}_{short}{variant}"
     s = train(cfg, run_dir, f"benchmark_agents {algo} {env_id} steps={budget}")
     pol = SB3Policy.load(run_dir, name=algo)
-    evals = {nz: evaluate(lambda env: pol.bind(env), env_id, episodes, EVAL_SEED, nz, name=algo).to_dict()
+    evals = {nz: evaluate(lambda env: pol.bind(env), env_id, episodes, EVAL_SEED, nz, name=algo,
+                          env_kwargs=pol.env_kwargs).to_dict()
              for nz in NOISES}
     held = s["held_out"]
-    return dict(env_id=env_id, algo=algo, config=f"configs/{algo}.yaml", overrides=list(extra),
+    return dict(env_id=env_id, algo=algo, config=config_label(path), overrides=list(extra),
                 budget_steps=s["timesteps"], config_budget_steps=int(cfg0.train.total_timesteps),
                 train_wall_s=s["train_wall_s"], env_steps_per_s=s["env_steps_per_s"],
                 ghost_success=held["ghost_target"], steps_to_beat_ghost=held["steps_to_target"],
@@ -60,9 +75,10 @@ def run_one(env_id: str, algo: str, out_dir: Path, steps: int | None, episodes: 
 
 def run_benchmark(out_dir, tasks=TASKS, algos=ALGOS, steps: int | None = None, episodes: int = 1000,
                   curve_points: int = 10, curve_episodes: int = 1000, extra: tuple = (),
-                  command: str = "") -> list[dict]:
+                  command: str = "", config=None) -> list[dict]:
     """Train and evaluate every configured (task, algo) of ``tasks`` x
-    ``algos``; the rows replace those of the same (task, algo) in
+    ``algos`` (from ``config``, default ``configs/<algo>.yaml``); the rows
+    replace those of the same (task, algo, config) in
     ``out_dir/benchmark.json`` (the others are kept); returns all rows."""
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -71,14 +87,17 @@ def run_benchmark(out_dir, tasks=TASKS, algos=ALGOS, steps: int | None = None, e
     rows = json.loads(path.read_text()) if path.exists() else []
     for env_id in tasks:
         for algo in algos:
-            if not configured(algo, env_id):
-                print(f"skip {algo} on {env_id}: no block in configs/{algo}.yaml", flush=True)
+            if not configured(algo, env_id, config):
+                print(f"skip {algo} on {env_id}: no {algo} block in {config_file(algo, config)}", flush=True)
                 continue
             t = time.perf_counter()
-            row = run_one(env_id, algo, out_dir, steps, episodes, curve_points, curve_episodes, extra, command)
-            rows = [r for r in rows if (r["env_id"], r["algo"]) != (env_id, algo)] + [row]
+            row = run_one(env_id, algo, out_dir, steps, episodes, curve_points, curve_episodes, extra, command,
+                          config)
+            key = (env_id, algo, row["config"])
+            rows = [r for r in rows if (r["env_id"], r["algo"], r["config"]) != key] + [row]
             rows.sort(key=lambda r: (TASKS.index(r["env_id"]) if r["env_id"] in TASKS else len(TASKS),
-                                     ALGOS.index(r["algo"])))
+                                     ALGOS.index(r["algo"]), r["config"] != f"configs/{r['algo']}.yaml",
+                                     r["config"]))
             print(f"{algo} {env_id}: {time.perf_counter() - t:.0f} s", flush=True)
             path.write_text(json.dumps(rows, indent=2))
     return rows
@@ -126,7 +145,8 @@ def plot_curves(rows: list[dict], out) -> None:
             with open(Path(out).parent / r["curve"], newline="") as f:
                 pts = list(csv.DictReader(f))
             ax.plot([float(p["train_s"]) for p in pts], [float(p["success_rate"]) for p in pts], marker="o",
-                    ms=3, label=r["algo"].upper())
+                    ms=3, label=r["algo"].upper() + ("" if r["config"] == f"configs/{r['algo']}.yaml"
+                                                    else f" ({Path(r['config']).stem})"))
             ghost = r["ghost_success"]
         ax.axhline(ghost, ls="--", color="grey", label=f"ghost-ball {ghost:.3f}")
         ax.set_title(env_id.replace("Billiards-", ""))

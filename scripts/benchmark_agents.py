@@ -4,6 +4,7 @@
     python scripts/benchmark_agents.py                       # every configured task x algo, config budgets
     python scripts/benchmark_agents.py --steps 100000 --task Billiards-RunOut-v0 --algo ppo
     python scripts/benchmark_agents.py --quick --out /tmp/bench   # smoke test (tiny runs, 20 episodes)
+    python scripts/benchmark_agents.py --config configs/ppo_direct.yaml --task Billiards-PotOne-v0 --algo ppo
 
 Trains PPO and SAC on every task that has a block in configs/<algo>.yaml,
 records a held-seed learning curve, evaluates each final model on
@@ -41,6 +42,8 @@ def main(argv=None) -> int:
     ap.add_argument("--curve-points", type=int, default=10)
     ap.add_argument("--curve-episodes", type=int, default=1000)
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="override for every run")
+    ap.add_argument("--config", default=None,
+                    help="YAML of the runs (default configs/<algo>.yaml); its rows sit beside the default's")
     ap.add_argument("--out", default=str(ROOT / "results" / "agents" / "benchmark"))
     ap.add_argument("--doc", default=str(ROOT / "docs" / "agents_benchmark.md"))
     ap.add_argument("--quick", action="store_true", help="tiny runs (1,024 steps, 20 episodes) for the tests")
@@ -56,7 +59,7 @@ def main(argv=None) -> int:
         rows = json.loads((out / "benchmark.json").read_text())
     else:
         rows = run_benchmark(out, a.task or TASKS, a.algo or ALGOS, a.steps, a.episodes, a.curve_points,
-                             a.curve_episodes, extra, command)
+                             a.curve_episodes, extra, command, a.config)
     plot_curves(rows, out / "learning_curves.png")
     table = f"{BEGIN}\n{markdown_table(rows)}\n{END}"
     doc = out / "benchmark.md" if a.quick else Path(a.doc)

@@ -29,3 +29,15 @@ def test_quick_benchmark_writes_table_curves_and_json(tmp_path):
     md = (tmp_path / "benchmark.md").read_text()
     assert md.count("| PotOne-v0 |") == 2 and "(short; config:" in md
     assert (tmp_path / "learning_curves.png").stat().st_size > 0
+
+    # another config's row sits beside the default config's row of the same (task, algo)
+    cmd = [sys.executable, str(ROOT / "scripts" / "benchmark_agents.py"), "--quick", "--out", str(tmp_path),
+           "--task", "Billiards-PotOne-v0", "--algo", "ppo", "--config", str(ROOT / "configs" / "ppo_direct.yaml")]
+    out = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stderr[-3000:]
+    rows = json.loads((tmp_path / "benchmark.json").read_text())
+    assert [(r["env_id"], r["algo"], r["config"]) for r in rows][:2] == [
+        ("Billiards-PotOne-v0", "ppo", "configs/ppo.yaml"), ("Billiards-PotOne-v0", "ppo", "configs/ppo_direct.yaml")]
+    assert len(rows) == 4
+    assert (tmp_path / "runs" / "ppo_potone_ppo_direct" / "model.zip").exists()
+    assert (tmp_path / "benchmark.md").read_text().count("| PotOne-v0 |") == 3
