@@ -16,6 +16,23 @@ import numba
 import numpy as np
 
 _jit = numba.njit(cache=True, nogil=True)
+MIN_LINE = 1e-12  # m: a ball this close to a pocket's aim point has no direction to it
+
+
+@_jit
+def _ghost(ox, oy, px, py, R):
+    """The ghost-ball construction for potting the ball at (ox, oy) towards
+    the aim point (px, py): the unit direction (ux, uy) ball -> aim point,
+    the distance ``dop`` and the ghost ball's centre (gx, gy), 2R behind the
+    ball on that line. ``dop`` is 0 (and the rest meaningless) when the ball
+    is within ``MIN_LINE`` of the aim point."""
+    ux, uy = px - ox, py - oy
+    dop = math.hypot(ux, uy)
+    if dop < MIN_LINE:
+        return 0.0, 0.0, 0.0, ox, oy
+    ux /= dop
+    uy /= dop
+    return ux, uy, dop, ox - 2 * R * ux, oy - 2 * R * uy
 
 
 @_jit
@@ -59,15 +76,11 @@ def best_pots(pos, on, targets, aims, axes, limits, R, clear, max_cut, dist_weig
                 continue
             ox, oy = pos[e, b, 0], pos[e, b, 1]
             for p in range(aims.shape[0]):
-                ux, uy = aims[p, 0] - ox, aims[p, 1] - oy
-                dop = math.hypot(ux, uy)
-                if dop < 1e-12:
+                ux, uy, dop, gx, gy = _ghost(ox, oy, aims[p, 0], aims[p, 1], R)
+                if dop == 0.0:
                     continue
-                ux /= dop
-                uy /= dop
                 if math.acos(min(max(-(ux * axes[p, 0] + uy * axes[p, 1]), -1.0), 1.0)) > limits[p]:
                     continue
-                gx, gy = ox - 2 * R * ux, oy - 2 * R * uy
                 vx, vy = gx - cx, gy - cy
                 dcg = math.hypot(vx, vy)
                 if dcg < 1e-9:
@@ -103,13 +116,9 @@ def straight_in_spots(pos, on, targets, y_hi, aims, backs, width, R, clear, pock
                 continue
             ox, oy = pos[e, b, 0], pos[e, b, 1]
             for p in range(aims.shape[0]):
-                ux, uy = aims[p, 0] - ox, aims[p, 1] - oy
-                dop = math.hypot(ux, uy)
-                if dop < 1e-12:
+                ux, uy, dop, gx, gy = _ghost(ox, oy, aims[p, 0], aims[p, 1], R)
+                if dop == 0.0:
                     continue
-                ux /= dop
-                uy /= dop
-                gx, gy = ox - 2 * R * ux, oy - 2 * R * uy
                 if _blocked(pos[e], on[e], b, -1, ox, oy, aims[p, 0], aims[p, 1], d2):
                     continue
                 for k in range(backs.shape[0]):
