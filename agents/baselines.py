@@ -28,7 +28,7 @@ from billiards_env.physics import BallState, simulate, strike_velocity
 from billiards_env.physics.strike import Shots, draw_to_speed
 
 from . import geometry as G
-from .features import shot_features, transform_actions
+from .features import agent_features, transform_actions
 
 
 class Policy(Protocol):
@@ -230,12 +230,13 @@ class SB3Policy:
                          self.action_mode, self.env_kwargs)
 
     def act(self, obs: np.ndarray) -> np.ndarray:
-        if self.features:
-            obs = np.concatenate([obs, shot_features(self.env, self.aim_scale)], axis=1)
+        extra = agent_features(self.env, self.features, self.aim_scale, self.action_mode) if self.env else None
+        if extra is not None:
+            obs = np.concatenate([obs, extra], axis=1)
         if self.vecnormalize is not None:
             obs = self.vecnormalize.normalize_obs(obs)
         action, _ = self.model.predict(obs, deterministic=True)
-        return transform_actions(self.env, np.clip(action, -1.0, 1.0), self.action_mode, self.aim_scale)
+        return transform_actions(self.env, action, self.action_mode, self.aim_scale)
 
     @classmethod
     def load(cls, path, env=None, name: str | None = None) -> "SB3Policy":

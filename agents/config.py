@@ -84,6 +84,10 @@ class TrainSettings:
     tensorboard: bool = True
 
 
+# How the policy's action becomes the env's (agents.features.transform_actions).
+ACTION_MODES = ("direct", "residual", "choice")
+
+
 @dataclasses.dataclass(frozen=True)
 class TrainConfig:
     env_id: str
@@ -93,7 +97,7 @@ class TrainConfig:
     env_kwargs: dict = dataclasses.field(default_factory=dict)
     features: bool = True     # agent-side ghost-ball features (agents.features)
     aim_scale: float = 1.0    # policy a0 -> env a0 = aim_scale * a0
-    action_mode: str = "direct"  # direct | residual (corrections to the ghost-ball shot)
+    action_mode: str = "direct"  # ACTION_MODES: direct | residual (ghost-ball corrections) | choice (agents.choice)
     ppo: dict = dataclasses.field(default_factory=dict)   # SB3 PPO kwargs
     sac: dict = dataclasses.field(default_factory=dict)   # SB3 SAC kwargs
     rllib: dict = dataclasses.field(default_factory=dict)  # RLlib PPO settings (agents.rllib_backend)
@@ -108,6 +112,8 @@ class TrainConfig:
             raise ValueError(f"config version {self.version} is not supported (expected {CONFIG_VERSION})")
         if not isinstance(self.n_envs, int) or self.n_envs < 1:
             raise ValueError(f"n_envs must be a positive integer, got {self.n_envs!r}")
+        if self.action_mode not in ACTION_MODES:
+            raise ValueError(f"action_mode must be one of {ACTION_MODES}, got {self.action_mode!r}")
         for name in ("ppo", "sac"):
             _check_algo_kwargs(name, getattr(self, name))
 

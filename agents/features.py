@@ -22,6 +22,11 @@ to +-pi * aim_scale, speed factor exp(0.5 a1), side/height spin), so it
 starts at the baseline and learns what the geometry leaves out (throw,
 speed, spin against scratches). The correction is applied in shot space
 (``Shots``) and mapped to the env's action once.
+
+``action_mode: choice`` (``agents.choice``): the policy picks an item of a
+shot menu (a pocket's ghost-ball shot or a safe contact shot), a speed
+level and a tip height; the wrappers here give it the menu's action space
+and append the menu's contact features.
 """
 from __future__ import annotations
 
@@ -34,7 +39,9 @@ from stable_baselines3.common.vec_env.base_vec_env import VecEnvWrapper
 
 from billiards_env.physics.strike import Shots, speed_to_draw
 
+from . import choice
 from . import geometry as G
+from .config import ACTION_MODES
 
 N_FEAT_PER_POCKET = 6
 
@@ -97,9 +104,36 @@ def residual_actions(native, actions: np.ndarray, aim_scale: float, speed_scale:
 
 
 def transform_actions(native, actions, mode: str, aim_scale: float) -> np.ndarray:
+    """The policy's actions -> the env's, for ``mode`` (``ACTION_MODES``)."""
     if mode == "residual":
         return residual_actions(native, actions, aim_scale)
-    return scale_actions(actions, aim_scale)
+    if mode == "choice":
+        return choice.choice_actions(native, actions)
+    return scale_actions(np.clip(actions, -1.0, 1.0), aim_scale)
+
+
+def check_action_mode(mode: str) -> None:
+    if mode not in ACTION_MODES:
+        raise ValueError(f"action_mode must be one of {ACTION_MODES}, got {mode!r}")
+
+
+def agent_features(native, features: bool, aim_scale: float, mode: str) -> np.ndarray | None:
+    """What the agent appends to the env's observation: the ghost-ball
+    features (``features``), then the menu's contact features (mode
+    ``choice``); None if nothing."""
+    parts = [shot_features(native, aim_scale)] if features else []
+    if mode == "choice":
+        parts.append(choice.contact_features(native))
+    return np.concatenate(parts, axis=1) if parts else None
+
+
+def n_agent_features(native, features: bool, mode: str) -> int:
+    return (n_features(native) if features else 0) + (choice.N_CONTACT_FEATURES if mode == "choice" else 0)
+
+
+def policy_action_space(native, mode: str, env_space):
+    """The policy's action space: the env's, or the menu's for ``choice``."""
+    return choice.action_space(native) if mode == "choice" else env_space
 
 
 class ShotFeatures(VecEnvWrapper):
@@ -108,19 +142,18 @@ class ShotFeatures(VecEnvWrapper):
     when they are reported; one-shot episodes never bootstrap from them)."""
 
     def __init__(self, venv, native, features: bool = True, aim_scale: float = 1.0, action_mode: str = "direct"):
-        if action_mode not in ("direct", "residual"):
-            raise ValueError(f"action_mode must be 'direct' or 'residual', got {action_mode!r}")
+        check_action_mode(action_mode)
         self.native, self.features, self.aim_scale = native, features, float(aim_scale)
         self.action_mode = action_mode
         base = venv.observation_space
-        k = n_features(native) if features else 0
+        self.k = k = n_agent_features(native, features, action_mode)
         obs_space = spaces.Box(-np.inf, np.inf, shape=(base.shape[0] + k,), dtype=np.float32) if k else base
-        super().__init__(venv, observation_space=obs_space)
+        super().__init__(venv, observation_space=obs_space,
+                         action_space=policy_action_space(native, action_mode, venv.action_space))
 
     def _aug(self, obs):
-        if not self.features:
-            return obs
-        return np.concatenate([obs, shot_features(self.native, self.aim_scale)], axis=1)
+        f = agent_features(self.native, self.features, self.aim_scale, self.action_mode)
+        return obs if f is None else np.concatenate([obs, f], axis=1)
 
     def reset(self):
         return self._aug(self.venv.reset())
@@ -130,8 +163,8 @@ class ShotFeatures(VecEnvWrapper):
 
     def step_wait(self):
         obs, rew, dones, infos = self.venv.step_wait()
-        if self.features:
-            k = n_features(self.native)
+        if self.k:
+            k = self.k
             for i in np.flatnonzero(dones):
                 t = infos[i].get("terminal_observation")
                 if t is not None:
@@ -148,21 +181,22 @@ class VectorShotFeatures(gym.vector.VectorWrapper):
 
     def __init__(self, env: gym.vector.VectorEnv, features: bool = True, aim_scale: float = 1.0,
                  action_mode: str = "direct"):
-        if action_mode not in ("direct", "residual"):
-            raise ValueError(f"action_mode must be 'direct' or 'residual', got {action_mode!r}")
+        check_action_mode(action_mode)
         super().__init__(env)
         self.native = env.unwrapped
         self.features, self.aim_scale, self.action_mode = features, float(aim_scale), action_mode
-        if features:
+        self.k = k = n_agent_features(self.native, features, action_mode)
+        if k:
             base = env.single_observation_space
-            k = n_features(self.native)
             self.single_observation_space = spaces.Box(-np.inf, np.inf, shape=(base.shape[0] + k,), dtype=np.float32)
             self.observation_space = gym.vector.utils.batch_space(self.single_observation_space, env.num_envs)
+        if action_mode == "choice":
+            self.single_action_space = policy_action_space(self.native, action_mode, env.single_action_space)
+            self.action_space = gym.vector.utils.batch_space(self.single_action_space, env.num_envs)
 
     def _aug(self, obs):
-        if not self.features:
-            return obs
-        return np.concatenate([obs, shot_features(self.native, self.aim_scale)], axis=1)
+        f = agent_features(self.native, self.features, self.aim_scale, self.action_mode)
+        return obs if f is None else np.concatenate([obs, f], axis=1)
 
     def reset(self, *, seed=None, options=None):
         obs, info = self.env.reset(seed=seed, options=options)
@@ -171,8 +205,7 @@ class VectorShotFeatures(gym.vector.VectorWrapper):
     def step(self, actions):
         obs, rew, term, trunc, info = self.env.step(
             transform_actions(self.native, actions, self.action_mode, self.aim_scale))
-        if self.features and "final_obs" in info:
+        if self.k and "final_obs" in info:
             final = np.asarray(info["final_obs"], dtype=np.float32)
-            info["final_obs"] = np.concatenate([final, np.zeros((len(final), n_features(self.native)), np.float32)],
-                                               axis=1)
+            info["final_obs"] = np.concatenate([final, np.zeros((len(final), self.k), np.float32)], axis=1)
         return self._aug(obs), rew, term, trunc, info

@@ -35,6 +35,7 @@ import numpy as np
 
 from billiards_env.envs.games import GameCore
 from billiards_env.envs.games.setup import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP
+from billiards_env.envs.target_frame import CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG
 from billiards_env.envs.tasks.nine_ball import break_shots
 from billiards_env.physics import simulate, strike_velocity
 from billiards_env.physics.strike import Shots
@@ -45,8 +46,8 @@ from billiards_env.rules import records as R
 from . import game_geometry as GG
 from . import geometry as G
 
-APPROACH_CORNER = math.radians(60)  # steepest approach to a corner pocket a pot accepts (as agents.geometry)
-APPROACH_SIDE = math.radians(50)    # and to a side pocket
+APPROACH_CORNER = math.radians(CORNER_ACCEPT_DEG)  # steepest approach to a corner pocket a pot accepts
+APPROACH_SIDE = math.radians(SIDE_ACCEPT_DEG)      # and to a side pocket (envs/target_frame.py)
 BLOCK_CLEAR = 0.005                 # m: a pot's paths keep this clear of other balls beyond 2R (execution noise)
 MAX_CUT = math.radians(70)          # a pot with a larger cut angle is "not likely": play a safety instead
 PLACE_BACK = (0.2, 0.35, 0.5)       # m: distances behind the ghost ball tried for a ball-in-hand placement

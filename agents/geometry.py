@@ -20,6 +20,7 @@ import math
 
 import numpy as np
 
+from billiards_env.envs.target_frame import CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG
 from billiards_env.envs.target_frame import pocket_axes as _pocket_axes
 from billiards_env.physics import PhysicsParams, Table
 from billiards_env.physics.strike import Shots
@@ -115,16 +116,54 @@ def required_speed(d_cg, d_op, cut, params: PhysicsParams, b: float = 0.0, margi
     strike speed v0 = sqrt(v_c^2 + 2 mu_r g d_cg) / f where f = 5/7 (1 + b)
     (capped to [5/7, 1]) is the slide loss of a centre/draw hit.
     """
-    g, mu_r = params.g, params.mu_r
-    v_o = 1.4 * np.sqrt(v_arrive ** 2 + 2 * mu_r * g * d_op)
+    v_o = 1.4 * np.sqrt(v_arrive ** 2 + 2 * params.mu_r * params.g * d_op)
     v_c = v_o / (np.maximum(np.cos(cut), 0.15) * (1 + params.e_b) / 2)
+    return np.minimum(margin * rolling_strike_speed(d_cg, v_c, params, b), params.max_speed)
+
+
+def rolling_strike_speed(distance, v_arrive, params: PhysicsParams, b: float = 0.0) -> np.ndarray:
+    """Strike speed (m/s) with which the cue ball, struck at height offset
+    ``b``, arrives ``distance`` metres away at ``v_arrive``: the slide ends at
+    f = 5/7 (1 + b) of the strike speed (capped to [5/7, 1]), then rolling
+    resistance takes 2 mu_r g d of v^2 (not capped to the max speed)."""
     f = min(max(5.0 / 7.0 * (1 + b), 5.0 / 7.0), 1.0)
-    v0 = np.sqrt(v_c ** 2 + 2 * mu_r * g * d_cg) / f
-    return np.minimum(margin * v0, params.max_speed)
+    return np.sqrt(np.square(v_arrive) + 2 * params.mu_r * params.g * np.asarray(distance)) / f
+
+
+def contact_shots(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, fullness: np.ndarray, R: float,
+                  width: float, length: float):
+    """Straight shots that hit each table's ``target`` ball with impact
+    parameter ``2R * fullness`` [F] (0 full, +-1 thinnest; the object ball
+    leaves at asin(fullness) left (+) or right (-) of the cue ball's path, as
+    in ``billiards_env.envs.impact``).
+
+    Returns aims ``phi`` [E, F], the cue ball's ``path`` length to contact
+    [E, F] and ``blocked`` [E, F]: another ball lies within 2R of that path,
+    or the cue ball would touch a cushion line (closer than R to the edge of
+    the ``width`` x ``length`` bed) where it meets the target.
+    """
+    E, B, _ = pos.shape
+    ar = np.arange(E)
+    cue, obj = pos[:, 0], pos[ar, target]
+    d_vec = obj - cue
+    d = np.maximum(np.linalg.norm(d_vec, axis=1), 2 * R)
+    b = 2 * R * np.asarray(fullness, dtype=np.float64)[None]          # [1, F]
+    phi = np.arctan2(d_vec[:, 1], d_vec[:, 0])[:, None] - np.arcsin(np.clip(b / d[:, None], -1.0, 1.0))
+    u = np.stack([np.cos(phi), np.sin(phi)], axis=-1)                  # [E, F, 2]
+    along = np.sum(d_vec[:, None] * u, axis=-1)                        # target centre's projection on the path
+    path = np.maximum(along - np.sqrt(np.maximum(4 * R * R - b * b, 0.0)), 0.0)
+    end = cue[:, None] + path[..., None] * u
+    blocked = ((end[..., 0] < R) | (end[..., 0] > width - R) | (end[..., 1] < R) | (end[..., 1] > length - R))
+    for j in range(1, B):
+        other = on_table[:, j] & (j != target)
+        if other.any():
+            blocked |= other[:, None] & (_seg_point_dist(cue[:, None], end, pos[:, j][:, None]) < 2 * R)
+    return phi, path, blocked
 
 
 def choose_pocket(shots: dict, cut_weight: float = 1.0, dist_weight: float = 0.35,
-                  approach_limit_corner: float = math.radians(60), approach_limit_side: float = math.radians(50),
+                  approach_limit_corner: float = math.radians(CORNER_ACCEPT_DEG),
+                  approach_limit_side: float = math.radians(SIDE_ACCEPT_DEG),
                   side_mask: np.ndarray | None = None) -> np.ndarray:
     """Index [E] of the easiest pocket: smallest cut angle (rad) plus
     ``dist_weight`` x total distance (m), skipping blocked lines and pockets

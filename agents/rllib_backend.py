@@ -193,6 +193,9 @@ def algo_config(cfg: TrainConfig, lean: bool = True):
 
     if cfg.algo != "ppo":
         raise ValueError(f"the rllib backend trains PPO only, got algo {cfg.algo!r}")
+    if cfg.action_mode == "choice":
+        raise ValueError("the rllib backend takes continuous actions (action_mode direct or residual); "
+                         "action_mode 'choice' trains with the sb3 backend")
     runners, learners, fault, training = _split_rllib_block(cfg.rllib)
     runners.setdefault("num_envs_per_env_runner", cfg.n_envs)
     runners.setdefault("sample_timeout_s", SAMPLE_TIMEOUT_S)

@@ -145,8 +145,34 @@ def test_target_frame_pockets_are_ordered_straightest_first():
     axis = np.array([-1.0, -1.0]) / math.sqrt(2.0)
     u = (corner - cue) / np.hypot(*(corner - cue))
     np.testing.assert_allclose(first[3:], [u @ axis, u[0] * axis[1] - u[1] * axis[0]], atol=1e-6)
-    angles = np.abs(np.arctan2(obs[2 + 4 * 2 + 1::5], obs[2 + 4 * 2::5]))
-    assert np.all(np.diff(angles) >= 0)
+
+
+def test_target_frame_lists_pockets_the_ball_cannot_enter_last():
+    """A side pocket dead ahead but approached about 60 degrees off its axis (more
+    than SIDE_ACCEPT_DEG) comes after every pocket the target can enter;
+    each group is ordered straightest first."""
+    from billiards_env.envs.target_frame import SORT_LAST, pocket_accept_cos, pocket_axes
+
+    env = gym.make("Billiards-PotOne-v0", observation="target_frame").unwrapped
+    env.reset(seed=0)
+    W, L = env.table.width, env.table.length
+    centres = env.table.pockets[:, :2]
+    side = centres[np.argmin(np.hypot(centres[:, 0], centres[:, 1] - L / 2))]  # the left side pocket
+    target = side + [0.15 - side[0], -0.3]
+    cue = target - 0.3 * (side - target) / np.hypot(*(side - target))
+    obs = env.set_state(np.array([cue, target]))
+    slots = obs[2 + 4 * 2:].reshape(-1, 5)
+    ahead = np.flatnonzero(np.all(np.abs(slots[:, :2] - [1.0, 0.0]) < 1e-6, axis=1))
+    assert ahead.size == 1 and ahead[0] > 0
+    # the order the docstring states, computed in table coordinates
+    rel = centres - target
+    u = rel / np.linalg.norm(rel, axis=1)[:, None]
+    enters = -np.sum(u * pocket_axes(env.table.pockets, W, L), axis=1) >= pocket_accept_cos(env.table.pockets, L)
+    assert not enters[np.argmin(np.linalg.norm(centres - side, axis=1))]
+    line = (target - cue) / np.hypot(*(target - cue))
+    ang = np.abs(np.arctan2(u[:, 1] * line[0] - u[:, 0] * line[1], u @ line))
+    key = ang + np.where(enters, 0.0, SORT_LAST)
+    np.testing.assert_allclose(np.abs(np.arctan2(slots[:, 1], slots[:, 0])), np.sort(key) % SORT_LAST, atol=1e-6)
 
 
 @pytest.mark.parametrize("kw", [dict(aim="impact"), dict(observation="target_frame"),

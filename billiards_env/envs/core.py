@@ -148,6 +148,7 @@ class BilliardsCore:
         if cfg.observation == "target_frame":
             self.obs_dim, self.obs_low = target_frame.obs_size(self.n_balls, len(self.pockets)), -1.0
             self.pocket_axes = target_frame.pocket_axes(self.pockets, self.table.width, self.table.length)
+            self.pocket_accept = target_frame.pocket_accept_cos(self.pockets, self.table.length)
         else:
             self.obs_dim, self.obs_low = 4 * self.n_balls + 1, 0.0
         self._context: ShotContext | None = None  # of the current state; None: to be computed
@@ -173,7 +174,7 @@ class BilliardsCore:
         if self.cfg.observation == "target_frame":
             target_frame.observe_target_frame(s.pos, s.pocket, self.shot_context().target, self.shots,
                                               float(self.cfg.max_shots), self.pockets, self.pocket_axes,
-                                              self.diag, obs)
+                                              self.pocket_accept, self.diag, obs)
         else:
             _observe(s.pos, s.pocket, self.shot_context().target, self.shots, float(self.cfg.max_shots),
                      self.table.width, self.table.length, obs)

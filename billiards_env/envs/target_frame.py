@@ -28,12 +28,15 @@ index               meaning
 ==================  =========================================================
 
 Pockets are listed by increasing angle |atan2(uy, ux)| from the x-axis
-(the straightest pot first; ties by the pocket index), not by their index
-on the table: the observation then depends on the layout only, and a
-layout rotated by 180 degrees (the table's symmetry) gives the same
-observation, a mirrored one the same with every y and uy negated. Without a
-legal target the frame is the table's own (x-axis +x) centred on the cue
-ball, with distance 0.
+(the straightest pot first; ties by the pocket index), those the target
+ball cannot enter on a straight line listed after all the others: a
+pocket's jaws turn away a ball that comes in more than ``SIDE_ACCEPT_DEG``
+(side) or ``CORNER_ACCEPT_DEG`` (corner) off its axis. The order does not
+depend on the pockets' index on the table: the observation depends on the
+layout only, and a layout rotated by 180 degrees (the table's symmetry)
+gives the same observation, a mirrored one the same with every y and uy
+negated. Without a legal target the frame is the table's own (x-axis +x)
+centred on the cue ball, with distance 0.
 """
 from __future__ import annotations
 
@@ -43,6 +46,17 @@ import numba
 import numpy as np
 
 _jit = numba.njit(cache=True, nogil=True)
+
+# Largest angle between a ball's path and a pocket's axis at which the
+# pocket still takes a ball rolling straight in: a side pocket's mouth faces
+# straight across the table, so a shallow approach meets the far jaw; a
+# corner's mouth spans both rails. Also the ghost-ball baseline's pocket
+# limits (agents.geometry.choose_pocket): on PotOne its shot into the
+# straightest pocket pots 0.837 of 1,000 held tables, 0.904 with these
+# limits (docs/agents.md).
+SIDE_ACCEPT_DEG = 50.0
+CORNER_ACCEPT_DEG = 60.0
+SORT_LAST = 4.0  # > pi: added to the sort key of a pocket the ball cannot enter
 
 
 def obs_size(n_balls: int, n_pockets: int) -> int:
@@ -65,13 +79,20 @@ def pocket_axes(pockets: np.ndarray, width: float, length: float) -> np.ndarray:
     return out
 
 
+def pocket_accept_cos(pockets: np.ndarray, length: float) -> np.ndarray:
+    """cos of each pocket's acceptance angle [P] (``SIDE_ACCEPT_DEG`` for the
+    side pockets, centre at half length; ``CORNER_ACCEPT_DEG`` otherwise)."""
+    side = np.abs(np.asarray(pockets, dtype=np.float64)[:, 1] - length / 2) < 1e-9
+    return np.cos(np.radians(np.where(side, SIDE_ACCEPT_DEG, CORNER_ACCEPT_DEG)))
+
+
 @_jit
 def _clip1(v):
     return min(max(v, -1.0), 1.0)
 
 
 @_jit
-def observe_target_frame(pos, pocket, tgt, shots, max_shots, pockets, axes, diag, obs):
+def observe_target_frame(pos, pocket, tgt, shots, max_shots, pockets, axes, accept_cos, diag, obs):
     """Fill the zeroed observations ``obs`` [N, obs_size] (layout: module docstring)."""
     B = pos.shape[1]
     P = pockets.shape[0]
@@ -96,9 +117,12 @@ def observe_target_frame(pos, pocket, tgt, shots, max_shots, pockets, axes, diag
         if t >= 0:
             obs[e, 1 + 3 * B + t] = 1.0
         obs[e, 1 + 4 * B] = min(shots[e] / max_shots, 1.0)
-        for k in range(P):  # insertion sort of the pockets by |angle| from the x-axis
+        for k in range(P):  # insertion sort of the pockets by |angle| from the x-axis, unreachable last
             rx, ry = pockets[k, 0] - ox, pockets[k, 1] - oy
             key[k] = abs(math.atan2(-s * rx + c * ry, c * rx + s * ry))
+            r = math.hypot(rx, ry)
+            if r > 0.0 and -(rx * axes[k, 0] + ry * axes[k, 1]) / r < accept_cos[k]:
+                key[k] += SORT_LAST
             j = k
             while j > 0 and key[order[j - 1]] > key[k]:
                 order[j] = order[j - 1]

@@ -1,0 +1,102 @@
+"""``action_mode: choice`` (agents/choice.py): the shot menu, its features,
+its action space in the wrappers, config validation and a training round trip."""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("stable_baselines3")
+
+from agents import choice  # noqa: E402
+from agents import geometry as G  # noqa: E402
+from agents.baselines import SB3Policy  # noqa: E402
+from agents.config import load_config  # noqa: E402
+from agents.evaluation import evaluate  # noqa: E402
+from agents.features import ShotFeatures  # noqa: E402
+from agents.sb3_vec_env import make_sb3_vec_env  # noqa: E402
+from billiards_env.physics import simulate, strike_velocity  # noqa: E402
+from billiards_env.physics.strike import Shots  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+NINE = "Billiards-NineBall-v0"
+NOMINAL = (choice.SPEED_LEVELS.index(1.0), choice.HEIGHT_LEVELS.index(0.0))
+
+
+def _wrapped(n=32, seed=3):
+    env = make_sb3_vec_env(NINE, n, seed=seed)
+    w = ShotFeatures(env, env.unwrapped, True, 1.0, "choice")
+    return env, w, w.reset()
+
+
+def test_menu_space_and_features():
+    env, w, obs = _wrapped()
+    nat = env.unwrapped
+    P, F = len(nat.table.pockets), len(choice.CONTACT_FULLNESS)
+    assert list(w.action_space.nvec) == [P + F, len(choice.SPEED_LEVELS), len(choice.HEIGHT_LEVELS)]
+    assert obs.shape == (32, env.observation_space.shape[0] + 6 * P + 2 * F)
+    contact = obs[:, -2 * F:].reshape(32, F, 2)
+    assert set(np.unique(contact[..., 0])) <= {0.0, 1.0} and (contact[..., 1] >= 0).all()
+    env.close()
+
+
+def test_a_pocket_item_is_that_pockets_ghost_ball_shot():
+    env, w, _ = _wrapped()
+    nat = env.unwrapped
+    st, tgt = nat.state, nat.legal_target()
+    sh = G.ghost_shots(st.pos, st.on_table, tgt, nat.table, nat.params, 0.0)
+    k = np.arange(32) % len(nat.table.pockets)
+    ar = np.arange(32)
+    speed = G.required_speed(sh["d_cg"][ar, k], sh["d_op"][ar, k], sh["cut"][ar, k], nat.params, margin=1.0)
+    expect = nat.shots_to_actions(Shots(sh["phi"][ar, k], speed, np.zeros(32), np.zeros(32)))
+    got = choice.choice_actions(nat, np.column_stack([k, np.full(32, NOMINAL[0]), np.full(32, NOMINAL[1])]))
+    np.testing.assert_allclose(got, np.clip(expect, -1, 1).astype(np.float32), atol=1e-6)
+    env.close()
+
+
+def test_open_contact_shots_hit_the_legal_ball_first_at_their_fullness():
+    env, w, _ = _wrapped(64)
+    nat = env.unwrapped
+    st, tgt, p = nat.state, nat.legal_target(), nat.params
+    full = np.asarray(choice.CONTACT_FULLNESS)
+    phi, length, blocked = G.contact_shots(st.pos, st.on_table, tgt, full, p.R, nat.table.width,
+                                           nat.table.length)
+    e, f = np.nonzero(~blocked)
+    assert len(e) > 100
+    speed = G.rolling_strike_speed(length[e, f], choice.CONTACT_ARRIVAL, p)
+    res = simulate(strike_velocity(st.take(e), phi[e, f], speed, 0.0 * speed, 0.0 * speed, p), nat.table, p)
+    assert (res.first_contact == tgt[e]).all()
+    # the path's end is 2R from the target's centre, offset 2R * fullness across the path
+    u = np.stack([np.cos(phi[e, f]), np.sin(phi[e, f])], axis=1)
+    end = st.pos[e, 0] + length[e, f, None] * u
+    rel = st.pos[e, tgt[e]] - end
+    np.testing.assert_allclose(np.hypot(*rel.T), 2 * p.R, rtol=1e-9)
+    cross = u[:, 0] * rel[:, 1] - u[:, 1] * rel[:, 0]
+    np.testing.assert_allclose(cross, 2 * p.R * full[f], atol=1e-12)  # > 0: the target lies left of the path
+    assert math.isclose(float(G.rolling_strike_speed(0.0, 1.0, p)), 1.4)
+    env.close()
+
+
+def test_bad_choices_and_modes_are_refused():
+    env, w, _ = _wrapped(4)
+    with pytest.raises(ValueError, match="choice actions"):
+        w.step(np.array([[99, 0, 0]] * 4))
+    with pytest.raises(ValueError, match="action_mode"):
+        load_config(ROOT / "configs" / "ppo.yaml", overrides=["action_mode=menu"])
+    env.close()
+
+
+def test_choice_training_round_trip(tmp_path):
+    from agents.training import train
+    over = ["n_envs=16", "train.total_timesteps=1024", "train.progress_bar=false", "train.checkpoint_every=512",
+            "policy.net_arch=[16, 16]", "ppo.n_steps=32", "ppo.batch_size=128", "ppo.n_epochs=1",
+            "train.eval_every=0"]
+    cfg = load_config(ROOT / "configs" / "ppo_nineball.yaml", overrides=over)
+    assert cfg.action_mode == "choice" and cfg.env_id == NINE
+    train(cfg, tmp_path / "run", "pytest")
+    pol = SB3Policy.load(tmp_path / "run")
+    assert pol.action_mode == "choice"
+    res = evaluate(lambda env: pol.bind(env), NINE, 16, seed=2)
+    assert res.n_episodes == 16 and res.shots_per_episode >= 1
