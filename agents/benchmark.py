@@ -17,7 +17,7 @@ import json
 import time
 from pathlib import Path
 
-from .config import CONFIG_DIR, load_config
+from .config import CONFIG_DIR, load_config, load_run_config
 
 TASKS = ("Billiards-PotOne-v0", "Billiards-RunOut-v0", "Billiards-NineBall-v0")
 ALGOS = ("ppo", "sac")
@@ -45,8 +45,6 @@ def configured(algo: str, env_id: str, config=None) -> bool:
 
 def run_one(env_id: str, algo: str, out_dir: Path, steps: int | None, episodes: int, curve_points: int,
             curve_episodes: int, extra: tuple = (), command: str = "", config=None) -> dict:
-    from .baselines import SB3Policy
-    from .evaluation import evaluate
     from .training import train
 
     path = config_file(algo, config)
@@ -60,6 +58,17 @@ def run_one(env_id: str, algo: str, out_dir: Path, steps: int | None, episodes: 
     variant = "" if config is None else "_" + Path(config).stem
     run_dir = out_dir / "runs" / f"{algo}_{short}{variant}"
     s = train(cfg, run_dir, f"benchmark_agents {algo} {env_id} steps={budget}")
+    return _row(s, run_dir, run_dir / "evaluations.csv", path, cfg0, out_dir, episodes, extra, command)
+
+
+def _row(s: dict, run_dir: Path, curve: Path, path: Path, cfg0, out_dir: Path, episodes: int, extra,
+         command: str) -> dict:
+    """The table's row of a trained run: its summary ``s``, the final model
+    of ``run_dir`` evaluated on ``episodes`` held tables under each noise."""
+    from .baselines import SB3Policy
+    from .evaluation import evaluate
+
+    env_id, algo = s["env_id"], s["algo"]
     pol = SB3Policy.load(run_dir, name=algo)
     evals = {nz: evaluate(lambda env: pol.bind(env), env_id, episodes, EVAL_SEED, nz, name=algo,
                           env_kwargs=pol.env_kwargs).to_dict()
@@ -69,8 +78,42 @@ def run_one(env_id: str, algo: str, out_dir: Path, steps: int | None, episodes: 
                 budget_steps=s["timesteps"], config_budget_steps=int(cfg0.train.total_timesteps),
                 train_wall_s=s["train_wall_s"], env_steps_per_s=s["env_steps_per_s"],
                 ghost_success=held["ghost_target"], steps_to_beat_ghost=held["steps_to_target"],
-                time_to_beat_ghost_s=held["time_to_target_s"], curve=str((run_dir / "evaluations.csv").relative_to(out_dir)),
+                time_to_beat_ghost_s=held["time_to_target_s"], curve=str(curve.relative_to(out_dir)),
                 eval=evals, command=command)
+
+
+def row_from_run(run_dir, out_dir, episodes: int = 1000, command: str = "", config=None) -> dict:
+    """The row of a run trained with ``scripts/train.py`` (e.g. one too long
+    to repeat): its ``train_summary.json`` and held-seed curve
+    (``evaluations.csv``, copied into ``out_dir``; the run needs
+    ``train.eval_every`` > 0), the final model evaluated here. ``config``:
+    the YAML the run was started from, for the table's label (default: the
+    run's resolved ``config.yaml``)."""
+    import shutil
+
+    run_dir, out_dir = Path(run_dir), Path(out_dir)
+    s = json.loads((run_dir / "train_summary.json").read_text())
+    if not s.get("held_out") or not (run_dir / "evaluations.csv").exists():
+        raise ValueError(f"{run_dir}: no held-seed curve (train with train.eval_every > 0)")
+    path = Path(config) if config is not None else run_dir / "config.yaml"
+    cfg0 = load_run_config(run_dir)
+    curve = out_dir / "runs" / run_dir.name / "evaluations.csv"
+    curve.parent.mkdir(parents=True, exist_ok=True)
+    shutil.copyfile(run_dir / "evaluations.csv", curve)
+    return _row(s, run_dir, curve, path, cfg0, out_dir, episodes, (), command)
+
+
+def store_row(out_dir, row: dict) -> list[dict]:
+    """Put ``row`` into ``out_dir/benchmark.json`` in place of the row of the
+    same (task, algo, config); returns all rows, in the table's order."""
+    path = Path(out_dir) / "benchmark.json"
+    rows = json.loads(path.read_text()) if path.exists() else []
+    key = (row["env_id"], row["algo"], row["config"])
+    rows = [r for r in rows if (r["env_id"], r["algo"], r["config"]) != key] + [row]
+    rows.sort(key=lambda r: (TASKS.index(r["env_id"]) if r["env_id"] in TASKS else len(TASKS),
+                             ALGOS.index(r["algo"]), r["config"] != f"configs/{r['algo']}.yaml", r["config"]))
+    path.write_text(json.dumps(rows, indent=2))
+    return rows
 
 
 def run_benchmark(out_dir, tasks=TASKS, algos=ALGOS, steps: int | None = None, episodes: int = 1000,
@@ -83,7 +126,7 @@ def run_benchmark(out_dir, tasks=TASKS, algos=ALGOS, steps: int | None = None, e
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     path = out_dir / "benchmark.json"
-    # rows of earlier invocations stay unless this one reruns their (task, algo)
+    # rows of earlier invocations stay unless this one reruns their (task, algo, config)
     rows = json.loads(path.read_text()) if path.exists() else []
     for env_id in tasks:
         for algo in algos:
@@ -93,13 +136,8 @@ def run_benchmark(out_dir, tasks=TASKS, algos=ALGOS, steps: int | None = None, e
             t = time.perf_counter()
             row = run_one(env_id, algo, out_dir, steps, episodes, curve_points, curve_episodes, extra, command,
                           config)
-            key = (env_id, algo, row["config"])
-            rows = [r for r in rows if (r["env_id"], r["algo"], r["config"]) != key] + [row]
-            rows.sort(key=lambda r: (TASKS.index(r["env_id"]) if r["env_id"] in TASKS else len(TASKS),
-                                     ALGOS.index(r["algo"]), r["config"] != f"configs/{r['algo']}.yaml",
-                                     r["config"]))
+            rows = store_row(out_dir, row)
             print(f"{algo} {env_id}: {time.perf_counter() - t:.0f} s", flush=True)
-            path.write_text(json.dumps(rows, indent=2))
     return rows
 
 

@@ -5,6 +5,7 @@
     python scripts/benchmark_agents.py --steps 100000 --task Billiards-RunOut-v0 --algo ppo
     python scripts/benchmark_agents.py --quick --out /tmp/bench   # smoke test (tiny runs, 20 episodes)
     python scripts/benchmark_agents.py --config configs/ppo_direct.yaml --task Billiards-PotOne-v0 --algo ppo
+    python scripts/benchmark_agents.py --from-run runs/ppo_nineball --config configs/ppo_nineball.yaml
 
 Trains PPO and SAC on every task that has a block in configs/<algo>.yaml,
 records a held-seed learning curve, evaluates each final model on
@@ -14,6 +15,8 @@ records a held-seed learning curve, evaluates each final model on
 A run replaces the row of its (task, algo) in <out>/benchmark.json and keeps
 the others, so the table can be filled one invocation at a time. Runs
 shorter than the config's budget are labelled as such in the table.
+--from-run adds the row of a run already trained with scripts/train.py
+(with train.eval_every > 0 for its curve) instead of training one.
 """
 from __future__ import annotations
 
@@ -32,7 +35,7 @@ QUICK = ("n_envs=16", "policy.net_arch=[16]", "ppo.n_steps=16", "ppo.batch_size=
 
 
 def main(argv=None) -> int:
-    from agents.benchmark import ALGOS, TASKS, markdown_table, plot_curves, run_benchmark
+    from agents.benchmark import ALGOS, TASKS, markdown_table, plot_curves, row_from_run, run_benchmark, store_row
 
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--task", action="append", default=None, help=f"env id (repeatable; default {', '.join(TASKS)})")
@@ -48,6 +51,8 @@ def main(argv=None) -> int:
     ap.add_argument("--doc", default=str(ROOT / "docs" / "agents_benchmark.md"))
     ap.add_argument("--quick", action="store_true", help="tiny runs (1,024 steps, 20 episodes) for the tests")
     ap.add_argument("--table-only", action="store_true", help="rewrite the table and plot from <out>/benchmark.json")
+    ap.add_argument("--from-run", default=None, metavar="RUN_DIR",
+                    help="add the row of a run trained with scripts/train.py (label it with --config)")
     a = ap.parse_args(argv)
     extra = tuple(a.set)
     if a.quick:
@@ -57,6 +62,9 @@ def main(argv=None) -> int:
     command = "python " + " ".join(shlex.quote(x) for x in [sys.argv[0]] + list(argv if argv is not None else sys.argv[1:]))
     if a.table_only:
         rows = json.loads((out / "benchmark.json").read_text())
+    elif a.from_run:
+        out.mkdir(parents=True, exist_ok=True)
+        rows = store_row(out, row_from_run(a.from_run, out, a.episodes, command, a.config))
     else:
         rows = run_benchmark(out, a.task or TASKS, a.algo or ALGOS, a.steps, a.episodes, a.curve_points,
                              a.curve_episodes, extra, command, a.config)

@@ -41,3 +41,24 @@ def test_quick_benchmark_writes_table_curves_and_json(tmp_path):
     assert len(rows) == 4
     assert (tmp_path / "runs" / "ppo_potone_ppo_direct" / "model.zip").exists()
     assert (tmp_path / "benchmark.md").read_text().count("| PotOne-v0 |") == 3
+
+    # --from-run: the row of a run trained with scripts/train.py, labelled with the config it started from
+    cfg = ROOT / "configs" / "ppo_nineball.yaml"
+    train = [sys.executable, str(ROOT / "scripts" / "train.py"), "--config", str(cfg), "--name", "nine",
+             "--runs-dir", str(tmp_path / "trained")]
+    for kv in ("n_envs=16", "policy.net_arch=[16]", "ppo.n_steps=16", "ppo.batch_size=64", "ppo.n_epochs=1",
+               "train.total_timesteps=512", "train.eval_every=256", "train.eval_every_episodes=20",
+               "train.eval_episodes=0", "train.checkpoint_every=0", "train.tensorboard=false"):
+        train += ["--set", kv]
+    out = subprocess.run(train, capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stderr[-3000:]
+    cmd = [sys.executable, str(ROOT / "scripts" / "benchmark_agents.py"), "--out", str(tmp_path), "--episodes", "20",
+           "--doc", str(tmp_path / "benchmark.md"), "--from-run", str(tmp_path / "trained" / "nine"),
+           "--config", str(cfg)]
+    out = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stderr[-3000:]
+    rows = json.loads((tmp_path / "benchmark.json").read_text())
+    nine = [r for r in rows if r["env_id"] == "Billiards-NineBall-v0"]
+    assert len(rows) == 5 and len(nine) == 1 and nine[0]["config"] == "configs/ppo_nineball.yaml"
+    assert nine[0]["eval"]["none"]["n_episodes"] == 20 and (tmp_path / nine[0]["curve"]).exists()
+    assert (tmp_path / "benchmark.md").read_text().count("| NineBall-v0 |") == 1
