@@ -16,9 +16,10 @@ def test_quick_benchmark_writes_table_curves_and_json(tmp_path):
     out = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     assert out.returncode == 0, out.stderr[-3000:]
     rows = json.loads((tmp_path / "benchmark.json").read_text())
-    # PotOne has PPO and SAC configs, RunOut only PPO
+    # both tasks have PPO and SAC blocks in configs/ppo.yaml and configs/sac.yaml
     assert [(r["env_id"], r["algo"]) for r in rows] == [
-        ("Billiards-PotOne-v0", "ppo"), ("Billiards-PotOne-v0", "sac"), ("Billiards-RunOut-v0", "ppo")]
+        ("Billiards-PotOne-v0", "ppo"), ("Billiards-PotOne-v0", "sac"), ("Billiards-RunOut-v0", "ppo"),
+        ("Billiards-RunOut-v0", "sac")]
     for r in rows:
         for nz in ("none", "tournament"):
             e = r["eval"][nz]
@@ -38,7 +39,7 @@ def test_quick_benchmark_writes_table_curves_and_json(tmp_path):
     rows = json.loads((tmp_path / "benchmark.json").read_text())
     assert [(r["env_id"], r["algo"], r["config"]) for r in rows][:2] == [
         ("Billiards-PotOne-v0", "ppo", "configs/ppo.yaml"), ("Billiards-PotOne-v0", "ppo", "configs/ppo_direct.yaml")]
-    assert len(rows) == 4
+    assert len(rows) == 5
     assert (tmp_path / "runs" / "ppo_potone_ppo_direct" / "model.zip").exists()
     assert (tmp_path / "benchmark.md").read_text().count("| PotOne-v0 |") == 3
 
@@ -59,6 +60,6 @@ def test_quick_benchmark_writes_table_curves_and_json(tmp_path):
     assert out.returncode == 0, out.stderr[-3000:]
     rows = json.loads((tmp_path / "benchmark.json").read_text())
     nine = [r for r in rows if r["env_id"] == "Billiards-NineBall-v0"]
-    assert len(rows) == 5 and len(nine) == 1 and nine[0]["config"] == "configs/ppo_nineball.yaml"
+    assert len(rows) == 6 and len(nine) == 1 and nine[0]["config"] == "configs/ppo_nineball.yaml"
     assert nine[0]["eval"]["none"]["n_episodes"] == 20 and (tmp_path / nine[0]["curve"]).exists()
     assert (tmp_path / "benchmark.md").read_text().count("| NineBall-v0 |") == 1
