@@ -122,10 +122,11 @@ def objective_fn(env_id: str, algo: str, run_dir: Path, steps: int, n_evals: int
 
 def tune(env_id: str, algo: str, n_trials: int, run_dir, storage: str | None = None, study_name: str | None = None,
          steps: int = 200_000, n_evals: int = 5, eval_episodes: int = 1000, seed: int = 0, fixed: tuple = (),
-         startup_trials: int = 5) -> dict:
-    """Run the study until it has ``n_trials`` finished trials; write
-    ``study_summary.json``, ``best_overrides.yaml`` and ``importance.png``
-    (when at least two trials completed) into ``run_dir``."""
+         startup_trials: int = 5, config=None) -> dict:
+    """Run the study until it has ``n_trials`` finished trials, each starting
+    from the env's block in ``config`` (default ``configs/<algo>.yaml``);
+    write ``study_summary.json``, ``best_overrides.yaml`` and
+    ``importance.png`` (when at least two trials completed) into ``run_dir``."""
     import optuna
 
     run_dir = Path(run_dir)
@@ -137,7 +138,7 @@ def tune(env_id: str, algo: str, n_trials: int, run_dir, storage: str | None = N
     before = len(finished_trials(study))
     missing = max(n_trials - before, 0)
     if missing:
-        study.optimize(objective_fn(env_id, algo, run_dir, steps, n_evals, eval_episodes, tuple(fixed)),
+        study.optimize(objective_fn(env_id, algo, run_dir, steps, n_evals, eval_episodes, tuple(fixed), config),
                        n_trials=missing)
     return write_summary(study, run_dir, storage, resumed_with=before)
 

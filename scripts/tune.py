@@ -3,6 +3,7 @@
 
     python scripts/tune.py --env Billiards-PotOne-v0 --algo ppo --trials 30
     python scripts/tune.py --env Billiards-PotOne-v0 --algo ppo --trials 30 --storage postgresql://user@host/db
+    python scripts/tune.py --config configs/ppo_direct.yaml --trials 12 --steps 1000000   # another config's block
 
 Each trial trains with hyper-parameters drawn from agents.tuning.SPACES and
 is evaluated on held seeds --evals times; trials below the median of earlier
@@ -38,6 +39,8 @@ def main(argv=None) -> int:
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="fixed override for every trial (not sampled; repeatable)")
     ap.add_argument("--run-dir", default=None, help="default runs/tune_<algo>_<env>")
+    ap.add_argument("--config", default=None,
+                    help="YAML the trials start from (default configs/<algo>.yaml), e.g. configs/ppo_direct.yaml")
     ap.add_argument("--quick", action="store_true",
                     help="smoke test: 2,048 steps per trial, 2 evaluations of 50 episodes, a tiny network")
     a = ap.parse_args(argv)
@@ -52,7 +55,7 @@ def main(argv=None) -> int:
     run_dir = Path(a.run_dir) if a.run_dir else ROOT / "runs" / f"tune_{a.algo}_{short}"
     t0 = time.perf_counter()
     summary = tune(a.env, a.algo, a.trials, run_dir, a.storage, a.study_name, a.steps, a.evals, a.eval_episodes,
-                   a.seed, tuple(a.set), a.startup_trials)
+                   a.seed, tuple(a.set), a.startup_trials, a.config)
     print(json.dumps(summary, indent=2, default=float))
     print(f"{summary['finished_trials']} finished trials ({summary['pruned']} pruned) in {run_dir}; "
           f"this run: {time.perf_counter() - t0:.0f} s")

@@ -38,3 +38,11 @@ def test_quick_study_runs_and_resumes(tmp_path):
     assert all(t.intermediate_values for t in study.trials)
     best = second["best"]
     assert (tmp_path / "study" / "best_overrides.yaml").read_text().count("- ") == len(best["overrides"])
+    # a study over another config's block: its trials keep that block's env options
+    direct = tune("Billiards-PotOne-v0", "ppo", 1, tmp_path / "direct", steps=2048, n_evals=2, eval_episodes=50,
+                  fixed=("n_envs=64", "policy.net_arch=[16]", "ppo.n_steps=8", "ppo.batch_size=256"),
+                  startup_trials=1, config=ROOT / "configs" / "ppo_direct.yaml")
+    assert direct["finished_trials"] == 1
+    import yaml
+    trial_cfg = yaml.safe_load((tmp_path / "direct" / "trials" / "0000" / "config.yaml").read_text())
+    assert trial_cfg["action_mode"] == "direct" and trial_cfg["env_kwargs"]["aim"] == "impact"
