@@ -13,6 +13,10 @@ action is ``MultiDiscrete([C, S, H])``:
   on the legal ball (``geometry.contact_shots``), at the speed that reaches
   it with ``CONTACT_ARRIVAL`` m/s: a legal shot that keeps the turn where
   misses are free (NineBall, RunOut);
+- the last ``N_KICKS`` items: one-rail *kicks*, a full hit on the legal ball
+  off each rail (``geometry.kick_shots``), at the speed that reaches it
+  with ``KICK_ARRIVAL`` m/s: what is left when every straight path to the
+  legal ball is blocked;
 - ``s``: the speed times ``SPEED_LEVELS[s]``;
 - ``h``: the tip's height offset ``HEIGHT_LEVELS[h]`` x the miscue limit
   (draw below 0, follow above); no side spin.
@@ -20,8 +24,8 @@ action is ``MultiDiscrete([C, S, H])``:
 Nothing is simulated to build the menu: its aims are geometry, and which
 item pots, scratches or leaves a next shot is what the policy learns. The
 observation gets, per pocket, the ghost-ball features of
-``agents.features.shot_features`` and, per contact shot, whether its path is
-open and its length (``contact_features``).
+``agents.features.shot_features`` and, per contact shot and kick, whether its
+path is open and its length (``contact_features``).
 """
 from __future__ import annotations
 
@@ -37,24 +41,26 @@ from . import geometry as G
 # Fullness (impact parameter / 2R) of the contact shots: full, half-ball each side, thin each side.
 CONTACT_FULLNESS = (0.0, 0.35, -0.35, 0.7, -0.7, 0.9, -0.9)
 CONTACT_ARRIVAL = 0.5   # m/s at contact: moves the object ball a little, keeps the cue ball near
+N_KICKS = 4             # one per rail
+KICK_ARRIVAL = 2.0      # m/s at contact without cushion losses: the rail takes (1 - e^2) of the normal speed's energy, and more with spin
 SPEED_LEVELS = (0.6, 0.8, 1.0, 1.3, 1.7, 2.3, 3.0)
 HEIGHT_LEVELS = (-0.7, -0.35, 0.0, 0.35, 0.7)
 
 
 def n_items(native) -> int:
-    return len(native.table.pockets) + len(CONTACT_FULLNESS)
+    return len(native.table.pockets) + len(CONTACT_FULLNESS) + N_KICKS
 
 
 def action_space(native) -> spaces.MultiDiscrete:
     return spaces.MultiDiscrete([n_items(native), len(SPEED_LEVELS), len(HEIGHT_LEVELS)])
 
 
-N_CONTACT_FEATURES = 2 * len(CONTACT_FULLNESS)
+N_CONTACT_FEATURES = 2 * (len(CONTACT_FULLNESS) + N_KICKS)
 
 
 def _menu(native):
     """Aims and nominal speeds [E, C] of every table's menu, and the contact
-    shots' open flags and path lengths [E, F]."""
+    shots' and kicks' open flags and path lengths [E, F + N_KICKS]."""
     st, table, params = native.state, native.table, native.params
     tgt = np.asarray(native.legal_target(), dtype=np.int64)
     tgt = np.where(tgt > 0, tgt, 1 if st.n_balls > 1 else 0)
@@ -63,14 +69,18 @@ def _menu(native):
     phi_c, length, blocked = G.contact_shots(st.pos, st.on_table, tgt, np.asarray(CONTACT_FULLNESS), params.R,
                                              table.width, table.length)
     v_contact = G.rolling_strike_speed(length, CONTACT_ARRIVAL, params)
-    phi = np.concatenate([sh["phi"], phi_c], axis=1)
-    speed = np.concatenate([v_pot, v_contact], axis=1)
-    return phi, speed, ~blocked, length
+    phi_k, length_k, blocked_k = G.kick_shots(st.pos, st.on_table, tgt, params.R, table.width, table.length,
+                                              table.pockets)
+    v_kick = G.rolling_strike_speed(length_k, KICK_ARRIVAL, params)
+    phi = np.concatenate([sh["phi"], phi_c, phi_k], axis=1)
+    speed = np.concatenate([v_pot, v_contact, v_kick], axis=1)
+    return phi, speed, ~np.concatenate([blocked, blocked_k], axis=1), np.concatenate([length, length_k], axis=1)
 
 
 def contact_features(native) -> np.ndarray:
-    """Features [E, N_CONTACT_FEATURES]: per contact shot, 1 if its path is
-    open (no other ball within 2R of it) and its length / table diagonal."""
+    """Features [E, N_CONTACT_FEATURES]: per contact shot and kick, 1 if its
+    path is open (``geometry.contact_shots``, ``kick_shots``) and its length
+    / table diagonal."""
     _, _, open_, length = _menu(native)
     diag = math.hypot(native.table.width, native.table.length)
     f = np.stack([open_.astype(np.float64), length / diag], axis=2).reshape(len(length), -1)

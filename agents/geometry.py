@@ -199,3 +199,58 @@ def ghost_ball_shot(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, t
     phi = sh["phi"][ar, k]
     speed = required_speed(sh["d_cg"][ar, k], sh["d_op"][ar, k], sh["cut"][ar, k], params, b=b, margin=margin)
     return Shots(phi, speed, np.zeros_like(phi), np.full_like(phi, b))
+
+
+# m beyond a pocket's capture circle: a rebound point closer than this may meet
+# the pocket's jaw (whose cushion turns into the pocket), not straight rail.
+KICK_POCKET_CLEAR = 0.08
+
+
+def kick_shots(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, R: float, width: float, length: float,
+               pockets: np.ndarray):
+    """One-rail kicks at each table's ``target`` ball, one per rail (x = R,
+    x = width - R, y = R, y = length - R: the lines the ball's centre
+    reaches on each cushion): the cue ball aims at the target's mirror image
+    across the rail and, reflected like light, rolls on to a full hit.
+    Spin and cushion friction bend real rebounds (the policy learns which
+    kicks work); geometry only says which are possible.
+
+    Returns aims ``phi`` [E, 4], the cue ball's ``path`` length to contact
+    (both legs) [E, 4] and ``blocked`` [E, 4]: another ball within 2R of
+    either leg, the rebound point off the rail or within ``KICK_POCKET_CLEAR``
+    of a pocket's capture circle (``pockets`` [P, 3]: x, y, r).
+    """
+    E, B, _ = pos.shape
+    ar = np.arange(E)
+    cue, obj = pos[:, 0], pos[ar, target]
+    lines = ((0, R), (0, width - R), (1, R), (1, length - R))
+    phi = np.empty((E, 4))
+    path = np.empty((E, 4))
+    blocked = np.zeros((E, 4), dtype=bool)
+    for k, (axis, c) in enumerate(lines):
+        image = obj.copy()
+        image[:, axis] = 2 * c - obj[:, axis]
+        d = image - cue
+        phi[:, k] = np.arctan2(d[:, 1], d[:, 0])
+        # where the path crosses the rail line (the cue and the target lie on the table side of it)
+        den = d[:, axis]
+        lam = np.where(np.abs(den) > 1e-12, (c - cue[:, axis]) / np.where(den == 0, 1.0, den), -1.0)
+        hit = cue + np.clip(lam, 0.0, 1.0)[:, None] * d
+        total = np.linalg.norm(d, axis=1)
+        path[:, k] = np.maximum(total - 2 * R, 0.0)
+        other_axis = 1 - axis
+        span = width if other_axis == 0 else length
+        bad = (lam <= 0.0) | (lam >= 1.0) | (hit[:, other_axis] < R) | (hit[:, other_axis] > span - R)
+        for cx, cy, r in np.asarray(pockets, dtype=np.float64):
+            bad |= np.hypot(hit[:, 0] - cx, hit[:, 1] - cy) < r + KICK_POCKET_CLEAR
+        # the second leg ends 2R short of the target's centre
+        leg2 = obj - hit
+        n2 = np.maximum(np.linalg.norm(leg2, axis=1), 1e-12)
+        end = obj - 2 * R * leg2 / n2[:, None]
+        for j in range(1, B):
+            other = on_table[:, j] & (j != target)
+            if other.any():
+                pj = pos[:, j]
+                bad |= other & ((_seg_point_dist(cue, hit, pj) < 2 * R) | (_seg_point_dist(hit, end, pj) < 2 * R))
+        blocked[:, k] = bad
+    return phi, path, blocked

@@ -34,7 +34,7 @@ def _wrapped(n=32, seed=3):
 def test_menu_space_and_features():
     env, w, obs = _wrapped()
     nat = env.unwrapped
-    P, F = len(nat.table.pockets), len(choice.CONTACT_FULLNESS)
+    P, F = len(nat.table.pockets), len(choice.CONTACT_FULLNESS) + choice.N_KICKS
     assert list(w.action_space.nvec) == [P + F, len(choice.SPEED_LEVELS), len(choice.HEIGHT_LEVELS)]
     assert obs.shape == (32, env.observation_space.shape[0] + 6 * P + 2 * F)
     contact = obs[:, -2 * F:].reshape(32, F, 2)
@@ -100,3 +100,35 @@ def test_choice_training_round_trip(tmp_path):
     assert pol.action_mode == "choice"
     res = evaluate(lambda env: pol.bind(env), NINE, 16, seed=2)
     assert res.n_episodes == 16 and res.shots_per_episode >= 1
+
+
+def test_kicks_reach_a_ball_hidden_behind_another():
+    """Cue ball, a blocker and the legal ball in a row along the table:
+    every straight contact is blocked, and so are the kicks off the short
+    rails (their legs run through the blocker); the kicks off the long rails
+    are open (their rebound points lie 0.5 m from the side pockets), and a
+    kick at 1.3 times its nominal speed hits the legal ball first."""
+    env, w, _ = _wrapped(1)
+    nat = env.unwrapped
+    W, L = nat.table.width, nat.table.length
+    pos = np.full((10, 2), -1.0)
+    pos[0], pos[2], pos[1] = (0.3, L / 2 - 0.9), (0.3, L / 2 - 0.5), (0.3, L / 2 - 0.1)  # cue, blocker 2, target 1
+    on = np.zeros(10, dtype=bool)
+    on[:3] = True
+    from billiards_env.physics import BallState
+    state = BallState.from_positions(np.where(on[:, None], pos, 0.0)[None])
+    state.pocket[0, ~on] = 0  # balls 3..9 pocketed
+    nat.set_state(state)
+    tgt = nat.legal_target()
+    assert tgt[0] == 1
+    p, t = nat.params, nat.table
+    full = np.asarray(choice.CONTACT_FULLNESS)
+    assert G.contact_shots(nat.state.pos, nat.state.on_table, tgt, full, p.R, W, L)[2].all()
+    phi, path, blocked = G.kick_shots(nat.state.pos, nat.state.on_table, tgt, p.R, W, L, t.pockets)
+    assert list(~blocked[0]) == [True, True, False, False]  # the left and right rails; not the short ones
+    np.testing.assert_allclose(path[0, 0], np.hypot(2 * 0.3 - 2 * p.R, 0.8) - 2 * p.R, rtol=1e-12)
+    k = 1  # the far rail: the longer kick
+    v = 1.3 * G.rolling_strike_speed(path[0, k], choice.KICK_ARRIVAL, p)
+    res = simulate(strike_velocity(nat.state, phi[:, k], np.array([v]), np.zeros(1), np.zeros(1), p), t, p)
+    assert res.first_contact[0] == 1
+    env.close()
