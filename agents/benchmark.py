@@ -145,20 +145,40 @@ def _ci(e: dict) -> str:
     return f"{e['success_rate']:.3f} [{e['success_ci95'][0]:.3f}, {e['success_ci95'][1]:.3f}]"
 
 
-def markdown_table(rows: list[dict]) -> str:
-    head = ["task", "algo", "config", "budget (env steps)", "train wall (s)", "env steps/s", "beats ghost after",
-            "success, no noise", "success, tournament", "mean reward", "balls/episode"]
+def curve_reach(curve_csv, target: float) -> tuple[float, int] | None:
+    """(training s, env steps) of the first held-seed evaluation of a curve
+    (``evaluations.csv``) whose success is at least ``target``; None if none is."""
+    import csv
+
+    with open(curve_csv, newline="") as f:
+        for p in csv.DictReader(f):
+            if float(p["success_rate"]) >= target:
+                return float(p["train_s"]), int(p["timesteps"])
+    return None
+
+
+def _when(t_steps) -> str:
+    if t_steps is None:
+        return "not within the run"
+    return "from the start" if t_steps[1] == 0 else f"{t_steps[0]:.0f} s / {t_steps[1]:,} steps"
+
+
+def markdown_table(rows: list[dict], out_dir) -> str:
+    """The table of ``rows`` (their curve paths relative to ``out_dir``)."""
+    head = ["task", "algo", "config", "budget (env steps)", "train wall (s)", "env steps/s", "reaches ghost after",
+            "beats ghost after", "success, no noise", "success, tournament", "mean reward", "balls/episode"]
     lines = ["| " + " | ".join(head) + " |", "|" + "|".join("---" for _ in head) + "|"]
     for r in rows:
         short = "" if r["budget_steps"] >= r["config_budget_steps"] else \
             f" (short; config: {r['config_budget_steps']:,})"
-        ghost = (f"{r['time_to_beat_ghost_s']:.0f} s / {r['steps_to_beat_ghost']:,} steps"
-                 if r["steps_to_beat_ghost"] is not None else "not within the run")
+        reach = _when(curve_reach(Path(out_dir) / r["curve"], r["ghost_success"]))
+        ghost = _when(None if r["steps_to_beat_ghost"] is None else
+                      (r["time_to_beat_ghost_s"], r["steps_to_beat_ghost"]))
         e0, e1 = r["eval"]["none"], r["eval"]["tournament"]
         cfg = r["config"] + ("".join(f" `{o}`" for o in r["overrides"]) if r["overrides"] else "")
         lines.append("| " + " | ".join([
             r["env_id"].replace("Billiards-", ""), r["algo"].upper(), cfg, f"{r['budget_steps']:,}{short}",
-            f"{r['train_wall_s']:.0f}", f"{r['env_steps_per_s']:,.0f}", ghost, _ci(e0), _ci(e1),
+            f"{r['train_wall_s']:.0f}", f"{r['env_steps_per_s']:,.0f}", reach, ghost, _ci(e0), _ci(e1),
             f"{e0['mean_reward']:.3f}", f"{e0['balls_per_episode']:.2f}"]) + " |")
     commands = list(dict.fromkeys(r.get("command", "") for r in rows if r.get("command")))
     if commands:

@@ -69,7 +69,7 @@ def main(argv=None) -> int:
         rows = run_benchmark(out, a.task or TASKS, a.algo or ALGOS, a.steps, a.episodes, a.curve_points,
                              a.curve_episodes, extra, command, a.config)
     plot_curves(rows, out / "learning_curves.png")
-    table = f"{BEGIN}\n{markdown_table(rows)}\n{END}"
+    table = f"{BEGIN}\n{markdown_table(rows, out)}\n{END}"
     doc = out / "benchmark.md" if a.quick else Path(a.doc)
     text = doc.read_text() if doc.exists() else f"# Agents' benchmark\n\n{BEGIN}\n{END}\n"
     if BEGIN in text and END in text:
@@ -77,7 +77,7 @@ def main(argv=None) -> int:
     else:
         text += "\n" + table + "\n"
     doc.write_text(text)
-    print(markdown_table(rows))
+    print(markdown_table(rows, out))
     print(f"\nwrote {doc}, {out / 'benchmark.json'}, {out / 'learning_curves.png'}")
     return 0
 
