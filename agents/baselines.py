@@ -233,6 +233,10 @@ class SB3Policy:
         extra = agent_features(self.env, self.features, self.aim_scale, self.action_mode) if self.env else None
         if extra is not None:
             obs = np.concatenate([obs, extra], axis=1)
+        want = self.model.observation_space.shape[0]
+        if obs.shape[1] != want:
+            raise ValueError(f"{self.name}: the model takes observations of {want} numbers, this env and the agent's "
+                             f"features give {obs.shape[1]} (trained with other env options, features or menu?)")
         if self.vecnormalize is not None:
             obs = self.vecnormalize.normalize_obs(obs)
         action, _ = self.model.predict(obs, deterministic=True)

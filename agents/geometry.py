@@ -169,10 +169,7 @@ def choose_pocket(shots: dict, cut_weight: float = 1.0, dist_weight: float = 0.3
     ``dist_weight`` x total distance (m), skipping blocked lines and pockets
     approached too steeply; if every pocket is excluded, the smallest cut."""
     cost = cut_weight * shots["cut"] + dist_weight * (shots["d_cg"] + shots["d_op"])
-    bad = ~shots["valid"] | shots["blocked"]
-    if side_mask is not None:
-        lim = np.where(side_mask[None], approach_limit_side, approach_limit_corner)
-        bad |= shots["approach"] > lim
+    bad = ~open_pots(shots, side_mask, approach_limit_corner, approach_limit_side)
     cost_ok = np.where(bad, np.inf, cost)
     best = np.argmin(cost_ok, axis=1)
     none = ~np.isfinite(cost_ok.min(axis=1))
@@ -180,6 +177,19 @@ def choose_pocket(shots: dict, cut_weight: float = 1.0, dist_weight: float = 0.3
         fallback = np.argmin(np.where(shots["valid"], shots["cut"], np.inf), axis=1)
         best = np.where(none, fallback, best)
     return best
+
+
+def open_pots(shots: dict, side_mask: np.ndarray | None = None,
+              approach_limit_corner: float = math.radians(CORNER_ACCEPT_DEG),
+              approach_limit_side: float = math.radians(SIDE_ACCEPT_DEG)) -> np.ndarray:
+    """[E, P]: the ghost-ball shot (``ghost_shots``) into each pocket is
+    possible (cut below 88 degrees), its paths are clear of other balls, and
+    (with ``side_mask``, ``side_pocket_mask``) the object ball comes in within
+    the pocket's acceptance angle."""
+    ok = shots["valid"] & ~shots["blocked"]
+    if side_mask is not None:
+        ok &= shots["approach"] <= np.where(side_mask[None], approach_limit_side, approach_limit_corner)
+    return ok
 
 
 def side_pocket_mask(table: Table) -> np.ndarray:

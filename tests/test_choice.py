@@ -132,3 +132,18 @@ def test_kicks_reach_a_ball_hidden_behind_another():
     res = simulate(strike_velocity(nat.state, phi[:, k], np.array([v]), np.zeros(1), np.zeros(1), p), t, p)
     assert res.first_contact[0] == 1
     env.close()
+
+
+def test_shot_stats_counts_add_up():
+    """scripts/shot_stats.py: every shot is classified once; rates lie in [0, 1]."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("shot_stats", ROOT / "scripts" / "shot_stats.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    r = mod.shot_stats("ghost", NINE, 40, seed=5)
+    n = r["counts"]
+    assert n["shots"] == round(r["shots_per_episode"] * 40) and n["shots"] >= 40
+    closed = n["shots"] - n["open"]
+    assert n["closed_pot"] + n["closed_miss"] + n["closed_fail"] == closed
+    assert n["open_pot"] + n["open_fail"] <= n["open"] and n["leave_open"] <= n["pots_on"]
+    assert all(0.0 <= r[k] <= 1.0 for k in r if k.endswith(("_share", "_open", "_closed", "_after_pot")))
