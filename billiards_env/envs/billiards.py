@@ -50,11 +50,12 @@ _COMMON_DOC = """
     ==============  ===========================================================
 
     ``observation="target_frame"``: the table seen from the legal target
-    ball instead (``Box(-1, 1, (4*B + 2 + 3*P,), float32)``, P pockets):
+    ball instead (``Box(-1, 1, (4*B + 2 + 5*P,), float32)``, P pockets):
     cue -> target distance, every ball's position in the frame with origin
     at the target and x-axis along cue -> target, the target one-hot, the
-    shot count, and per pocket (straightest first) its unit direction and
-    distance from the target; all lengths / table diagonal. Layout:
+    shot count, and per pocket (straightest first, those the target cannot
+    enter on a straight line last) its unit direction and distance from the
+    target and its axis; all lengths / table diagonal. Layout:
     ``billiards_env/envs/target_frame.py``.
 
     **Action** (``Box(-1, 1, (4,), float32)``):
