@@ -39,6 +39,17 @@ def test_wilson_interval_matches_hand_computation():
     assert lo + hi == pytest.approx(1.0) and 0.46 < lo < 0.5 < hi < 0.54
 
 
+def test_wilson_interval_is_exact_at_the_ends_and_charts_them(tmp_path):
+    """k = 0 and k = n give bounds of exactly 0 and 1 (the formula alone left
+    2e-19, a negative error bar that stopped bar_chart)."""
+    from agents.evaluation import EvalResult, bar_chart
+    assert wilson_interval(0, 1000)[0] == 0.0 and wilson_interval(1000, 1000)[1] == 1.0
+    res = [EvalResult("none-ever", POT, "none", 1000, 11, 0.0, wilson_interval(0, 1000), 0.0, 0.0, 0.0, 0.0, 0.0,
+                      1.0, 0.1)]
+    bar_chart(res, tmp_path / "chart.png")
+    assert (tmp_path / "chart.png").stat().st_size > 0
+
+
 def test_wilson_interval_coverage_on_bernoulli_sample():
     rng = np.random.default_rng(0)
     p, n, hits = 0.9, 200, 0
