@@ -42,7 +42,8 @@ from . import geometry as G
 CONTACT_FULLNESS = (0.0, 0.35, -0.35, 0.7, -0.7, 0.9, -0.9)
 CONTACT_ARRIVAL = 0.5   # m/s at contact: moves the object ball a little, keeps the cue ball near
 N_KICKS = 4             # one per rail
-KICK_ARRIVAL = 2.0      # m/s at contact without cushion losses: the rail takes (1 - e^2) of the normal speed's energy, and more with spin
+# m/s at contact if the rail took nothing; it takes (1 - e^2) of the normal speed's energy, and more with spin
+KICK_ARRIVAL = 2.0
 SPEED_LEVELS = (0.6, 0.8, 1.0, 1.3, 1.7, 2.3, 3.0)
 HEIGHT_LEVELS = (-0.7, -0.35, 0.0, 0.35, 0.7)
 
