@@ -30,6 +30,8 @@ path is open and its length (``contact_features``).
 from __future__ import annotations
 
 import math
+import weakref
+from dataclasses import dataclass
 
 import numpy as np
 from gymnasium import spaces
@@ -59,11 +61,35 @@ def action_space(native) -> spaces.MultiDiscrete:
 N_CONTACT_FEATURES = 2 * (len(CONTACT_FULLNESS) + N_KICKS)
 
 
-def _menu(native):
-    """Aims and nominal speeds [E, C] of every table's menu, and the contact
-    shots' and kicks' open flags and path lengths [E, F + N_KICKS]."""
+@dataclass(frozen=True)
+class Menu:
+    """Every table's menu for one state of a native env."""
+    context: object      # the env's ShotContext of that state: the same object while the state is unchanged
+    ghost: dict          # geometry.ghost_shots of the legal balls (also the agent's pocket features)
+    phi: np.ndarray      # [E, C] aims
+    speed: np.ndarray    # [E, C] nominal strike speeds
+    open_: np.ndarray    # [E, F + N_KICKS] contact shots' and kicks' paths open
+    length: np.ndarray   # [E, F + N_KICKS] their path lengths (m)
+
+
+_MENUS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()  # native env -> the Menu of its last state
+
+
+def menu(native) -> Menu:
+    """The menu of the native env's current tables, built once per state:
+    the observation's features and the next step's actions read the same
+    one. The env caches its ``shot_context()`` until the state changes, so
+    the same context object means the same positions."""
+    ctx = native.shot_context()
+    m = _MENUS.get(native)
+    if m is None or m.context is not ctx:
+        m = _MENUS[native] = _build_menu(native, ctx)
+    return m
+
+
+def _build_menu(native, ctx) -> Menu:
     st, table, params = native.state, native.table, native.params
-    tgt = np.asarray(native.legal_target(), dtype=np.int64)
+    tgt = np.asarray(ctx.target, dtype=np.int64)
     tgt = np.where(tgt > 0, tgt, 1 if st.n_balls > 1 else 0)
     sh = G.ghost_shots(st.pos, st.on_table, tgt, table, params, 0.0)
     v_pot = G.required_speed(sh["d_cg"], sh["d_op"], sh["cut"], params, margin=1.0)
@@ -73,18 +99,18 @@ def _menu(native):
     phi_k, length_k, blocked_k = G.kick_shots(st.pos, st.on_table, tgt, params.R, table.width, table.length,
                                               table.pockets)
     v_kick = G.rolling_strike_speed(length_k, KICK_ARRIVAL, params)
-    phi = np.concatenate([sh["phi"], phi_c, phi_k], axis=1)
-    speed = np.concatenate([v_pot, v_contact, v_kick], axis=1)
-    return phi, speed, ~np.concatenate([blocked, blocked_k], axis=1), np.concatenate([length, length_k], axis=1)
+    return Menu(ctx, sh, np.concatenate([sh["phi"], phi_c, phi_k], axis=1),
+                np.concatenate([v_pot, v_contact, v_kick], axis=1), ~np.concatenate([blocked, blocked_k], axis=1),
+                np.concatenate([length, length_k], axis=1))
 
 
 def contact_features(native) -> np.ndarray:
     """Features [E, N_CONTACT_FEATURES]: per contact shot and kick, 1 if its
     path is open (``geometry.contact_shots``, ``kick_shots``) and its length
     / table diagonal."""
-    _, _, open_, length = _menu(native)
+    m = menu(native)
     diag = math.hypot(native.table.width, native.table.length)
-    f = np.stack([open_.astype(np.float64), length / diag], axis=2).reshape(len(length), -1)
+    f = np.stack([m.open_.astype(np.float64), m.length / diag], axis=2).reshape(len(m.length), -1)
     return f.astype(np.float32)
 
 
@@ -94,7 +120,8 @@ def choice_actions(native, actions) -> np.ndarray:
     nvec = action_space(native).nvec
     if (a < 0).any() or (a >= nvec[None]).any():
         raise ValueError(f"choice actions must lie in [0, {list(nvec)}) per column, got {a.min(0)}..{a.max(0)}")
-    phi, speed, _, _ = _menu(native)
+    m = menu(native)
+    phi, speed = m.phi, m.speed
     ar = np.arange(len(a))
     params = native.params
     v = np.minimum(speed[ar, a[:, 0]] * np.asarray(SPEED_LEVELS)[a[:, 1]], params.max_speed)

@@ -50,14 +50,15 @@ def n_features(native) -> int:
     return N_FEAT_PER_POCKET * len(native.table.pockets)
 
 
-def shot_features(native, aim_scale: float = 1.0) -> np.ndarray:
-    """Features [N, 6 * P] of the native vector env's current tables."""
+def shot_features(native, aim_scale: float = 1.0, ghost: dict | None = None) -> np.ndarray:
+    """Features [N, 6 * P] of the native vector env's current tables
+    (``ghost``: their ``geometry.ghost_shots``, when already computed)."""
     st = native.state
     table, params = native.table, native.params
     tgt = np.asarray(native.legal_target(), dtype=np.int64)
     has = tgt > 0
     tgt_c = np.where(has, tgt, 1 if st.n_balls > 1 else 0)
-    sh = G.ghost_shots(st.pos, st.on_table, tgt_c, table, params, 0.0)
+    sh = ghost if ghost is not None else G.ghost_shots(st.pos, st.on_table, tgt_c, table, params, 0.0)
     E, P = sh["phi"].shape
     diag = math.hypot(table.width, table.length)
     base = native.aim_origin()  # the env's aim origin (relative aim: the cue -> target direction)
@@ -121,7 +122,8 @@ def agent_features(native, features: bool, aim_scale: float, mode: str) -> np.nd
     """What the agent appends to the env's observation: the ghost-ball
     features (``features``), then the menu's contact features (mode
     ``choice``); None if nothing."""
-    parts = [shot_features(native, aim_scale)] if features else []
+    ghost = choice.menu(native).ghost if mode == "choice" else None  # the menu's own ghost-ball shots
+    parts = [shot_features(native, aim_scale, ghost)] if features else []
     if mode == "choice":
         parts.append(choice.contact_features(native))
     return np.concatenate(parts, axis=1) if parts else None

@@ -147,3 +147,21 @@ def test_shot_stats_counts_add_up():
     assert n["closed_pot"] + n["closed_miss"] + n["closed_fail"] == closed
     assert n["open_pot"] + n["open_fail"] <= n["open"] and n["leave_open"] <= n["pots_on"]
     assert all(0.0 <= r[k] <= 1.0 for k in r if k.endswith(("_share", "_open", "_closed", "_after_pot")))
+
+
+def test_menu_is_built_once_per_state_and_rebuilt_after_a_step():
+    """The observation's features and the next actions read one menu; a step
+    (a new state) gives a new one, equal to a menu built from scratch."""
+    env, w, _ = _wrapped(16)
+    nat = env.unwrapped
+    m = choice.menu(nat)
+    choice.contact_features(nat)
+    choice.choice_actions(nat, np.zeros((16, 3), dtype=np.int64))
+    assert choice.menu(nat) is m
+    w.step(np.column_stack([np.full(16, 6), np.full(16, NOMINAL[0]), np.full(16, NOMINAL[1])]))
+    after = choice.menu(nat)
+    assert after is not m
+    fresh = choice._build_menu(nat, nat.shot_context())
+    for f in ("phi", "speed", "open_", "length"):
+        np.testing.assert_array_equal(getattr(after, f), getattr(fresh, f))
+    env.close()
