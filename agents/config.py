@@ -88,6 +88,11 @@ class TrainSettings:
 ACTION_MODES = ("direct", "residual", "choice")
 
 
+def check_action_mode(mode: str) -> None:
+    if mode not in ACTION_MODES:
+        raise ValueError(f"action_mode must be one of {ACTION_MODES}, got {mode!r}")
+
+
 @dataclasses.dataclass(frozen=True)
 class TrainConfig:
     env_id: str
@@ -112,8 +117,7 @@ class TrainConfig:
             raise ValueError(f"config version {self.version} is not supported (expected {CONFIG_VERSION})")
         if not isinstance(self.n_envs, int) or self.n_envs < 1:
             raise ValueError(f"n_envs must be a positive integer, got {self.n_envs!r}")
-        if self.action_mode not in ACTION_MODES:
-            raise ValueError(f"action_mode must be one of {ACTION_MODES}, got {self.action_mode!r}")
+        check_action_mode(self.action_mode)
         for name in ("ppo", "sac"):
             _check_algo_kwargs(name, getattr(self, name))
 

@@ -41,7 +41,7 @@ from billiards_env.physics.strike import Shots, speed_to_draw
 
 from . import choice
 from . import geometry as G
-from .config import ACTION_MODES
+from .config import check_action_mode
 
 N_FEAT_PER_POCKET = 6
 
@@ -111,11 +111,6 @@ def transform_actions(native, actions, mode: str, aim_scale: float) -> np.ndarra
     if mode == "choice":
         return choice.choice_actions(native, actions)
     return scale_actions(np.clip(actions, -1.0, 1.0), aim_scale)
-
-
-def check_action_mode(mode: str) -> None:
-    if mode not in ACTION_MODES:
-        raise ValueError(f"action_mode must be one of {ACTION_MODES}, got {mode!r}")
 
 
 def agent_features(native, features: bool, aim_scale: float, mode: str) -> np.ndarray | None:
