@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from billiards_env.envs.target_frame import CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG
+from billiards_env.envs.target_frame import CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG, side_pockets
 from billiards_env.envs.target_frame import pocket_axes as _pocket_axes
 from billiards_env.physics import PhysicsParams, Table
 from billiards_env.physics.strike import Shots
@@ -32,8 +32,8 @@ def pocket_aim_points(table: Table, inset: float = 0.02) -> np.ndarray:
     (corner pockets along the diagonal, side pockets across the rail)."""
     w, l = table.width, table.length
     pts = []
-    for cx, cy, _ in table.pockets:
-        if abs(cy - l / 2) < 1e-9:  # side pocket: the mouth centre is on the rail line
+    for (cx, cy, _), side in zip(table.pockets, side_pocket_mask(table)):
+        if side:  # side pocket: the mouth centre is on the rail line
             x = 0.0 if cx < w / 2 else w
             pts.append((x + (-inset if x == 0.0 else inset), l / 2))
         else:  # corner pocket: on the diagonal, `inset` in from the corner point
@@ -193,8 +193,7 @@ def open_pots(shots: dict, side_mask: np.ndarray | None = None,
 
 
 def side_pocket_mask(table: Table) -> np.ndarray:
-    l = table.length
-    return np.array([abs(cy - l / 2) < 1e-9 for _, cy, _ in table.pockets])
+    return side_pockets(table.pockets, table.length)
 
 
 def ghost_ball_shot(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, table: Table,

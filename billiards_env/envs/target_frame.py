@@ -64,15 +64,22 @@ def obs_size(n_balls: int, n_pockets: int) -> int:
     return 4 * n_balls + 2 + 5 * n_pockets
 
 
+def side_pockets(pockets: np.ndarray, length: float) -> np.ndarray:
+    """bool [P]: the pocket (centres ``pockets[:, :2]``) is a side pocket,
+    its centre at half the table's ``length``; the others are corners."""
+    return np.abs(np.asarray(pockets, dtype=np.float64)[:, 1] - length / 2) < 1e-9
+
+
 def pocket_axes(pockets: np.ndarray, width: float, length: float) -> np.ndarray:
     """Unit vectors [P, 2] from each pocket (centres ``pockets[:, :2]``) into
     a ``width`` x ``length`` table: across the table for the side pockets
-    (centre at half length), along the diagonal 45 degrees between the
-    cushions for the corner pockets."""
+    (``side_pockets``), along the diagonal 45 degrees between the cushions
+    for the corner pockets."""
     out = np.empty((len(pockets), 2))
+    side = side_pockets(pockets, length)
     for k, (cx, cy) in enumerate(np.asarray(pockets, dtype=np.float64)[:, :2]):
         sx = 1.0 if cx < width / 2 else -1.0
-        if abs(cy - length / 2) < 1e-9:
+        if side[k]:
             out[k] = (sx, 0.0)
         else:
             out[k] = np.array([sx, 1.0 if cy < length / 2 else -1.0]) / math.sqrt(2.0)
@@ -81,9 +88,8 @@ def pocket_axes(pockets: np.ndarray, width: float, length: float) -> np.ndarray:
 
 def pocket_accept_cos(pockets: np.ndarray, length: float) -> np.ndarray:
     """cos of each pocket's acceptance angle [P] (``SIDE_ACCEPT_DEG`` for the
-    side pockets, centre at half length; ``CORNER_ACCEPT_DEG`` otherwise)."""
-    side = np.abs(np.asarray(pockets, dtype=np.float64)[:, 1] - length / 2) < 1e-9
-    return np.cos(np.radians(np.where(side, SIDE_ACCEPT_DEG, CORNER_ACCEPT_DEG)))
+    side pockets, ``CORNER_ACCEPT_DEG`` for the corners)."""
+    return np.cos(np.radians(np.where(side_pockets(pockets, length), SIDE_ACCEPT_DEG, CORNER_ACCEPT_DEG)))
 
 
 @_jit
