@@ -38,10 +38,15 @@ class Policy(Protocol):
 
 
 def native_env(env):
-    """The native billiards vector env under an SB3 adapter / wrappers."""
+    """The native billiards vector env under an SB3 adapter / wrappers (a
+    game env's ``GameView``)."""
+    from .game_view import agent_native, is_game
+
     seen = 0
     while seen < 10:
         seen += 1
+        if is_game(env):
+            return agent_native(env)
         if hasattr(env, "legal_target") and hasattr(env, "shots_to_actions"):
             return env
         for attr in ("venv", "unwrapped", "env"):

@@ -19,7 +19,8 @@ from pathlib import Path
 
 from .config import CONFIG_DIR, load_config, load_run_config
 
-TASKS = ("Billiards-PotOne-v0", "Billiards-RunOut-v0", "Billiards-NineBall-v0")
+TASKS = ("Billiards-PotOne-v0", "Billiards-RunOut-v0", "Billiards-NineBall-v0", "Billiards-NineBall2P-v0",
+         "Billiards-EightBall-v0")  # the games: against the ghost-ball game policy (configs/ppo_games.yaml)
 ALGOS = ("ppo", "sac")
 EVAL_SEED = 12345
 NOISES = ("none", "tournament")

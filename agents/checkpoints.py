@@ -45,7 +45,10 @@ def _native_sb3(env):
 
 
 def _streams(env):
-    return _native_sb3(env).unwrapped._core.streams
+    """The table streams of the native env under ``env`` (a task's ``_core`` or a game's ``core``)."""
+    u = _native_sb3(env).unwrapped
+    core = getattr(u, "_core", None)
+    return (core if core is not None else u.core).streams
 
 
 @dataclass(frozen=True)
@@ -132,7 +135,7 @@ def load_checkpoint(ck: Checkpoint, algo: str, env, vecnorm, device: str = "cpu"
         restore_normalizer(vecnorm, ck.normalizer_path)
     with np.load(ck.normalizer_path) as z:
         torch.set_rng_state(torch.from_numpy(z["torch_rng"].copy()))
-        streams = native.unwrapped._core.streams
+        streams = _streams(native)
         if len(z["stream_keys"]) != len(streams.keys):
             raise ValueError(f"{ck.model_path}: saved with {len(z['stream_keys'])} tables, the env has "
                              f"{len(streams.keys)}; resume with the run's own config")

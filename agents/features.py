@@ -39,7 +39,7 @@ from stable_baselines3.common.vec_env.base_vec_env import VecEnvWrapper
 
 from billiards_env.physics.strike import Shots, speed_to_draw
 
-from . import choice
+from . import choice, game_view
 from . import geometry as G
 from .config import check_action_mode
 
@@ -105,12 +105,18 @@ def residual_actions(native, actions: np.ndarray, aim_scale: float, speed_scale:
 
 
 def transform_actions(native, actions, mode: str, aim_scale: float) -> np.ndarray:
-    """The policy's actions -> the env's, for ``mode`` (``ACTION_MODES``)."""
+    """The policy's actions -> the env's, for ``mode`` (``ACTION_MODES``);
+    on a game (``GameView``) completed to the game's 8 components."""
     if mode == "residual":
-        return residual_actions(native, actions, aim_scale)
-    if mode == "choice":
-        return choice.choice_actions(native, actions)
-    return scale_actions(np.clip(actions, -1.0, 1.0), aim_scale)
+        a = residual_actions(native, actions, aim_scale)
+    elif mode == "choice":
+        a = choice.choice_actions(native, actions)
+    else:
+        a = scale_actions(np.clip(actions, -1.0, 1.0), aim_scale)
+    complete = getattr(native, "complete_actions", None)
+    if complete is None:
+        return a
+    return complete(a, np.asarray(actions).reshape(len(a), -1)[:, 0] if mode == "choice" else None)
 
 
 def agent_features(native, features: bool, aim_scale: float, mode: str) -> np.ndarray | None:
@@ -129,8 +135,11 @@ def n_agent_features(native, features: bool, mode: str) -> int:
 
 
 def policy_action_space(native, mode: str, env_space):
-    """The policy's action space: the env's, or the menu's for ``choice``."""
-    return choice.action_space(native) if mode == "choice" else env_space
+    """The policy's action space: the menu's for ``choice``; otherwise the
+    env's, or on a game (``GameView``) its shot components a0..a3."""
+    if mode == "choice":
+        return choice.action_space(native)
+    return game_view.policy_space() if isinstance(native, game_view.GameView) else env_space
 
 
 class ShotFeatures(VecEnvWrapper):
@@ -140,6 +149,7 @@ class ShotFeatures(VecEnvWrapper):
 
     def __init__(self, venv, native, features: bool = True, aim_scale: float = 1.0, action_mode: str = "direct"):
         check_action_mode(action_mode)
+        native = game_view.agent_native(native)
         self.native, self.features, self.aim_scale = native, features, float(aim_scale)
         self.action_mode = action_mode
         base = venv.observation_space
@@ -180,14 +190,14 @@ class VectorShotFeatures(gym.vector.VectorWrapper):
                  action_mode: str = "direct"):
         check_action_mode(action_mode)
         super().__init__(env)
-        self.native = env.unwrapped
+        self.native = game_view.agent_native(env.unwrapped)
         self.features, self.aim_scale, self.action_mode = features, float(aim_scale), action_mode
         self.k = k = n_agent_features(self.native, features, action_mode)
         if k:
             base = env.single_observation_space
             self.single_observation_space = spaces.Box(-np.inf, np.inf, shape=(base.shape[0] + k,), dtype=np.float32)
             self.observation_space = gym.vector.utils.batch_space(self.single_observation_space, env.num_envs)
-        if action_mode == "choice":
+        if action_mode == "choice" or self.native is not env.unwrapped:
             self.single_action_space = policy_action_space(self.native, action_mode, env.single_action_space)
             self.action_space = gym.vector.utils.batch_space(self.single_action_space, env.num_envs)
 

@@ -3,16 +3,29 @@ search of ``agents.lookahead`` and saved models (what ``scripts/evaluate.py
 --policy`` and the training's final evaluation accept)."""
 from __future__ import annotations
 
+import numpy as np
+
 from .baselines import GhostBallPolicy, Policy, RandomPolicy, SB3Policy, SearchPolicy
+from .game_policies import make_game_policy
 from .lookahead import LookaheadPolicy
 
 BASELINE_NAMES = ("random", "ghost", "lookahead")  # besides search<K>
+GAME_ONLY_NAMES = ("ghost-safety",)                 # game policies without a one-player twin
 
 
 def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
     """A baseline by name: ``random``, ``ghost``, ``search`` (``search<K>``
     sets K, e.g. ``search64``), ``lookahead`` (``agents.lookahead``), or a
-    path to a saved model / run directory."""
+    path to a saved model / run directory. On a two-player game env against
+    an opponent the names are game policies' (``agents.game_policies``)."""
+    from .baselines import native_env
+    from .game_view import GameView
+
+    native = native_env(env)
+    if isinstance(native, GameView) and (name in BASELINE_NAMES + GAME_ONLY_NAMES or name.startswith("search")):
+        return GamePolicy(name, native.env, seed=seed)
+    if name in GAME_ONLY_NAMES:
+        raise ValueError(f"{name!r} plays the two-player games only (Billiards-NineBall2P-v0, Billiards-EightBall-v0)")
     if name == "random":
         return RandomPolicy(env, seed=seed)
     if name == "ghost":
@@ -23,3 +36,16 @@ def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
         kk = int(name[6:]) if name[6:] else k
         return SearchPolicy(env, k=kk, seed=seed)
     return SB3Policy.load(name, env=env)
+
+
+class GamePolicy:
+    """A named game policy (``agents.game_policies.make_game_policy``) as the
+    agent of a game env against an opponent: it acts on every table (the
+    agent is to move on all of them)."""
+
+    def __init__(self, name: str, env, seed: int = 0):
+        self.inner = make_game_policy(name, env.core, seed=seed)
+        self.name = self.inner.name
+
+    def act(self, obs=None) -> np.ndarray:
+        return self.inner.act(None)

@@ -181,10 +181,9 @@ class HeldOutEvaluation(BaseCallback):
                         env_kwargs=self.cfg.env_kwargs, name=self.cfg.algo)
 
     def _on_training_start(self) -> None:
-        from .baselines import GhostBallPolicy
-        t = time.perf_counter()
+        from .policies import make_policy
         if self.target is None:
-            self.target = self._evaluate(lambda env: GhostBallPolicy(env)).success_rate
+            self.target = self._evaluate(lambda env: make_policy("ghost", env)).success_rate
         self._f = open(self.run_dir / "evaluations.csv", "w", newline="")
         self._csv = csv.DictWriter(self._f, fieldnames=self.FIELDS)
         self._csv.writeheader()

@@ -1,6 +1,7 @@
 """Two-player pool by the rules (9-ball, 8-ball) over the batched simulator:
 the batched game core, the self-play vector env, the single-agent env
-against a fixed opponent and the PettingZoo AEC env (docs/games.md)."""
+against a fixed opponent (one table, and batched: ``versus``) and the
+PettingZoo AEC env (docs/games.md)."""
 from .core import ACTION_DIM, GAMES, GameConfig, GameCore
 
 __all__ = ["ACTION_DIM", "GAMES", "GameConfig", "GameCore"]

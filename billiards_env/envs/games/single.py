@@ -9,6 +9,7 @@ import numpy as np
 
 from .core import GameCore
 from .spaces import OBSERVATION_DOC, action_space, info_row, make_config, observation_space
+from .versus import AGENT, make_opponent, opponent_turns
 
 
 class GameEnv(gym.Env):
@@ -31,7 +32,7 @@ class GameEnv(gym.Env):
 
     metadata = {"render_modes": []}
     game = "nine_ball"
-    AGENT = 0
+    AGENT = AGENT
 
     def __init__(self, opponent="ghost", config=None, opponent_seed: int = 0, **overrides: Any):
         self.config = make_config(config, overrides, self.game)
@@ -43,22 +44,10 @@ class GameEnv(gym.Env):
         self._done = True
         self._seeded = False
 
-    def _make_opponent(self, seed: int):
-        spec = self._opponent_spec
-        if callable(spec):
-            return spec(self.core)
-        from agents.game_policies import make_game_policy  # the default opponents live in agents/
-        return make_game_policy(spec, self.core, seed=seed)
-
     def _opponent_turns(self) -> tuple[float, bool, bool, int]:
         """Opponent shots until the agent is to move or the game ends: (reward, terminated, truncated, shots)."""
-        shots = 0
-        while self.core.constraints().shooter[0] != self.AGENT:
-            out = self.core.step(self.core.validate_actions(self.opponent.act(None), 1), [0])
-            shots += 1
-            if out["terminated"][0] or out["truncated"][0]:
-                return -float(out["reward"][0]), bool(out["terminated"][0]), bool(out["truncated"][0]), shots
-        return 0.0, False, False, shots
+        out = opponent_turns(self.core, self.opponent, [0])
+        return float(out["reward"][0]), bool(out["terminated"][0]), bool(out["truncated"][0]), int(out["shots"][0])
 
     def reset(self, *, seed: int | None = None, options: dict | None = None):
         super().reset(seed=seed)
@@ -68,7 +57,7 @@ class GameEnv(gym.Env):
             self.core.streams.seed([0], [int(self.np_random.integers(2 ** 63))])
         self._seeded = True
         if self.opponent is None or seed is not None:  # a seeded reset reseeds the opponent too
-            self.opponent = self._make_opponent(self._opponent_seed + (seed or 0))
+            self.opponent = make_opponent(self._opponent_spec, self.core, self._opponent_seed + (seed or 0))
         breaker = (options or {}).get("breaker")
         skipped = -1
         while True:  # a game the opponent ends before the agent's first shot is replaced by the next rack

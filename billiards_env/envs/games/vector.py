@@ -119,10 +119,23 @@ class GameVectorEnv(VectorEnv):
         return self.core.constraints()
 
 
-def nine_ball_vector(num_envs: int = 1, **kwargs) -> GameVectorEnv:
-    return GameVectorEnv(num_envs, game="nine_ball", **kwargs)
+def game_vector(num_envs: int = 1, game: str = "nine_ball", opponent=None, **kwargs):
+    """The vector entry point of a game id: the agent against ``opponent``
+    (``versus.GameVersusVectorEnv``, the batched ``GameEnv``) when one is
+    named, else self-play (``GameVectorEnv``)."""
+    if opponent is not None:
+        from .versus import GameVersusVectorEnv
+        return GameVersusVectorEnv(num_envs, game=game, opponent=opponent, **kwargs)
+    mode = kwargs.pop("autoreset_mode", AutoresetMode.NEXT_STEP)
+    if mode not in ("next_step", AutoresetMode.NEXT_STEP):
+        raise ValueError(f"self-play ({game}) autoresets in next_step mode only, got autoreset_mode={mode!r}; "
+                         "name an opponent= for the agent-against-opponent env")
+    return GameVectorEnv(num_envs, game=game, **kwargs)
 
 
-def eight_ball_vector(num_envs: int = 1, **kwargs) -> GameVectorEnv:
-    return GameVectorEnv(num_envs, game="eight_ball", **kwargs)
+def nine_ball_vector(num_envs: int = 1, **kwargs):
+    return game_vector(num_envs, "nine_ball", **kwargs)
 
+
+def eight_ball_vector(num_envs: int = 1, **kwargs):
+    return game_vector(num_envs, "eight_ball", **kwargs)
