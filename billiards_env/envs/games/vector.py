@@ -5,15 +5,14 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-from gymnasium.vector import AutoresetMode, VectorEnv
-from gymnasium.vector.utils import batch_space
+from gymnasium.vector import AutoresetMode
 
 from ..streams import seed_vector_env
-from .core import GameCore
-from .spaces import OBSERVATION_DOC, action_space, make_config, observation_space
+from .batched import GameTables
+from .spaces import OBSERVATION_DOC
 
 
-class GameVectorEnv(VectorEnv):
+class GameVectorEnv(GameTables):
     __doc__ = """``num_envs`` tables of one game (``game=``), self-play: on every table
     the player to move (observation entry 4*B + 1) plays the action of its
     row. One step is one shot (or one pass after a push-out) on every table,
@@ -44,16 +43,7 @@ class GameVectorEnv(VectorEnv):
     metadata = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
 
     def __init__(self, num_envs: int = 1, game: str = "nine_ball", config=None, **overrides: Any):
-        self.config = make_config(config, {**overrides, "game": game} if config is None else overrides)
-        self.num_envs = int(num_envs)
-        self.render_mode = None
-        self.core = GameCore(self.config, self.num_envs)
-        self.single_observation_space = observation_space(self.core)
-        self.single_action_space = action_space()
-        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
-        self.action_space = batch_space(self.single_action_space, self.num_envs)
-        self._seeded = False
-        self._autoreset_envs = np.zeros(self.num_envs, dtype=bool)
+        super().__init__(num_envs, game, config, overrides)
 
     def reset(self, *, seed=None, options: dict | None = None):
         N = self.num_envs
@@ -67,12 +57,6 @@ class GameVectorEnv(VectorEnv):
         self.core.reset_tables(idx, breaker)
         self._autoreset_envs[idx] = False
         return self.core.observe(), self._constraint_info()
-
-    def _constraint_info(self) -> dict:
-        c = self.core.constraints()
-        return dict(to_move=c.shooter.copy(), ball_in_hand=c.ball_in_hand.copy(), targets=c.targets.copy(),
-                    push_out_allowed=c.push_out_allowed.copy(), may_pass=c.may_pass.copy(),
-                    call_needed=c.call_needed.copy())
 
     def step(self, actions):
         if not self._seeded:
@@ -109,14 +93,6 @@ class GameVectorEnv(VectorEnv):
         info.update(self._constraint_info())
         self._autoreset_envs = terminated | truncated
         return self.core.observe(), reward, terminated, truncated, info
-
-    # the views the policies read
-    state = property(lambda self: self.core.state)
-    table = property(lambda self: self.core.table)
-    params = property(lambda self: self.core.params)
-
-    def constraints(self):
-        return self.core.constraints()
 
 
 def game_vector(num_envs: int = 1, game: str = "nine_ball", opponent=None, **kwargs):

@@ -10,13 +10,13 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-from gymnasium.vector import AutoresetMode, VectorEnv
-from gymnasium.vector.utils import batch_space
+from gymnasium.vector import AutoresetMode
 
 from ..billiards import _autoreset_mode
 from ..streams import seed_vector_env
+from .batched import GameTables
 from .core import GameCore
-from .spaces import OBSERVATION_DOC, action_space, make_config, observation_space
+from .spaces import OBSERVATION_DOC
 
 AGENT = 0  # the agent's player number on every table; the opponent is 1 - AGENT
 
@@ -53,7 +53,7 @@ def opponent_turns(core: GameCore, opponent, idx) -> dict:
         live[rows] = ~(out["terminated"] | out["truncated"])
 
 
-class GameVersusVectorEnv(VectorEnv):
+class GameVersusVectorEnv(GameTables):
     __doc__ = """``num_envs`` tables of ``game``, on each the agent is player 0
     and ``opponent`` (a name of ``agents.game_policies.make_game_policy``,
     default ``"ghost"``, or a callable ``core -> policy``) player 1: the
@@ -79,8 +79,9 @@ class GameVersusVectorEnv(VectorEnv):
     ``success`` (the agent won the game that just ended), ``scratch`` (the
     agent's shot pocketed the cue ball), ``balls_pocketed`` (object balls
     its shot pocketed), ``opponent_shots`` (the opponent's shots since),
-    ``winner``, and the agent's next constraints (``ball_in_hand``,
-    ``targets``, ``push_out_allowed``, ``may_pass``, ``call_needed``).
+    ``winner``, and the agent's next constraints (``to_move``, always 0,
+    ``ball_in_hand``, ``targets``, ``push_out_allowed``, ``may_pass``,
+    ``call_needed``).
     """ + OBSERVATION_DOC
 
     metadata = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
@@ -91,23 +92,9 @@ class GameVersusVectorEnv(VectorEnv):
         if mode == AutoresetMode.DISABLED:
             raise ValueError("autoreset_mode must be 'next_step' or 'same_step' for a game against an opponent")
         self.metadata = {**type(self).metadata, "autoreset_mode": mode}
-        self.config = make_config(config, {**overrides, "game": game} if config is None else overrides)
-        self.num_envs = int(num_envs)
-        self.render_mode = None
-        self.core = GameCore(self.config, self.num_envs)
-        self.single_observation_space = observation_space(self.core)
-        self.single_action_space = action_space()
-        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
-        self.action_space = batch_space(self.single_action_space, self.num_envs)
+        super().__init__(num_envs, game, config, overrides)
         self._opponent_spec, self._opponent_seed = opponent, int(opponent_seed)
         self.opponent = None
-        self._seeded = False
-        self._autoreset_envs = np.zeros(self.num_envs, dtype=bool)
-
-    # the views the policies and agent wrappers read
-    state = property(lambda self: self.core.state)
-    table = property(lambda self: self.core.table)
-    params = property(lambda self: self.core.params)
 
     def _new_games(self, idx, breaker=None) -> np.ndarray:
         """New games on tables ``idx`` played up to the agent's first shot;
@@ -123,13 +110,6 @@ class GameVersusVectorEnv(VectorEnv):
             skipped[rows[ended]] += 1
             rows = rows[ended]
         return skipped
-
-    def _constraint_info(self, info: dict) -> dict:
-        c = self.core.constraints()
-        info.update(ball_in_hand=c.ball_in_hand.copy(), targets=c.targets.copy(),
-                    push_out_allowed=c.push_out_allowed.copy(), may_pass=c.may_pass.copy(),
-                    call_needed=c.call_needed.copy())
-        return info
 
     def reset(self, *, seed=None, options: dict | None = None):
         N = self.num_envs
@@ -202,6 +182,3 @@ class GameVersusVectorEnv(VectorEnv):
                 obs = self.core.observe()
             self._autoreset_envs = np.zeros(N, dtype=bool)
         return obs, reward, terminated, truncated, self._constraint_info(info)
-
-    def constraints(self):
-        return self.core.constraints()

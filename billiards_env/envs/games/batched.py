@@ -1,0 +1,48 @@
+"""What the batched game envs share: a ``gymnasium.vector.VectorEnv`` over
+one ``GameCore`` of ``num_envs`` tables, its spaces, and the next shooter's
+constraints reported in the info."""
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from gymnasium.vector import VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from .core import GameCore
+from .spaces import action_space, make_config, observation_space
+
+
+class GameTables(VectorEnv):
+    """Base of ``GameVectorEnv`` (self-play) and ``GameVersusVectorEnv``
+    (the agent against an opponent)."""
+
+    def __init__(self, num_envs: int, game: str, config=None, overrides: dict | None = None):
+        overrides = dict(overrides or {})
+        self.config = make_config(config, {**overrides, "game": game} if config is None else overrides)
+        self.num_envs = int(num_envs)
+        self.render_mode = None
+        self.core = GameCore(self.config, self.num_envs)
+        self.single_observation_space = observation_space(self.core)
+        self.single_action_space = action_space()
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+        self._seeded = False
+        self._autoreset_envs = np.zeros(self.num_envs, dtype=bool)
+
+    # the views the policies read
+    state = property(lambda self: self.core.state)
+    table = property(lambda self: self.core.table)
+    params = property(lambda self: self.core.params)
+
+    def constraints(self):
+        return self.core.constraints()
+
+    def _constraint_info(self, info: dict[str, Any] | None = None) -> dict:
+        """``info`` with the next shooter's constraints on every table."""
+        c = self.core.constraints()
+        info = {} if info is None else info
+        info.update(to_move=c.shooter.copy(), ball_in_hand=c.ball_in_hand.copy(), targets=c.targets.copy(),
+                    push_out_allowed=c.push_out_allowed.copy(), may_pass=c.may_pass.copy(),
+                    call_needed=c.call_needed.copy())
+        return info
