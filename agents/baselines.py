@@ -29,6 +29,7 @@ from billiards_env.physics.strike import Shots, draw_to_speed
 
 from . import geometry as G
 from .features import agent_features, transform_actions
+from .game_view import game_view_of
 
 
 class Policy(Protocol):
@@ -40,13 +41,12 @@ class Policy(Protocol):
 def native_env(env):
     """The native billiards vector env under an SB3 adapter / wrappers (a
     game env's ``GameView``)."""
-    from .game_view import agent_native, is_game
-
+    view = game_view_of(env)
+    if view is not None:
+        return view
     seen = 0
     while seen < 10:
         seen += 1
-        if is_game(env):
-            return agent_native(env)
         if hasattr(env, "legal_target") and hasattr(env, "shots_to_actions"):
             return env
         for attr in ("venv", "unwrapped", "env"):

@@ -139,6 +139,22 @@ def agent_native(env):
     return v
 
 
+def game_view_of(env) -> GameView | None:
+    """The ``GameView`` of the game env under ``env`` (SB3 adapters and
+    wrappers are looked through), or None if there is no game env."""
+    for _ in range(10):
+        if is_game(env):
+            return agent_native(env)
+        for attr in ("venv", "unwrapped", "env"):
+            inner = getattr(env, attr, None)
+            if inner is not None and inner is not env:
+                env = inner
+                break
+        else:
+            return None
+    return None
+
+
 def policy_space() -> spaces.Box:
     """The policy's action space on a game env in the continuous modes: a0..a3."""
     return spaces.Box(-1.0, 1.0, shape=(AGENT_ACTION_DIM,), dtype=np.float32)

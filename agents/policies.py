@@ -7,6 +7,7 @@ import numpy as np
 
 from .baselines import GhostBallPolicy, Policy, RandomPolicy, SB3Policy, SearchPolicy
 from .game_policies import make_game_policy
+from .game_view import game_view_of
 from .lookahead import LookaheadPolicy
 
 BASELINE_NAMES = ("random", "ghost", "lookahead")  # besides search<K>
@@ -18,12 +19,9 @@ def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
     sets K, e.g. ``search64``), ``lookahead`` (``agents.lookahead``), or a
     path to a saved model / run directory. On a two-player game env against
     an opponent the names are game policies' (``agents.game_policies``)."""
-    from .baselines import native_env
-    from .game_view import GameView
-
-    native = native_env(env)
-    if isinstance(native, GameView) and (name in BASELINE_NAMES + GAME_ONLY_NAMES or name.startswith("search")):
-        return GamePolicy(name, native.env, seed=seed)
+    view = game_view_of(env)
+    if view is not None and (name in BASELINE_NAMES + GAME_ONLY_NAMES or name.startswith("search")):
+        return GamePolicy(name, view.env, seed=seed)
     if name in GAME_ONLY_NAMES:
         raise ValueError(f"{name!r} plays the two-player games only (Billiards-NineBall2P-v0, Billiards-EightBall-v0)")
     if name == "random":
