@@ -22,6 +22,8 @@ from .config import CONFIG_DIR, load_config, load_run_config
 TASKS = ("Billiards-PotOne-v0", "Billiards-RunOut-v0", "Billiards-NineBall-v0", "Billiards-NineBall2P-v0",
          "Billiards-EightBall-v0")  # the games: against the ghost-ball game policy (configs/ppo_games.yaml)
 ALGOS = ("ppo", "sac")
+# The configs beside configs/<algo>.yaml whose rows the published table holds (``--all`` trains them too).
+TABLE_CONFIGS = ("ppo_direct.yaml", "ppo_nineball.yaml", "ppo_games.yaml")
 EVAL_SEED = 12345
 NOISES = ("none", "tournament")
 
@@ -117,13 +119,25 @@ def store_row(out_dir, row: dict) -> list[dict]:
     return rows
 
 
+def table_configs() -> list:
+    """Every config of the published table: the default ``configs/<algo>.yaml`` (None), then ``TABLE_CONFIGS``."""
+    return [None] + [CONFIG_DIR / name for name in TABLE_CONFIGS]
+
+
 def run_benchmark(out_dir, tasks=TASKS, algos=ALGOS, steps: int | None = None, episodes: int = 1000,
                   curve_points: int = 10, curve_episodes: int = 1000, extra: tuple = (),
-                  command: str = "", config=None) -> list[dict]:
+                  command: str = "", config=None, configs: list | None = None) -> list[dict]:
     """Train and evaluate every configured (task, algo) of ``tasks`` x
-    ``algos`` (from ``config``, default ``configs/<algo>.yaml``); the rows
-    replace those of the same (task, algo, config) in
-    ``out_dir/benchmark.json`` (the others are kept); returns all rows."""
+    ``algos`` (from ``config``, default ``configs/<algo>.yaml``; or from each
+    of ``configs``, e.g. ``table_configs()``); the rows replace those of the
+    same (task, algo, config) in ``out_dir/benchmark.json`` (the others are
+    kept); returns all rows."""
+    if configs is not None:
+        rows = []
+        for c in configs:
+            rows = run_benchmark(out_dir, tasks, algos, steps, episodes, curve_points, curve_episodes, extra,
+                                 command, c)
+        return rows
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     path = out_dir / "benchmark.json"

@@ -2,6 +2,7 @@
 """Regenerate the agents' benchmark table (docs/agents_benchmark.md).
 
     python scripts/benchmark_agents.py                       # every configured task x algo, config budgets
+    python scripts/benchmark_agents.py --all                 # ... and the other configs of the table (hours)
     python scripts/benchmark_agents.py --steps 100000 --task Billiards-RunOut-v0 --algo ppo
     python scripts/benchmark_agents.py --quick --out /tmp/bench   # smoke test (tiny runs, 20 episodes)
     python scripts/benchmark_agents.py --config configs/ppo_direct.yaml --task Billiards-PotOne-v0 --algo ppo
@@ -35,7 +36,8 @@ QUICK = ("n_envs=16", "policy.net_arch=[16]", "ppo.n_steps=16", "ppo.batch_size=
 
 
 def main(argv=None) -> int:
-    from agents.benchmark import ALGOS, TASKS, markdown_table, plot_curves, row_from_run, run_benchmark, store_row
+    from agents.benchmark import (ALGOS, TABLE_CONFIGS, TASKS, markdown_table, plot_curves, row_from_run,
+                                  run_benchmark, store_row, table_configs)
 
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--task", action="append", default=None, help=f"env id (repeatable; default {', '.join(TASKS)})")
@@ -47,6 +49,9 @@ def main(argv=None) -> int:
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="override for every run")
     ap.add_argument("--config", default=None,
                     help="YAML of the runs (default configs/<algo>.yaml); its rows sit beside the default's")
+    ap.add_argument("--all", action="store_true",
+                    help=f"the default configs and every other config of the table ({', '.join(TABLE_CONFIGS)}): "
+                         "every row, at the configs' budgets")
     ap.add_argument("--out", default=str(ROOT / "results" / "agents" / "benchmark"))
     ap.add_argument("--doc", default=str(ROOT / "docs" / "agents_benchmark.md"))
     ap.add_argument("--quick", action="store_true", help="tiny runs (1,024 steps, 20 episodes) for the tests")
@@ -66,8 +71,10 @@ def main(argv=None) -> int:
         out.mkdir(parents=True, exist_ok=True)
         rows = store_row(out, row_from_run(a.from_run, out, a.episodes, command, a.config))
     else:
+        if a.all and a.config:
+            ap.error("--all runs every config of the table; leave out --config")
         rows = run_benchmark(out, a.task or TASKS, a.algo or ALGOS, a.steps, a.episodes, a.curve_points,
-                             a.curve_episodes, extra, command, a.config)
+                             a.curve_episodes, extra, command, a.config, table_configs() if a.all else None)
     plot_curves(rows, out / "learning_curves.png")
     table = f"{BEGIN}\n{markdown_table(rows, out)}\n{END}"
     doc = out / "benchmark.md" if a.quick else Path(a.doc)

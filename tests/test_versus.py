@@ -167,17 +167,21 @@ def test_menu_agent_trains_and_evaluates(env_id, tmp_path):
     assert m.n == 6 and m.a_broke.sum() == 3
 
 
-def test_benchmark_row_of_a_game(tmp_path):
-    """The benchmark trains and tabulates a game like a one-player task (SAC, residual, quick settings)."""
-    from agents.benchmark import markdown_table, run_benchmark
-    quick = ("n_envs=16", "policy.net_arch=[16]", "sac.learning_starts=64", "sac.batch_size=64",
-             "sac.gradient_steps=1", "sac.buffer_size=4096")
-    rows = run_benchmark(tmp_path, ["Billiards-EightBall-v0"], ["ppo", "sac"], steps=256, episodes=16,
-                         curve_points=2, curve_episodes=16, extra=quick)
+def test_benchmark_rows_of_a_game(tmp_path):
+    """The benchmark trains and tabulates a game like a one-player task; with every config of the table
+    (``--all``) the game's PPO row comes from configs/ppo_games.yaml, its SAC row from configs/sac.yaml."""
+    from agents.benchmark import markdown_table, run_benchmark, table_configs
+    quick = ("n_envs=16", "policy.net_arch=[16]", "ppo.n_steps=8", "ppo.batch_size=64", "ppo.n_epochs=1",
+             "sac.learning_starts=64", "sac.batch_size=64", "sac.gradient_steps=1", "sac.buffer_size=4096")
+    kw = dict(steps=256, episodes=16, curve_points=2, curve_episodes=16, extra=quick)
+    rows = run_benchmark(tmp_path, ["Billiards-EightBall-v0"], ["ppo", "sac"], **kw)
     assert [(r["env_id"], r["algo"]) for r in rows] == [("Billiards-EightBall-v0", "sac")]  # no PPO block in ppo.yaml
     r = rows[0]
     assert 0 <= r["ghost_success"] <= 1 and set(r["eval"]) == {"none", "tournament"}
-    assert "| EightBall-v0 | SAC |" in markdown_table(rows, tmp_path)
+    rows = run_benchmark(tmp_path, ["Billiards-EightBall-v0"], ["ppo", "sac"], configs=table_configs(), **kw)
+    assert [(r["algo"], r["config"]) for r in rows] == [("ppo", "configs/ppo_games.yaml"), ("sac", "configs/sac.yaml")]
+    md = markdown_table(rows, tmp_path)
+    assert "| EightBall-v0 | SAC | configs/sac.yaml" in md and "| EightBall-v0 | PPO | configs/ppo_games.yaml" in md
 
 
 def test_game_run_checkpoints_and_resumes(tmp_path):
