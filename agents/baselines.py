@@ -30,6 +30,7 @@ from billiards_env.physics.strike import Shots, draw_to_speed
 from . import geometry as G
 from .features import agent_features, transform_actions
 from .game_view import game_view_of
+from .sb3_vec_env import env_chain
 
 
 class Policy(Protocol):
@@ -44,18 +45,9 @@ def native_env(env):
     view = game_view_of(env)
     if view is not None:
         return view
-    seen = 0
-    while seen < 10:
-        seen += 1
+    for env in env_chain(env):
         if hasattr(env, "legal_target") and hasattr(env, "shots_to_actions"):
             return env
-        for attr in ("venv", "unwrapped", "env"):
-            inner = getattr(env, attr, None)
-            if inner is not None and inner is not env:
-                env = inner
-                break
-        else:
-            break
     if hasattr(env, "legal_target"):
         return env
     raise TypeError("this policy needs the native billiards vector env (with .state, legal_target(), shots_to_actions())")

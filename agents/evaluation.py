@@ -231,21 +231,40 @@ def evaluate_spec(spec: str, policy_fn: Callable, env_id: str, n_episodes: int, 
                     env_kwargs=env_kwargs)
 
 
+def game_opponent(env_id: str, env_kwargs: dict, opponent: str | None) -> dict:
+    """The env arguments of a policy on ``env_id``: on a two-player game id
+    with ``opponent`` (else the one its run trained against, else ``ghost``);
+    ``opponent`` on a one-player task is an error."""
+    from billiards_env.envs.registration import GAME_IDS
+
+    if env_id not in GAME_IDS:
+        if opponent is not None:
+            raise ValueError(f"an opponent applies to the two-player games ({', '.join(GAME_IDS)}), not {env_id}")
+        return env_kwargs
+    return {**env_kwargs, "opponent": opponent or env_kwargs.get("opponent", "ghost")}
+
+
 def evaluate_policies(specs: list[str], env_id: str, n_episodes: int = 1000, seed: int = 0,
                       noises: list | None = None, search_k: int = 256, batch_size: int = 1000,
-                      names: list[str] | None = None, run: Callable = evaluate_spec) -> list[EvalResult]:
+                      names: list[str] | None = None, run: Callable = evaluate_spec,
+                      opponent: str | None = None) -> list[EvalResult]:
     """Evaluate every policy of ``specs`` (see ``policy_factory``) under
     every noise setting of ``noises`` (default ``["none"]``) on the same
     seeded episodes, printing one line per result. ``names``: display names
     per spec (optional). ``run``: how one entry is evaluated (``evaluate_spec``
-    here; ``agents.ray_eval.evaluate_spec`` on Ray, with the same results)."""
+    here; ``agents.ray_eval.evaluate_spec`` on Ray, with the same results).
+    ``opponent``: on a two-player game, whom every policy plays (default:
+    a trained policy's training opponent, ``ghost`` for the baselines)."""
+    game_opponent(env_id, {}, opponent)  # a misplaced opponent fails before anything runs
     results = []
     for j, spec in enumerate(specs):
         fn, display, env_kwargs = policy_factory(spec, seed, search_k)
+        env_kwargs = game_opponent(env_id, env_kwargs, opponent)
         display = names[j] if names and j < len(names) and names[j] else display
         for nz in noises or ["none"]:
             r = run(spec, fn, env_id, n_episodes, seed, nz, batch_size, display, search_k, env_kwargs=env_kwargs)
-            print(f"{display:>20s} noise={nz:<10s} success {r.success_rate:.3f} "
+            against = f" against {env_kwargs['opponent']}" if "opponent" in env_kwargs else ""
+            print(f"{display:>20s}{against} noise={nz:<10s} success {r.success_rate:.3f} "
                   f"[{r.success_ci95[0]:.3f}, {r.success_ci95[1]:.3f}]  ({r.wall_time_s:.1f} s)", flush=True)
             results.append(r)
     return results

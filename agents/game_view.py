@@ -38,6 +38,7 @@ from billiards_env.envs.games.core import ACTION_DIM, N_POCKETS
 from billiards_env.rules import records as R
 
 from .game_ghost import GameGhostPolicy
+from .sb3_vec_env import env_chain
 
 AGENT_ACTION_DIM = 4  # the policy's part of a game action: aim, draw, side, height (a0..a3)
 
@@ -142,16 +143,9 @@ def agent_native(env):
 def game_view_of(env) -> GameView | None:
     """The ``GameView`` of the game env under ``env`` (SB3 adapters and
     wrappers are looked through), or None if there is no game env."""
-    for _ in range(10):
-        if is_game(env):
-            return agent_native(env)
-        for attr in ("venv", "unwrapped", "env"):
-            inner = getattr(env, attr, None)
-            if inner is not None and inner is not env:
-                env = inner
-                break
-        else:
-            return None
+    for e in env_chain(env):
+        if is_game(e):
+            return agent_native(e)
     return None
 
 

@@ -8,7 +8,9 @@
 ``--policy``: ``random``, ``ghost``, ``search`` (K from ``--search-k``, or
 ``search64``), ``lookahead`` (pots that leave a next shot), or a run directory / model .zip (its config.yaml and
 vecnormalize.pkl are read). Every policy plays the first episode of the same
-seeded tables. Prints a Markdown table (success rate with its 95% Wilson
+seeded tables. On the two-player games (``Billiards-NineBall2P-v0``,
+``Billiards-EightBall-v0``) a policy's success is a won game against
+``--opponent`` (``ghost-safety`` is a policy there too). Prints a Markdown table (success rate with its 95% Wilson
 interval, mean reward, scratch and foul rates, balls per episode) and writes
 <out>.json and <out>.png.
 
@@ -35,6 +37,9 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=12345)
     ap.add_argument("--noise", action="append", default=None,
                     help="none | tournament | key=value,... of NoiseConfig, e.g. aim_deg=1 (repeatable; default none)")
+    ap.add_argument("--opponent", default=None,
+                    help="two-player games: whom every policy plays (ghost, ghost-safety, search<K>, random or a "
+                         "game model; default: a trained policy's training opponent, ghost for the baselines)")
     ap.add_argument("--search-k", type=int, default=256)
     ap.add_argument("--batch-size", type=int, default=1000, help="tables simulated together")
     ap.add_argument("--out", default=None, help="output prefix for .json and .png (default results/agents/eval)")
@@ -53,7 +58,7 @@ def main(argv=None) -> int:
         from agents.rllib_backend import start_ray
         start_ray(a.address)
     results = evaluate_policies(a.policy, a.env, a.episodes, a.seed, a.noise, a.search_k, a.batch_size, a.name,
-                                run=run)
+                                run=run, opponent=a.opponent)
     print()
     print(format_table(results))
     out = Path(a.out) if a.out else ROOT / "results" / "agents" / "eval"

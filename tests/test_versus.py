@@ -194,3 +194,11 @@ def test_game_run_checkpoints_and_resumes(tmp_path):
     s = train(load_config(path, "Billiards-NineBall2P-v0", over + ["train.total_timesteps=512"]), tmp_path,
               resume=True)
     assert s["timesteps"] == 512 and s["resumed"]["from_step"] in (256, 384)
+
+
+def test_evaluation_names_the_opponent():
+    from agents.evaluation import evaluate_policies
+    r = evaluate_policies(["ghost"], "Billiards-EightBall-v0", 8, 0, opponent="ghost-safety")
+    assert len(r) == 1 and r[0].n_episodes == 8
+    with pytest.raises(ValueError, match="two-player"):
+        evaluate_policies(["ghost"], "Billiards-PotOne-v0", 8, 0, opponent="ghost")
