@@ -220,7 +220,7 @@ def plot_curves(rows: list[dict], out) -> None:
             ax.plot([float(p["train_s"]) for p in pts], [float(p["success_rate"]) for p in pts], marker="o",
                     ms=3, label=r["algo"].upper() + ("" if r["config"] == f"configs/{r['algo']}.yaml"
                                                     else f" ({Path(r['config']).stem})"))
-            ghost = r["ghost_success"]
+        ghost = next(r for r in rows if r["env_id"] == env_id)["ghost_success"]  # the first row's (the table's order)
         ax.axhline(ghost, ls="--", color="grey", label=f"ghost-ball {ghost:.3f}")
         ax.set_title(env_id.replace("Billiards-", ""))
         ax.set_xlabel("training wall time (s)")
