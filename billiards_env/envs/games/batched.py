@@ -35,6 +35,18 @@ class GameTables(VectorEnv):
     table = property(lambda self: self.core.table)
     params = property(lambda self: self.core.params)
 
+    def _reset_rows(self, options: dict | None) -> tuple[np.ndarray, np.ndarray | None]:
+        """The tables a reset deals new games on (``options["reset_mask"]``,
+        default all) and their breakers (``options["breaker"]``: 0, 1 or an
+        array [N]; None: drawn from each table's stream)."""
+        options = options or {}
+        mask = options.get("reset_mask")
+        idx = np.arange(self.num_envs) if mask is None else np.nonzero(np.asarray(mask, dtype=bool))[0]
+        breaker = options.get("breaker")
+        if breaker is not None:
+            breaker = np.broadcast_to(np.asarray(breaker, dtype=np.int64), (self.num_envs,))[idx]
+        return idx, breaker
+
     def constraints(self):
         return self.core.constraints()
 

@@ -9,7 +9,7 @@ import numpy as np
 
 from .core import GameCore
 from .spaces import OBSERVATION_DOC, action_space, info_row, make_config, observation_space
-from .versus import AGENT, make_opponent, opponent_turns
+from .versus import AGENT, make_opponent, new_games, opponent_turns
 
 
 class GameEnv(gym.Env):
@@ -44,11 +44,6 @@ class GameEnv(gym.Env):
         self._done = True
         self._seeded = False
 
-    def _opponent_turns(self) -> tuple[float, bool, bool, int]:
-        """Opponent shots until the agent is to move or the game ends: (reward, terminated, truncated, shots)."""
-        out = opponent_turns(self.core, self.opponent, [0])
-        return float(out["reward"][0]), bool(out["terminated"][0]), bool(out["truncated"][0]), int(out["shots"][0])
-
     def reset(self, *, seed: int | None = None, options: dict | None = None):
         super().reset(seed=seed)
         if seed is not None:
@@ -59,15 +54,9 @@ class GameEnv(gym.Env):
         if self.opponent is None or seed is not None:  # a seeded reset reseeds the opponent too
             self.opponent = make_opponent(self._opponent_spec, self.core, self._opponent_seed + (seed or 0))
         breaker = (options or {}).get("breaker")
-        skipped = -1
-        while True:  # a game the opponent ends before the agent's first shot is replaced by the next rack
-            skipped += 1
-            self.core.reset_tables([0], None if breaker is None else [int(breaker)])
-            _, term, trunc, n = self._opponent_turns()
-            if not (term or trunc):
-                break
+        skipped, shots = new_games(self.core, self.opponent, [0], None if breaker is None else [int(breaker)])
         self._done = False
-        return self.core.observe()[0], {"opponent_shots": n, "skipped_games": skipped}
+        return self.core.observe()[0], {"opponent_shots": int(shots[0]), "skipped_games": int(skipped[0])}
 
     def step(self, action):
         if self._done:
@@ -80,7 +69,10 @@ class GameEnv(gym.Env):
         terminated, truncated = bool(out["terminated"][0]), bool(out["truncated"][0])
         n = 0
         if not (terminated or truncated):
-            reward, terminated, truncated, n = self._opponent_turns()
+            out = opponent_turns(self.core, self.opponent, [0])
+            reward, terminated, truncated = (float(out["reward"][0]), bool(out["terminated"][0]),
+                                             bool(out["truncated"][0]))
+            n = int(out["shots"][0])
         info["opponent_shots"] = n
         info["winner"] = int(self.core.game.winner[0])
         self._done = terminated or truncated

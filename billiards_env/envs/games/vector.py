@@ -48,12 +48,7 @@ class GameVectorEnv(GameTables):
     def reset(self, *, seed=None, options: dict | None = None):
         N = self.num_envs
         seed_vector_env(self, self.core.streams, seed)
-        options = options or {}
-        mask = options.get("reset_mask")
-        idx = np.arange(N) if mask is None else np.nonzero(np.asarray(mask, dtype=bool))[0]
-        breaker = options.get("breaker")
-        if breaker is not None and np.ndim(breaker) == 1 and mask is not None:
-            breaker = np.asarray(breaker)[idx]
+        idx, breaker = self._reset_rows(options)
         self.core.reset_tables(idx, breaker)
         self._autoreset_envs[idx] = False
         return self.core.observe(), self._constraint_info()

@@ -1,9 +1,10 @@
 """The agent against a fixed opponent on many tables at once: a
 ``gymnasium.vector.VectorEnv`` whose every table is ``GameEnv``'s game.
 
-``opponent_turns`` is the one loop both envs use: the opponent shoots on
-every table where it is to move, all tables in one batched call per round,
-until the agent is to move again or the game is over.
+``opponent_turns`` and ``new_games`` are the loops both envs use: the
+opponent shoots on every table where it is to move, all tables in one
+batched call per round, until the agent is to move again or the game is
+over; a new game the opponent ends first is replaced by the next rack.
 """
 from __future__ import annotations
 
@@ -53,6 +54,24 @@ def opponent_turns(core: GameCore, opponent, idx) -> dict:
         live[rows] = ~(out["terminated"] | out["truncated"])
 
 
+def new_games(core: GameCore, opponent, idx, breaker=None) -> tuple[np.ndarray, np.ndarray]:
+    """New games on tables ``idx`` (``breaker`` [n] or None: drawn), each
+    played up to the agent's first shot; a game the opponent ends first is
+    replaced by the next rack. Returns arrays [n]: the games skipped and the
+    opponent's shots in the game that stands."""
+    idx = np.asarray(idx, dtype=np.int64)
+    skipped, shots = np.zeros(len(idx), dtype=np.int64), np.zeros(len(idx), dtype=np.int64)
+    rows = np.arange(len(idx))
+    while len(rows):
+        core.reset_tables(idx[rows], None if breaker is None else np.asarray(breaker)[rows])
+        out = opponent_turns(core, opponent, idx[rows])
+        shots[rows] = out["shots"]
+        ended = out["terminated"] | out["truncated"]
+        skipped[rows[ended]] += 1
+        rows = rows[ended]
+    return skipped, shots
+
+
 class GameVersusVectorEnv(GameTables):
     __doc__ = """``num_envs`` tables of ``game``, on each the agent is player 0
     and ``opponent`` (a name of ``agents.game_policies.make_game_policy``,
@@ -96,35 +115,15 @@ class GameVersusVectorEnv(GameTables):
         self._opponent_spec, self._opponent_seed = opponent, int(opponent_seed)
         self.opponent = None
 
-    def _new_games(self, idx, breaker=None) -> np.ndarray:
-        """New games on tables ``idx`` played up to the agent's first shot;
-        returns the games skipped per table (the opponent ended them first)."""
-        idx = np.asarray(idx, dtype=np.int64)
-        skipped = np.zeros(len(idx), dtype=np.int64)
-        rows = np.arange(len(idx))
-        while len(rows):
-            b = None if breaker is None else np.asarray(breaker)[rows]
-            self.core.reset_tables(idx[rows], b)
-            out = opponent_turns(self.core, self.opponent, idx[rows])
-            ended = out["terminated"] | out["truncated"]
-            skipped[rows[ended]] += 1
-            rows = rows[ended]
-        return skipped
-
     def reset(self, *, seed=None, options: dict | None = None):
         N = self.num_envs
         seed_vector_env(self, self.core.streams, seed)
         if self.opponent is None or seed is not None:  # a seeded reset reseeds the opponent too
             first = seed[0] if isinstance(seed, (list, tuple, np.ndarray)) else seed
             self.opponent = make_opponent(self._opponent_spec, self.core, self._opponent_seed + int(first or 0))
-        options = options or {}
-        mask = options.get("reset_mask")
-        idx = np.arange(N) if mask is None else np.nonzero(np.asarray(mask, dtype=bool))[0]
-        breaker = options.get("breaker")
-        if breaker is not None:
-            breaker = np.broadcast_to(np.asarray(breaker, dtype=np.int64), (N,))[idx]
+        idx, breaker = self._reset_rows(options)
         skipped = np.zeros(N, dtype=np.int64)
-        skipped[idx] = self._new_games(idx, breaker)
+        skipped[idx] = new_games(self.core, self.opponent, idx, breaker)[0]
         self._autoreset_envs[idx] = False
         return self.core.observe(), self._constraint_info({"skipped_games": skipped})
 
@@ -169,7 +168,7 @@ class GameVersusVectorEnv(GameTables):
             rst = np.nonzero(done_prev)[0]
             info["reset"] = done_prev.copy()
             if len(rst):
-                info["skipped_games"][rst] = self._new_games(rst)
+                info["skipped_games"][rst] = new_games(self.core, self.opponent, rst)[0]
             self._autoreset_envs = done
             obs = self.core.observe()
         else:
@@ -178,7 +177,7 @@ class GameVersusVectorEnv(GameTables):
                 fin = np.nonzero(done)[0]
                 info["final_obs"] = obs.copy()
                 info["_final_obs"] = done.copy()
-                info["skipped_games"][fin] = self._new_games(fin)
+                info["skipped_games"][fin] = new_games(self.core, self.opponent, fin)[0]
                 obs = self.core.observe()
             self._autoreset_envs = np.zeros(N, dtype=bool)
         return obs, reward, terminated, truncated, self._constraint_info(info)
