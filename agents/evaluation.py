@@ -214,9 +214,9 @@ def policy_factory(spec: str, seed: int = 0, search_k: int = 256) -> tuple[Calla
     are the env options the policy plays with: a trained policy's are its
     run's (``env_kwargs`` of its config.yaml: its observation and action
     mapping), a baseline's none."""
-    from .policies import BASELINE_NAMES, GAME_ONLY_NAMES, make_policy
+    from .policies import is_policy_name, make_policy
 
-    if spec in BASELINE_NAMES + GAME_ONLY_NAMES or spec.startswith("search"):
+    if is_policy_name(spec):
         if spec == "search":
             spec = f"search{search_k}"
         return (lambda env, s=spec: make_policy(s, env, seed=seed)), spec, {}  # noqa: E731

@@ -197,9 +197,8 @@ class VectorShotFeatures(gym.vector.VectorWrapper):
             base = env.single_observation_space
             self.single_observation_space = spaces.Box(-np.inf, np.inf, shape=(base.shape[0] + k,), dtype=np.float32)
             self.observation_space = gym.vector.utils.batch_space(self.single_observation_space, env.num_envs)
-        if action_mode == "choice" or self.native is not env.unwrapped:
-            self.single_action_space = policy_action_space(self.native, action_mode, env.single_action_space)
-            self.action_space = gym.vector.utils.batch_space(self.single_action_space, env.num_envs)
+        self.single_action_space = policy_action_space(self.native, action_mode, env.single_action_space)
+        self.action_space = gym.vector.utils.batch_space(self.single_action_space, env.num_envs)
 
     def _aug(self, obs):
         f = agent_features(self.native, self.features, self.aim_scale, self.action_mode)

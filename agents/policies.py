@@ -14,13 +14,18 @@ BASELINE_NAMES = ("random", "ghost", "lookahead")  # besides search<K>
 GAME_ONLY_NAMES = ("ghost-safety",)                 # game policies without a one-player twin
 
 
+def is_policy_name(name: str) -> bool:
+    """Whether ``name`` names a built-in policy (else it is a saved model's path)."""
+    return name in BASELINE_NAMES + GAME_ONLY_NAMES or name.startswith("search")
+
+
 def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
     """A baseline by name: ``random``, ``ghost``, ``search`` (``search<K>``
     sets K, e.g. ``search64``), ``lookahead`` (``agents.lookahead``), or a
     path to a saved model / run directory. On a two-player game env against
     an opponent the names are game policies' (``agents.game_policies``)."""
     view = game_view_of(env)
-    if view is not None and (name in BASELINE_NAMES + GAME_ONLY_NAMES or name.startswith("search")):
+    if view is not None and is_policy_name(name):
         return GamePolicy(name, view.env, seed=seed)
     if name in GAME_ONLY_NAMES:
         raise ValueError(f"{name!r} plays the two-player games only (Billiards-NineBall2P-v0, Billiards-EightBall-v0)")
