@@ -129,7 +129,7 @@ def straight_in_spots(pos, on, targets, y_hi, aims, backs, width, R, clear, pock
                     if x < R + clear or x > width - R - clear or y < R + clear or y > y_hi[e]:
                         continue
                     ok = True
-                    for j in range(1, pos.shape[0]):
+                    for j in range(1, pos.shape[1]):
                         if on[e, j]:
                             dx, dy = x - pos[e, j, 0], y - pos[e, j, 1]
                             if dx * dx + dy * dy < md2:

@@ -202,3 +202,29 @@ def test_evaluation_names_the_opponent():
     assert len(r) == 1 and r[0].n_episodes == 8
     with pytest.raises(ValueError, match="two-player"):
         evaluate_policies(["ghost"], "Billiards-PotOne-v0", 8, 0, opponent="ghost")
+
+
+def test_ball_in_hand_spot_keeps_clear_of_every_ball():
+    """The straight-in placement checks every ball of the table (it once looped over the table count instead,
+    which skipped balls on small batches and read past the array on large ones)."""
+    from agents.game_ghost import PLACE_CLEAR, GameGhostPolicy
+    from billiards_env.envs.games import GameConfig, GameCore
+    core = GameCore(GameConfig(game="nine_ball"), 1)
+    pol = GameGhostPolicy(core)
+    R_ = core.params.R
+    pos = np.zeros((1, 10, 2))
+    pos[0, :, 0] = np.linspace(0.2, 1.0, 10)
+    pos[0, :, 1] = 2.2
+    pos[0, 1] = (0.35, 0.45)        # the legal ball, near a corner pocket
+    on = np.ones((1, 10), dtype=bool)
+    on[0, 0] = False
+    on[0, 9] = False
+    targets = np.zeros((1, 10), dtype=bool)
+    targets[0, 1] = True
+    first = pol.placements(pos, on, targets, np.array([False]))[0]
+    u = (pos[0, 1] - first) / np.linalg.norm(pos[0, 1] - first)
+    # a ball beside that spot, clear of the shot's path but within 2R + PLACE_CLEAR of the spot
+    pos[0, 9], on[0, 9] = first + (2 * R_ + PLACE_CLEAR / 2) * np.array([-u[1], u[0]]), True
+    spot = pol.placements(pos, on, targets, np.array([False]))[0]
+    d = np.linalg.norm(pos[0, 1:][on[0, 1:]] - spot, axis=1)
+    assert (d >= 2 * R_ + PLACE_CLEAR - 1e-12).all() and not np.allclose(spot, first)
