@@ -122,7 +122,7 @@ def test_missing_yaml_is_a_clear_error(tmp_path):
         config_path = tmp_path / "absent.yaml"
 
     register_task(NoFile())
-    with pytest.raises(FileNotFoundError, match="toy_no_file.*absent.yaml.*configs/tasks"):
+    with pytest.raises(FileNotFoundError, match="toy_no_file.*absent.yaml.*config_path"):
         gym.make("Billiards-ToyNoFile-v0")
 
 

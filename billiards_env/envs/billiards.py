@@ -111,7 +111,7 @@ _COMMON_DOC = """
     ``scratch``, ``success``, ``n_events``, ``sim_time`` (s), ``sim_truncated``,
     ``action_clipped``, ``shot``, ``reward_terms``.
 
-    **Configuration**: ``configs/tasks/<task>.yaml`` loaded into ``TaskConfig``;
+    **Configuration**: ``billiards_env/envs/tasks/defaults/<task>.yaml`` loaded into ``TaskConfig``;
     ``config=`` (a path or TaskConfig) replaces it, and any TaskConfig field
     given as a keyword argument (``n_balls=``, ``noise=``, ``solver=``,
     ``dt=``, ``physics=``, ``reward={...}``, ``effects={...}``, ...) overrides it.

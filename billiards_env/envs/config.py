@@ -1,4 +1,4 @@
-"""Typed, frozen task configuration loaded from YAML (``configs/tasks/<task>.yaml``).
+"""Typed, frozen task configuration loaded from YAML (``billiards_env/envs/tasks/defaults/<task>.yaml``, package data).
 
 A ``TaskConfig`` holds everything a task needs: table, physics preset,
 solver, ball count, shot limit, action mapping, reward weights
@@ -245,14 +245,14 @@ class TaskConfig:
 
     @classmethod
     def default(cls, task: str, **overrides) -> "TaskConfig":
-        """The task's shipped configuration (``configs/tasks/<task>.yaml``, or
+        """The task's shipped configuration (``billiards_env/envs/tasks/defaults/<task>.yaml``, package data, or
         the task's own ``config_path``), the single source of its defaults."""
         path = get_task(task).default_config_path
         if not path.exists():
             raise FileNotFoundError(
-                f"no default configuration for task {task!r}: {path} does not exist. The task YAML files "
-                f"live in configs/tasks/ at the top of the repository (beside the package, not inside it); "
-                f"run from a source checkout or pass config=<path to a YAML file or a TaskConfig>")
+                f"no default configuration for task {task!r}: {path} does not exist. A built-in task's YAML "
+                f"is package data in billiards_env/envs/tasks/defaults/; a task of your own names its file "
+                f"with config_path, or pass config=<path to a YAML file or a TaskConfig>")
         return cls.from_yaml(path, **overrides)
 
     def to_dict(self) -> dict:

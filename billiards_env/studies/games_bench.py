@@ -28,7 +28,7 @@ from ..envs.games.vector import GameVectorEnv
 
 def _timed_simulate(calls: dict):
     """Wrap ``physics.simulate`` as seen by the policies' module so its time is counted."""
-    import agents.game_policies as gp
+    import agents.game_ghost as gp
     inner = gp.simulate
 
     def timed(*a, **kw):

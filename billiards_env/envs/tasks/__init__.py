@@ -1,7 +1,7 @@
 """The tasks: one module per task, registered here (one line per task).
 
 Adding a task: a module holding a ``Task`` subclass (its spec as the class
-docstring), a YAML file ``configs/tasks/<name>.yaml`` with its defaults, and
+docstring), a YAML file ``billiards_env/envs/tasks/defaults/<name>.yaml`` with its defaults, and
 one ``register_task(...)`` line (here, or in your own code for a task
 defined outside the package). See docs/adding_a_task.md.
 """

@@ -20,6 +20,7 @@ generated from it.
 from __future__ import annotations
 
 import dataclasses
+from importlib import resources
 from pathlib import Path
 
 import numba
@@ -27,8 +28,8 @@ import numpy as np
 
 from ...physics import BallState
 
-# configs/ lives at the repository's top level, beside the package.
-CONFIG_DIR = Path(__file__).resolve().parents[3] / "configs" / "tasks"
+# The tasks' default YAML files are package data, so an installed wheel finds them.
+CONFIG_DIR = Path(str(resources.files("billiards_env.envs.tasks") / "defaults"))
 
 REWARD_TERMS = ("pocket", "scratch", "foul", "contact", "success", "shaping")
 
@@ -95,7 +96,7 @@ class Task:
     Class attributes: ``name`` (the ``task`` key of the YAML config),
     ``env_id`` (the Gymnasium id), ``class_prefix`` (env classes
     ``<prefix>Env`` and ``<prefix>VectorEnv``) and ``config_path`` (the
-    default YAML; ``None``: ``configs/tasks/<name>.yaml``); ``reward_names``
+    default YAML; ``None``: ``billiards_env/envs/tasks/defaults/<name>.yaml``); ``reward_names``
     the keys ``reward_terms`` returns (default ``REWARD_TERMS``).
     """
 
