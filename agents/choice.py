@@ -38,7 +38,7 @@ from gymnasium import spaces
 
 from billiards_env.physics.strike import Shots
 
-from . import geometry as G
+from billiards_env.bots import geometry as G
 
 # Fullness (impact parameter / 2R) of the contact shots: full, half-ball each side, thin each side.
 CONTACT_FULLNESS = (0.0, 0.35, -0.35, 0.7, -0.7, 0.9, -0.9)

@@ -40,7 +40,7 @@ from stable_baselines3.common.vec_env.base_vec_env import VecEnvWrapper
 from billiards_env.physics.strike import Shots, speed_to_draw
 
 from . import choice, game_view
-from . import geometry as G
+from billiards_env.bots import geometry as G
 from .config import check_action_mode
 
 N_FEAT_PER_POCKET = 6

@@ -9,11 +9,11 @@ completes the 4 components to the game's 8 by rules a player follows
 rather than learns; the policy still chooses every shot:
 
 - **ball in hand**: the cue ball goes where the ghost-ball game policy puts
-  it (``GameGhostPolicy.placements``: behind a legal ball for a short
+  it (``bots.ghost.GhostBot.placements``: behind a legal ball for a short
   straight-in pot, else the head spot or the table's centre, made legal),
   and the view shows the table with the cue ball there;
 - **the target** the menu and features are about: the legal ball with the
-  easiest ghost-ball pot from there (``GameGhostPolicy.best_pots``; in
+  easiest ghost-ball pot from there (``GhostBot.best_pots``; in
   9-ball the lowest ball, the only legal one), else the lowest legal ball;
 - **the break**: the game policies' standard break (the policy's action is
   not used on break shots);
@@ -36,8 +36,9 @@ from billiards_env.envs.core import ShotContext
 from billiards_env.envs.games import GameCore
 from billiards_env.envs.games.core import ACTION_DIM, N_POCKETS
 from billiards_env.rules import records as R
+from billiards_env.bots.ghost import GhostBot, PotGeometry
+from billiards_env.envs.games.play import bot_actions
 
-from .game_ghost import GameGhostPolicy
 from .sb3_vec_env import env_chain
 
 AGENT_ACTION_DIM = 4  # the policy's part of a game action: aim, draw, side, height (a0..a3)
@@ -53,7 +54,8 @@ class GameView:
 
     def __init__(self, env, seed: int = 0):
         self.env, self.core = env, (env if isinstance(env, GameCore) else env.core)
-        self.placer = GameGhostPolicy(self.core, seed=seed)
+        self.placer = GhostBot(seed=seed)
+        self.geo = PotGeometry(self.core.table, self.core.params)
         self.table, self.params, self.config = self.core.table, self.core.params, self.core.config
         self.n_envs = self.core.n_envs
         self._key = None  # the core's ShotContext the view was built from
@@ -71,11 +73,11 @@ class GameView:
         h = np.nonzero(hand)[0]
         origin = key.aim_origin.copy()
         if len(h):
-            want = self.placer.placements(pos[h], pocket[h] < 0, c.targets[h], c.ball_in_hand[h] == R.IN_HAND_KITCHEN)
+            want = self.placer.placements(self.geo, pos[h], pocket[h] < 0, c.targets[h], c.ball_in_hand[h] == R.IN_HAND_KITCHEN)
             spots, _ = core.legal_placement(want, h)
             pos[h, 0], pocket[h, 0], placement[h] = spots, -1, spots
             origin[h] = core._origin_from(spots, h)
-        pots = self.placer.best_pots(pos, pocket < 0, c.targets)
+        pots = self.placer.best_pots(self.geo, pos, pocket < 0, c.targets)
         has = np.isfinite(pots["cost"])
         target = np.where(has, pots["ball"], c.nominal_target()).astype(np.int64)
         self._state = dataclasses.replace(s, pos=pos, pocket=pocket)
@@ -122,7 +124,7 @@ class GameView:
         out[:, 7] = -1.0 + (2.0 * pocket + 1.0) / N_POCKETS
         brk = np.nonzero(self._break)[0]
         if len(brk):
-            out[brk] = self.placer.act(None, brk)
+            out[brk] = bot_actions(self.core, self.placer, brk)
         return out
 
 

@@ -1,14 +1,16 @@
 """Policies by name: the baselines of ``agents.baselines``, the lookahead
-search of ``agents.lookahead`` and saved models (what ``scripts/evaluate.py
+search of ``billiards_env.bots.lookahead`` and saved models (what ``scripts/evaluate.py
 --policy`` and the training's final evaluation accept)."""
 from __future__ import annotations
 
 import numpy as np
 
-from .baselines import GhostBallPolicy, Policy, RandomPolicy, SB3Policy, SearchPolicy
-from .game_policies import make_game_policy
+from billiards_env.bots import make_bot
+from billiards_env.bots.lookahead import LookaheadPolicy
+from billiards_env.envs.games.play import bot_actions
+
+from .baselines import GhostBallPolicy, Policy, RandomPolicy, SB3Policy, SearchPolicy, native_env
 from .game_view import game_view_of
-from .lookahead import LookaheadPolicy
 
 BASELINE_NAMES = ("random", "ghost", "lookahead")  # besides search<K>
 GAME_ONLY_NAMES = ("ghost-safety",)                 # game policies without a one-player twin
@@ -21,7 +23,7 @@ def is_policy_name(name: str) -> bool:
 
 def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
     """A baseline by name: ``random``, ``ghost``, ``search`` (``search<K>``
-    sets K, e.g. ``search64``), ``lookahead`` (``agents.lookahead``), or a
+    sets K, e.g. ``search64``), ``lookahead`` (``billiards_env.bots.lookahead``), or a
     path to a saved model / run directory. On a two-player game env against
     an opponent the names are game policies' (``agents.game_policies``)."""
     view = game_view_of(env)
@@ -32,23 +34,24 @@ def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
     if name == "random":
         return RandomPolicy(env, seed=seed)
     if name == "ghost":
-        return GhostBallPolicy(env)
+        return GhostBallPolicy(native_env(env))
     if name == "lookahead":
-        return LookaheadPolicy(env, seed=seed)
+        return LookaheadPolicy(native_env(env), seed=seed)
     if name.startswith("search"):
         kk = int(name[6:]) if name[6:] else k
-        return SearchPolicy(env, k=kk, seed=seed)
+        return SearchPolicy(native_env(env), k=kk, seed=seed)
     return SB3Policy.load(name, env=env)
 
 
 class GamePolicy:
-    """A named game policy (``agents.game_policies.make_game_policy``) as the
-    agent of a game env against an opponent: it acts on every table (the
-    agent is to move on all of them)."""
+    """A named bot (``billiards_env.bots.make_bot``) as the agent of a game
+    env against an opponent: it acts on every table (the agent is to move on
+    all of them)."""
 
     def __init__(self, name: str, env, seed: int = 0):
-        self.inner = make_game_policy(name, env.core, seed=seed)
-        self.name = self.inner.name
+        self.core = env.core
+        self.bot = make_bot(name, seed=seed)
+        self.name = self.bot.name
 
     def act(self, obs=None) -> np.ndarray:
-        return self.inner.act(None)
+        return bot_actions(self.core, self.bot, np.arange(self.core.n_envs)).astype(np.float32)

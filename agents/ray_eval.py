@@ -64,7 +64,7 @@ def search_policy_fn(spec: str, seed: int, search_k: int, tables: int) -> Callab
     k = int(spec[6:]) if spec[6:] else search_k
     chunk = max(1, math.ceil(tables * k / (2 * cluster_cpus())))
     mapper = RayChunkMap()
-    return lambda env: SearchPolicy(env, k=k, seed=seed, chunk=chunk, map_chunks=mapper)
+    return lambda env: SearchPolicy(native_env(env), k=k, seed=seed, chunk=chunk, map_chunks=mapper)
 
 
 def evaluate_ray(policy_fn: Callable, env_id: str, n_episodes: int = 1000, seed: int = 0, noise: str = "none",

@@ -1,13 +1,17 @@
 #!/usr/bin/env python
-"""Seeded matches between game policies, with win rates and ratings.
+"""Seeded matches between bots (and trained models), with win rates and ratings.
 
     python scripts/match.py --game nine_ball --policies random ghost ghost-safety --racks 100
+    python scripts/match.py --policies my_bots:planner ghost search64 --racks 50   # a bot of your own
     python scripts/match.py --game eight_ball --noise high --racks 50 --out results/matches
     python scripts/match.py --summary    # every game and noise level of results/matches in one table
 
 Every pairing plays ``--racks`` racks twice (each side breaks once on each
 rack). Writes ``<out>/<game>_<noise>.json``, ``.md`` and ``.png`` (ratings
-with 95% intervals). Noise levels: ``tournament``, ``high`` (5x), ``variable``
+with 95% intervals). An entrant is a built-in bot (``random``, ``ghost``,
+``ghost-safety``, ``search<K>``), ``module:factory`` (a bot of your own,
+docs/bots.md; the module is looked up on PYTHONPATH and in the current
+directory) or the path of a saved model. Noise levels: ``tournament``, ``high`` (5x), ``variable``
 (a factor uniform in [0, 5] per game), ``none``.
 """
 from __future__ import annotations
@@ -20,8 +24,10 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+sys.path.insert(1, str(Path.cwd()))  # module:factory bots in the current directory
 
-from agents.match import tournament  # noqa: E402
+from agents.game_policies import bot_factory  # noqa: E402
+from billiards_env.studies.matches import tournament  # noqa: E402
 
 NOISES = ["none", "tournament", "high", "variable"]
 
@@ -80,7 +86,7 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--game", choices=["nine_ball", "eight_ball"], default="nine_ball")
     ap.add_argument("--policies", nargs="+", default=["random", "ghost"],
-                    help="entrants: random, ghost, ghost-safety, search<K>, or paths of saved models")
+                    help="entrants: random, ghost, ghost-safety, search<K>, module:factory, or paths of saved models")
     ap.add_argument("--racks", type=int, default=100, help="racks per pairing (each played twice)")
     ap.add_argument("--noise", choices=NOISES, default="tournament")
     ap.add_argument("--seed", type=int, default=0)
@@ -96,7 +102,10 @@ def main(argv=None) -> int:
     if len(set(args.policies)) < 2:
         ap.error("need at least two different policies")
     t0 = time.perf_counter()
-    results, table = tournament(args.policies, args.game, args.racks, args.seed, args.noise, max_shots=args.max_shots)
+    for spec in args.policies:  # a bad entrant fails before any game is played
+        bot_factory(spec, args.seed)
+    results, table = tournament(args.policies, args.game, args.racks, args.seed, args.noise, max_shots=args.max_shots,
+                                bot_factory=bot_factory)
     seconds = time.perf_counter() - t0
     args.out.mkdir(parents=True, exist_ok=True)
     stem = args.out / f"{args.game}_{args.noise}"

@@ -29,7 +29,7 @@ sys.path.insert(0, str(ROOT))
 def shot_stats(spec: str, env_id: str, episodes: int, seed: int) -> dict:
     import numpy as np
 
-    from agents import geometry as G
+    from billiards_env.bots import geometry as G
     from agents.evaluation import policy_factory
     from agents.sb3_vec_env import make_sb3_vec_env
 

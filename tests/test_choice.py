@@ -11,7 +11,7 @@ import pytest
 pytest.importorskip("stable_baselines3")
 
 from agents import choice  # noqa: E402
-from agents import geometry as G  # noqa: E402
+from billiards_env.bots import geometry as G  # noqa: E402
 from agents.baselines import SB3Policy  # noqa: E402
 from agents.config import load_config  # noqa: E402
 from agents.evaluation import evaluate  # noqa: E402

@@ -9,7 +9,7 @@ import pytest
 
 import billiards_env  # noqa: F401 (registers the ids)
 from billiards_env.envs.games import GameConfig, GameCore
-from billiards_env.envs.games.setup import HEAD_STRING
+from billiards_env.rules.placement import HEAD_STRING
 from billiards_env.envs.games.vector import GameVectorEnv
 from billiards_env.rules import records as R
 
@@ -140,7 +140,7 @@ def test_ball_in_hand_illegal_placement_is_moved_and_reported():
 def test_ghost_beats_random(game):
     """The match harness: the rule-aware ghost-ball policy beats random in at
     least 95% of 200 games (100 racks, each side breaking once)."""
-    from agents.match import play_pairing
+    from billiards_env.studies.matches import play_pairing
     r = play_pairing("ghost", "random", game, n_racks=100, seed=0, noise="tournament")
     s = r.summary()
     assert s["games"] == 200 and s["a_win_rate"] >= 0.95, s
@@ -254,10 +254,10 @@ def test_stable_baselines3_trains_on_the_single_agent_env():
 
 def test_search_policy_plays_legal_game():
     """search<K> is built on the same hooks: on a position with an easy pot it keeps the table."""
-    from agents.game_policies import make_game_policy
+    from billiards_env.bots import make_bot
+    from billiards_env.envs.games.play import bot_actions
     core = nine_ball_table({0: (0.32, 0.32), 1: (0.2, 0.2), **PARKED})
-    pol = make_game_policy("search16", core, seed=0)
-    out = core.step(pol.act(None, np.array([0])).astype(np.float64), [0])
+    out = core.step(bot_actions(core, make_bot("search16", seed=0), [0]), [0])
     assert out["record"].legal[0] and out["info"]["pocketed"][0, 1] and not out["record"].turn_over[0]
 
 

@@ -88,7 +88,7 @@ def test_log_speed_scale_spans_the_draw_geometrically():
 
 def test_impact_aim_keeps_the_ghost_ball_shot():
     """The ghost-ball baseline's shot maps to an impact action and back to the same aim."""
-    from agents.geometry import ghost_ball_shot
+    from billiards_env.bots.geometry import ghost_ball_shot
     v = gym.make_vec("Billiards-PotOne-v0", num_envs=50, vectorization_mode="vector_entry_point",
                      aim="impact").unwrapped
     v.reset(seed=7)

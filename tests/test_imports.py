@@ -105,3 +105,41 @@ def test_graph_sees_function_level_and_relative_imports():
 def test_no_import_cycle():
     cycle = find_cycle(import_graph())
     assert cycle is None, "import cycle: " + " -> ".join(cycle)
+
+
+# Layers, lowest first: a module may import its own layer and the layers below, never above.
+# envs, bots and rendering share a layer (the envs build the views bots act on, take bots as
+# opponents and render themselves; the bots use the tasks' rules and geometry; the renderer
+# plays games between bots); the cycle test above keeps them acyclic.
+LAYERS = (
+    ("billiards_env.physics",),
+    ("billiards_env.rules",),
+    ("billiards_env.envs", "billiards_env.bots", "billiards_env.rendering"),
+    ("billiards_env.studies", "billiards_env.testing", "billiards_env"),
+    ("agents",),
+    ("scripts",),
+)
+
+
+def layer_of(mod: str) -> int:
+    best, depth = None, -1
+    for k, prefixes in enumerate(LAYERS):
+        for p in prefixes:
+            if (mod == p or mod.startswith(p + ".")) and p.count(".") > depth:
+                best, depth = k, p.count(".")
+    assert best is not None, f"{mod} is in no layer"
+    return best
+
+
+def test_layers_only_look_down():
+    """physics below rules below envs and bots, the library below agents and scripts:
+    no import (lazy ones included) reaches up a layer."""
+    bad = [f"{a} (layer {layer_of(a)}) imports {b} (layer {layer_of(b)})"
+           for a, targets in import_graph().items() for b in sorted(targets) if layer_of(b) > layer_of(a)]
+    assert not bad, "imports that reach up:\n" + "\n".join(bad)
+
+
+def test_layer_check_sees_a_violation():
+    assert layer_of("billiards_env.physics.simulate") == 0 and layer_of("billiards_env.bots.ghost") == 2
+    assert layer_of("billiards_env") == 3 and layer_of("agents.training") == 4
+    assert layer_of("billiards_env.envs.games.versus") < layer_of("agents.game_policies")

@@ -3,10 +3,10 @@ import gymnasium as gym
 import numpy as np
 
 import billiards_env  # noqa: F401
-from agents import geometry as G
+from billiards_env.bots import geometry as G
 from agents.policies import make_policy
 from agents.evaluation import evaluate
-from agents.lookahead import LookaheadPolicy
+from billiards_env.bots.lookahead import LookaheadPolicy
 
 RUNOUT = "Billiards-RunOut-v0"
 # A straight-in pot of ball 1 into the top-right corner from the same cue

@@ -160,10 +160,12 @@ def test_menu_agent_trains_and_evaluates(env_id, tmp_path):
     pol = SB3Policy.load(tmp_path)
     r = evaluate(lambda env: pol.bind(env), env_id, 16, 1, "tournament", env_kwargs=pol.env_kwargs)
     assert r.n_episodes == 16 and 0 <= r.success_rate <= 1
-    # the saved model also plays matches on a self-play core, either side breaking (agents.match)
-    from agents.match import play_pairing
+    # the saved model also plays matches on a self-play core, either side breaking (studies.matches)
+    from agents.game_policies import bot_factory
+    from billiards_env.studies.matches import play_pairing
     game = "nine_ball" if "Nine" in env_id else "eight_ball"
-    m = play_pairing(str(tmp_path), "ghost", game, n_racks=3, seed=0, noise="none", max_shots=40)
+    m = play_pairing(str(tmp_path), "ghost", game, n_racks=3, seed=0, noise="none", max_shots=40,
+                     bot_factory=bot_factory)
     assert m.n == 6 and m.a_broke.sum() == 3
 
 
@@ -207,10 +209,10 @@ def test_evaluation_names_the_opponent():
 def test_ball_in_hand_spot_keeps_clear_of_every_ball():
     """The straight-in placement checks every ball of the table (it once looped over the table count instead,
     which skipped balls on small batches and read past the array on large ones)."""
-    from agents.game_ghost import PLACE_CLEAR, GameGhostPolicy
+    from billiards_env.bots.ghost import PLACE_CLEAR, GhostBot, PotGeometry
     from billiards_env.envs.games import GameConfig, GameCore
     core = GameCore(GameConfig(game="nine_ball"), 1)
-    pol = GameGhostPolicy(core)
+    pol, geo = GhostBot(), PotGeometry(core.table, core.params)
     R_ = core.params.R
     pos = np.zeros((1, 10, 2))
     pos[0, :, 0] = np.linspace(0.2, 1.0, 10)
@@ -221,10 +223,10 @@ def test_ball_in_hand_spot_keeps_clear_of_every_ball():
     on[0, 9] = False
     targets = np.zeros((1, 10), dtype=bool)
     targets[0, 1] = True
-    first = pol.placements(pos, on, targets, np.array([False]))[0]
+    first = pol.placements(geo, pos, on, targets, np.array([False]))[0]
     u = (pos[0, 1] - first) / np.linalg.norm(pos[0, 1] - first)
     # a ball beside that spot, clear of the shot's path but within 2R + PLACE_CLEAR of the spot
     pos[0, 9], on[0, 9] = first + (2 * R_ + PLACE_CLEAR / 2) * np.array([-u[1], u[0]]), True
-    spot = pol.placements(pos, on, targets, np.array([False]))[0]
+    spot = pol.placements(geo, pos, on, targets, np.array([False]))[0]
     d = np.linalg.norm(pos[0, 1:][on[0, 1:]] - spot, axis=1)
     assert (d >= 2 * R_ + PLACE_CLEAR - 1e-12).all() and not np.allclose(spot, first)

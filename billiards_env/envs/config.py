@@ -16,6 +16,7 @@ from pathlib import Path
 import yaml
 
 from ..physics import Effects, Models, PhysicsParams, Table
+from ..physics.noise import NOISE_PRESETS, NoiseConfig, check_keys  # noqa: F401 (re-exported)
 from .tasks.base import CONFIG_DIR
 from .tasks.registry import get_task
 
@@ -24,17 +25,6 @@ AIMS = ("relative", "absolute", "impact")        # meaning of action a0 (billiar
 SPEED_SCALES = ("linear", "log")                  # meaning of action a1 (billiards._COMMON_DOC)
 OBSERVATIONS = ("table", "target_frame")          # observation layouts (billiards._COMMON_DOC)
 __all__ = ["TaskConfig", "RewardConfig", "NoiseConfig", "CONFIG_DIR", "CONFIG_VERSION", "check_keys"]
-
-
-def check_keys(cls, d: dict, where: str) -> None:
-    """Raise a ValueError naming any key of ``d`` that is not a field of the
-    dataclass ``cls`` (configs reject typos instead of ignoring them)."""
-    if not isinstance(d, dict):
-        raise ValueError(f"{where} must be a mapping, got {type(d).__name__}")
-    names = {f.name for f in dataclasses.fields(cls)}
-    unknown = set(d) - names
-    if unknown:
-        raise ValueError(f"unknown key(s) {sorted(unknown)} in {where}; known keys: {sorted(names)}")
 
 
 def _number(v, name: str, lo: float | None = None) -> float:
@@ -78,61 +68,6 @@ class RewardConfig:
         d = dict(d or {})
         check_keys(cls, d, "reward config")
         return cls(**d)
-
-    def to_dict(self) -> dict:
-        return dataclasses.asdict(self)
-
-
-NOISE_PRESETS = {
-    "none": dict(aim_deg=0.0, speed=0.0, side_mm=0.0, height_mm=0.0),
-    # tournament-level execution error
-    "tournament": dict(aim_deg=0.125, speed=0.075, side_mm=0.5, height_mm=0.5),
-    # five times the tournament standard deviations (the high-noise level of computer pool tournaments)
-    "high": dict(aim_deg=0.625, speed=0.375, side_mm=2.5, height_mm=2.5),
-}
-
-
-@dataclasses.dataclass(frozen=True)
-class NoiseConfig:
-    """Gaussian execution noise (standard deviations) on the aim angle
-    (degrees), the cue-ball speed (m/s) and the side / height offsets (mm;
-    converted to units of R when applied). Presets: ``none``, ``tournament``, ``high``
-    (5x tournament)."""
-
-    aim_deg: float = 0.0
-    speed: float = 0.0
-    side_mm: float = 0.0
-    height_mm: float = 0.0
-
-    def __post_init__(self):
-        for f in dataclasses.fields(self):
-            object.__setattr__(self, f.name, _number(getattr(self, f.name), f"noise.{f.name}", 0.0))
-
-    @property
-    def enabled(self) -> bool:
-        return any(getattr(self, f.name) > 0 for f in dataclasses.fields(self))
-
-    @classmethod
-    def preset(cls, name: str) -> "NoiseConfig":
-        if name not in NOISE_PRESETS:
-            raise ValueError(f"unknown noise preset {name!r}; choose one of {sorted(NOISE_PRESETS)}")
-        return cls(**NOISE_PRESETS[name])
-
-    @classmethod
-    def from_any(cls, v) -> "NoiseConfig":
-        """A preset name, a mapping (optionally with ``preset`` plus overrides), a NoiseConfig or None."""
-        if v is None:
-            return cls()
-        if isinstance(v, NoiseConfig):
-            return v
-        if isinstance(v, str):
-            return cls.preset(v)
-        if isinstance(v, dict):
-            d = dict(v)
-            base = cls.preset(d.pop("preset")).to_dict() if "preset" in d else {}
-            check_keys(cls, d, "noise config")
-            return cls(**{**base, **d})
-        raise ValueError(f"noise must be a preset name, a mapping or a NoiseConfig, got {type(v).__name__}")
 
     def to_dict(self) -> dict:
         return dataclasses.asdict(self)

@@ -25,6 +25,7 @@ import numba
 import numpy as np
 
 from ..physics import BallState, simulate
+from ..physics.noise import OFFSET_SAFETY, clip_offset as _clip_offset, perturb  # noqa: F401 (OFFSET_SAFETY re-exported)
 from ..physics.strike import Shots, apply_strike, draw_to_speed, speed_to_draw
 from . import target_frame
 from .config import TaskConfig
@@ -33,7 +34,6 @@ from .streams import TableStreams, place_balls
 from .tasks.base import ShotOutcome
 from .tasks.registry import get_task
 
-OFFSET_SAFETY = 1.0 - 1e-9  # radial clip just inside the miscue limit (strict check in strike)
 
 
 # Per-step bookkeeping over all tables, fused into single passes (numpy would
@@ -62,21 +62,6 @@ def _context(pos, tgt, pockets, diag, aim, phi, ang):
             dx, dy = pos[e, t, 0] - pockets[p, 0], pos[e, t, 1] - pockets[p, 1]
             d2 = min(d2, dx * dx + dy * dy)
         phi[e] = -math.sqrt(d2) / diag
-
-
-@_jit
-def _clip_offset(a, b, limit):
-    """(a, b) scaled radially just inside the disc of radius ``limit``."""
-    lim = limit * OFFSET_SAFETY
-    r = math.hypot(a, b)
-    f = lim / max(r, 1e-300) if r > lim else 1.0
-    return a * f, b * f
-
-
-@_jit
-def _clip_offsets(a, b, limit):
-    for e in range(a.shape[0]):
-        a[e], b[e] = _clip_offset(a[e], b[e], limit)
 
 
 @_jit
@@ -240,13 +225,7 @@ class BilliardsCore:
         z = self.streams.normal(idx, 4)
         if scale is not None:
             z *= np.asarray(scale, dtype=np.float64)[:, None]
-        R = self.params.R
-        phi = shots.phi + z[:, 0] * math.radians(nz.aim_deg)
-        speed = np.clip(shots.speed + z[:, 1] * nz.speed, 0.0, self.params.max_speed)
-        a = shots.a + z[:, 2] * nz.side_mm * 1e-3 / R
-        b = shots.b + z[:, 3] * nz.height_mm * 1e-3 / R
-        _clip_offsets(a, b, self.params.miscue_limit)  # a, b are new arrays here
-        return Shots.of_arrays(phi, speed, a, b)
+        return perturb(shots, z, nz, self.params)
 
     # --- simulation -------------------------------------------------------
     def simulate(self, state: BallState):

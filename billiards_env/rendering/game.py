@@ -79,7 +79,7 @@ def render_game(core, k: int = 0, info: dict | None = None, pos=None, on=None, p
         cx, cy = world_to_pixel(t, pos[b], ppm, BORDER)
         d.ellipse([cx - rp, cy - rp, cx + rp, cy + rp], outline=TARGET_RING, width=2)
     if c.ball_in_hand[k] == R.IN_HAND_KITCHEN:
-        from ..envs.games.setup import HEAD_STRING
+        from ..rules.placement import HEAD_STRING
         a, b = world_to_pixel(t, [(0.0, HEAD_STRING * t.length), (t.width, HEAD_STRING * t.length)], ppm, BORDER)
         d.line([tuple(a), tuple(b)], fill=HEAD_STRING_COLOR, width=1)
     font = ImageFont.load_default()
@@ -109,22 +109,22 @@ def save_game_animation(path, game: str = "nine_ball", policies=("ghost", "ghost
                         speedup: float = 2.0, hold: int = 5, max_shots: int = 60, max_seconds: float = 8.0,
                         ppm: float = PPM, noise: str = "tournament") -> Path:
     """Play one seeded game between two game policies (names for
-    ``agents.game_policies.make_game_policy``) and write it as a GIF (or
+    ``bots.make_bot``, or bots) and write it as a GIF (or
     MP4): every shot animated at ``speedup`` x real time, then ``hold``
     frames of the resting table with the ruling. Returns the path."""
-    from agents.game_policies import make_game_policy
-
+    from ..bots import make_bot
     from ..envs.games import GameConfig, GameCore
+    from ..envs.games.play import bot_actions
     core = GameCore(GameConfig(game=game, noise=noise, max_shots=max_shots), 1, record=True)
     core.streams.seed([0], [seed])
     core.reset_tables([0], [0])
-    pol = [make_game_policy(policies[0], core, seed), make_game_policy(policies[1], core, seed + 1)]
+    bots = [make_bot(policies[0], seed), make_bot(policies[1], seed + 1)]
     frames = [render_game(core, 0, None, ppm=ppm)] * hold
     info = None
     while True:
         who = int(core.constraints().shooter[0])
         start_pos, start_on = core.state.pos[0].copy(), core.state.pocket[0] < 0
-        out = core.step(pol[who].act(None, np.array([0])).astype(np.float64), [0])
+        out = core.step(bot_actions(core, bots[who], [0]), [0])
         log = core.last_events[0]
         placed = out["info"]["placement"][0]
         start_pos[0], start_on[0] = placed, True

@@ -8,7 +8,9 @@ game state (``GameState``), and tells the next shooter what they may do
 from .common import BREAK_RAIL_BALLS, Rules, lowest_on_table
 from .eight_ball import EightBallRules
 from .nine_ball import NineBallRules
-from .records import (END_NAMES, FOUL_NAMES, IN_HAND_ANYWHERE, IN_HAND_KITCHEN, IN_HAND_NONE, Constraints, GameState,
+from .placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP
+from .records import (END_NAMES, FOUL_NAMES, GROUP_OPEN, GROUP_SOLIDS, GROUP_STRIPES, IN_HAND_ANYWHERE, IN_HAND_KITCHEN,
+                      IN_HAND_NONE, PHASE_AFTER_BREAK, PHASE_BREAK, PHASE_PLAY, PHASE_PUSHED, Constraints, GameState,
                       ShotInput, ShotRecord)
 
 RULES = {"nine_ball": NineBallRules(), "eight_ball": EightBallRules()}
@@ -24,4 +26,5 @@ def get_rules(name: str) -> Rules:
 
 __all__ = ["BREAK_RAIL_BALLS", "Rules", "lowest_on_table", "EightBallRules", "NineBallRules", "END_NAMES",
            "FOUL_NAMES", "IN_HAND_ANYWHERE", "IN_HAND_KITCHEN", "IN_HAND_NONE", "Constraints", "GameState",
-           "ShotInput", "ShotRecord", "RULES", "get_rules"]
+           "ShotInput", "ShotRecord", "RULES", "get_rules", "GROUP_OPEN", "GROUP_SOLIDS", "GROUP_STRIPES",
+           "PHASE_AFTER_BREAK", "PHASE_BREAK", "PHASE_PLAY", "PHASE_PUSHED", "FOOT_SPOT", "HEAD_STRING", "KITCHEN_GAP"]

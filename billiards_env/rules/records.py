@@ -113,7 +113,9 @@ class ShotInput:
     cushion hits during the shot (the break's four-ball count), and the
     declarations: ``push_out`` (bool), ``called_pocket`` (int, -1 none),
     ``passed`` (bool: after a push-out, the player handed the shot back and
-    no shot was played)."""
+    no shot was played). From a ``physics.SimResult``: ``state.pocket``,
+    ``first_contact``, ``cushion_hits_after_contact`` (``rails``) and
+    ``cushion_hits`` (``object_rails``)."""
 
     pocket_before: np.ndarray
     pocket_after: np.ndarray

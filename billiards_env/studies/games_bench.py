@@ -10,7 +10,7 @@ is re-racked at once, from its own stream), each step shoots every table
 with one simulator call, and the clock runs until ``games`` games have
 finished. The split: ``simulate`` is the simulator time of the env's shots,
 ``rules`` the rulings (``rules.judge``), ``policies`` the time in the
-policies' ``act`` (which includes the simulator calls of the safety search,
+bots' ``act`` (which includes the simulator calls of their previews,
 reported as ``policy_simulate``); ``other`` is the rest of the env step
 (placement, respots, bookkeeping, re-racks).
 """
@@ -22,14 +22,16 @@ import time
 
 import numpy as np
 
+from ..bots import make_bot
 from ..envs.games import GameConfig, GameCore
+from ..envs.games.play import play_round
 from ..envs.games.vector import GameVectorEnv
 
 
 def _timed_simulate(calls: dict):
-    """Wrap ``physics.simulate`` as seen by the policies' module so its time is counted."""
-    import agents.game_ghost as gp
-    inner = gp.simulate
+    """Wrap ``physics.simulate`` as seen by the bots' preview so its time is counted."""
+    from ..bots import preview as pv
+    inner = pv.simulate
 
     def timed(*a, **kw):
         t0 = time.perf_counter()
@@ -37,35 +39,27 @@ def _timed_simulate(calls: dict):
             return inner(*a, **kw)
         finally:
             calls["t"] += time.perf_counter() - t0
-    gp.simulate = timed
-    return lambda: setattr(gp, "simulate", inner)
+    pv.simulate = timed
+    return lambda: setattr(pv, "simulate", inner)
 
 
 def games_per_second(game: str = "nine_ball", n_tables: int = 1024, n_games: int = 3072, policies=("ghost", "ghost"),
                      noise: str = "tournament", seed: int = 0, max_shots: int = 200) -> dict:
     """Complete games per second (see the module docstring) and the time split."""
-    from agents.game_policies import make_game_policy
     core = GameCore(GameConfig(game=game, noise=noise, max_shots=max_shots), n_tables)
     all_ = np.arange(n_tables)
     core.streams.seed(all_, seed * 1_000_003 + all_)
     core.reset_tables(all_)
-    pol = [make_game_policy(policies[0], core, seed), make_game_policy(policies[1], core, seed + 1)]
+    bots = [make_bot(policies[0], seed), make_bot(policies[1], seed + 1)]
+    clock = {"bots": 0.0}
     psim = {"t": 0.0}
     restore = _timed_simulate(psim)
-    t_pol = t_reset = 0.0
+    t_reset = 0.0
     shots, games, steps = [], 0, 0
     try:
         t0 = time.perf_counter()
         while games < n_games:
-            tp = time.perf_counter()
-            to_move = core.constraints().shooter
-            actions = np.zeros((n_tables, 8))
-            for p in (0, 1):
-                m = np.nonzero(to_move == p)[0]
-                if len(m):
-                    actions[m] = pol[p].act(None, m)
-            t_pol += time.perf_counter() - tp
-            out = core.step(actions, all_)
+            out = play_round(core, bots, all_, clock)
             steps += 1
             done = np.nonzero(out["terminated"] | out["truncated"])[0]
             if len(done):
@@ -77,6 +71,7 @@ def games_per_second(game: str = "nine_ball", n_tables: int = 1024, n_games: int
         wall = time.perf_counter() - t0
     finally:
         restore()
+    t_pol = clock["bots"]
     sim, rules = core.timers["simulate"], core.timers["rules"]
     return dict(game=game, tables=n_tables, policies=list(policies), noise=noise, games=games, steps=steps,
                 seconds=wall, games_per_second=games / wall, shots_per_game=float(np.mean(shots)),

@@ -93,6 +93,48 @@ def post_break(table: Table, params: PhysicsParams, n: int, seed: int = 2, speed
     return strike_velocity(s, phi, v, a, b, params)
 
 
+# The throughput benchmark's scenes (billiards_env.studies.bench.scenes names
+# them): fixed shots with small noise. Their draws from ``seed`` (an int, or
+# a Generator drawn from in place) are fixed: a change would change the
+# benchmark's figures across commits.
+def straight_break(table: Table, params: PhysicsParams, n: int, seed=0, layout: str = "nine",
+                   speed=(8.0, 0.2), aim_sd: float = 0.01, height: float = 0.1) -> BallState:
+    """A frozen ``layout`` rack (``"nine"`` or ``"eight"``), the cue ball on the
+    head spot struck straight up the table (pi/2 + N(0, ``aim_sd``) rad) at
+    N(``speed[0]``, ``speed[1]``) m/s, no side, height offset b uniform in
+    +-``height``."""
+    rng = np.random.default_rng(seed)
+    s = rack(table, params, layout, n, seed=rng)
+    return strike_velocity(s, np.pi / 2 + rng.normal(0, aim_sd, n), rng.normal(speed[0], speed[1], n),
+                           0.0, rng.uniform(-height, height, n), params)
+
+
+def half_ball_cut(table: Table, params: PhysicsParams, n: int, seed=0, speed=(2.0, 0.1),
+                  side: float = 0.2, height: float = 0.3) -> BallState:
+    """Cue ball in x 0.3-0.9, y 0.5-0.9 m, an object ball 0.5-0.8 m up the
+    table and +-0.15 m across from it; the cue ball's path passes R beside
+    the object ball's centre (a half-ball hit) at N(``speed[0]``,
+    ``speed[1]``) m/s with offsets a = ``side``, b = ``height``. (The
+    positions are fixed numbers: ``table`` is unused.)"""
+    rng = np.random.default_rng(seed)
+    cue = np.column_stack([rng.uniform(0.3, 0.9, n), rng.uniform(0.5, 0.9, n)])
+    obj = cue + np.column_stack([rng.uniform(-0.15, 0.15, n), rng.uniform(0.5, 0.8, n)])
+    s = BallState.from_positions(np.stack([cue, obj], axis=1))
+    d = obj - cue
+    phi = np.arctan2(d[:, 1], d[:, 0]) + np.arcsin(params.R / np.linalg.norm(d, axis=1))
+    return strike_velocity(s, phi, rng.normal(speed[0], speed[1], n), side, height, params)
+
+
+def one_ball_two_cushions(table: Table, params: PhysicsParams, n: int, seed=0, speed: float = 3.0,
+                          height: float = 0.4) -> BallState:
+    """One ball in x 0.5-0.8, y 1.5-1.8 m struck at 60 +- N(0, 0.02 rad) degrees
+    at ``speed`` m/s with top spin b = ``height`` (off two cushions; ``table``
+    is unused)."""
+    rng = np.random.default_rng(seed)
+    s = BallState.from_positions(np.column_stack([rng.uniform(0.5, 0.8, n), rng.uniform(1.5, 1.8, n)])[:, None])
+    return strike_velocity(s, np.radians(60) + rng.normal(0, 0.02, n), speed, 0.0, height, params)
+
+
 SCENES = {"two_ball": two_ball, "break": breaks, "post_break": post_break}
 
 

@@ -90,6 +90,15 @@ class GameAECEnv(AECEnv):
             self.agent_selection = AGENTS[int(self.core.constraints().shooter[0])]
         self._accumulate_rewards()
 
+    # --- bots (docs/bots.md) ---------------------------------------------------
+    def bot_view(self):
+        """The ``GameView`` of the table for the agent to move (``agent_selection``)."""
+        return self.core.view([0])
+
+    def bot_action(self, plan) -> np.ndarray:
+        """The action [8] that plays a bot's ``ShotPlan`` (one row) here."""
+        return self.core.actions_of(plan, [0])[0].astype(np.float32)
+
     def render(self):
         return None
 

@@ -36,7 +36,9 @@ import time
 
 import numpy as np
 
+from ...bots.view import GameView
 from ...physics import BallState, Effects, Models, PhysicsParams, Table, strike_velocity
+from ...physics.strike import speed_to_draw
 from ...rules import GameState, ShotInput, get_rules
 from ...rules import records as R
 from ..config import NoiseConfig, _number
@@ -289,7 +291,7 @@ class GameCore(BilliardsCore):
             self.timers["simulate"] += time.perf_counter() - t0
             pocket_after[shoot], pos_after[shoot] = res.state.pocket, res.state.pos
             first[shoot] = res.first_contact
-            rails[shoot] = rails_after_contact(res)
+            rails[shoot] = res.cushion_hits_after_contact
             object_rails[shoot] = res.cushion_hits
             n_events[shoot], sim_time[shoot] = res.n_events, res.time
             if res.events is not None:
@@ -313,27 +315,54 @@ class GameCore(BilliardsCore):
                     sim_time=sim_time, shot=game.shots.copy())
         return dict(record=rec, reward=reward, terminated=game.over.copy(), truncated=truncated, info=info)
 
-    # --- policies' helpers -----------------------------------------------------------
+    # --- bots ------------------------------------------------------------------------
+    def view(self, idx) -> GameView:
+        """The read-only ``GameView`` of tables ``idx`` that a bot acts on."""
+        idx = np.asarray(idx, dtype=np.int64)
+        s, g, c = self.state, self.game, self.constraints()
+        return GameView.build(
+            game=self.config.game, rows=idx, pos=s.pos[idx], pocket=s.pocket[idx], to_move=c.shooter[idx],
+            ball_in_hand=c.ball_in_hand[idx], targets=c.targets[idx], push_out_allowed=c.push_out_allowed[idx],
+            may_pass=c.may_pass[idx], call_needed=c.call_needed[idx], is_break=c.is_break[idx],
+            groups=g.group[idx], fouls=g.fouls[idx], shots=g.shots[idx], table=self.table, params=self.params,
+            effects=self.effects, models=self.models, noise=self.cfg.noise, noise_scale=self.noise_scale[idx],
+            min_draw=self.cfg.min_draw, rules=self.rules, state=g.take(idx), _observe=lambda: self.observe()[idx],
+            _core=self)
+
+    def actions_of(self, plan, idx) -> np.ndarray:
+        """The actions [n, 8] (float64, validated) that play a bot's
+        ``ShotPlan`` on tables ``idx``: placements made legal first, the aim
+        taken relative to the origin seen from the placed cue ball. A bot
+        may also return the env's own actions [n, 8] (a learned policy):
+        they are validated and played as they are."""
+        idx = np.asarray(idx, dtype=np.int64)
+        if isinstance(plan, np.ndarray):
+            return self.validate_actions(plan, len(idx))
+        plan.check(len(idx), self.params)
+        a = self.actions_for(plan.shots, idx, plan.placement, plan.declare, plan.pocket).astype(np.float32)
+        return self.validate_actions(a, len(idx))
+
     def actions_for(self, shots, idx, placement=None, declare=None, pocket=None) -> np.ndarray:
         """Actions [n, 8] on tables ``idx`` that play ``shots`` (absolute aim)
         with the cue ball at ``placement`` [n, 2] (rows of tables without ball
-        in hand are ignored; NaN rows: where it lies), ``declare`` [n] (push-out
-        or pass) and the called ``pocket`` [n]. The aim is taken relative to
-        the origin seen from the placed cue ball."""
+        in hand are ignored; NaN rows: where it lies; an illegal spot is
+        moved to the nearest legal one first, so the aim stays absolute),
+        ``declare`` [n] (push-out or pass) and the called ``pocket`` [n]."""
         idx = np.asarray(idx, dtype=np.int64)
         n = len(idx)
         out = np.zeros((n, ACTION_DIM))
         origin = self.shot_context().aim_origin[idx].copy()
         if placement is not None:
-            placement = np.asarray(placement, dtype=np.float64)
+            placement = np.array(placement, dtype=np.float64)
             has = ~np.isnan(placement[:, 0]) & (self.constraints().ball_in_hand[idx] != R.IN_HAND_NONE)
+            if has.any():
+                placement[has], _ = self.legal_placement(placement[has], idx[has])
             out[:, 4:6] = self.placement_to_actions(np.where(has[:, None], placement, 0.5))
             if has.any():
                 origin[has] = self._origin_from(placement[has], idx[has])
         phi, speed, a, b = (np.broadcast_to(np.asarray(v, dtype=np.float64), (n,)) for v in shots)
         rel = ((phi - origin) / math.pi + 1.0) % 2.0 - 1.0
         lo, hi, lim = self.cfg.min_draw, self.params.max_draw, self.params.miscue_limit
-        from ...physics.strike import speed_to_draw
         out[:, 0] = rel
         out[:, 1] = 2.0 * (speed_to_draw(speed, self.params) - lo) / (hi - lo) - 1.0
         out[:, 2], out[:, 3] = a / lim, b / lim
@@ -352,10 +381,3 @@ class GameCore(BilliardsCore):
         aim = np.where(c.is_break[idx, None], np.array([t.width / 2, FOOT_SPOT * t.length]),
                        self.state.pos[idx, np.maximum(tgt, 0)])
         return np.arctan2(aim[:, 1] - cue[:, 1], aim[:, 0] - cue[:, 0])
-
-
-def rails_after_contact(res) -> np.ndarray:
-    """Cushion hits [E, B] of every ball after the cue ball's first contact
-    (``SimResult.cushion_hits_after_contact``; object balls rest until
-    touched, so all their hits count)."""
-    return res.cushion_hits_after_contact

@@ -1,22 +1,12 @@
-"""Racks, the cue-ball placement of ball in hand, and respotting, for the
-two-player games (numba kernels over the placement helpers of
-``physics.state``)."""
+"""Racks and respotting for the two-player games (the cue-ball placement of
+ball in hand is a rule: ``rules.placement``)."""
 from __future__ import annotations
 
-import math
-
-import numba
 import numpy as np
 
-from ...physics.state import SPOT_CLEAR, SPOT_EDGE, _triangle, free_spot, spot_free
+from ...physics.state import _triangle, free_spot
+from ...rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP, place_cue  # noqa: F401 (re-exported)
 from ..tasks.nine_ball import nine_ball_rack
-
-HEAD_STRING = 0.25   # the head string's distance from the head rail, as a fraction of the table's length
-FOOT_SPOT = 0.75     # the foot spot's, likewise
-KITCHEN_GAP = 1e-6   # m: a cue ball placed behind the head string keeps its centre this far behind the line
-PLACE_RINGS = 400    # rings of the nearest-legal-spot search (radius step R/4: covers any table)
-
-_jit = numba.njit(cache=True, nogil=True)
 
 
 def eight_ball_rack(table, R: float, u: np.ndarray) -> np.ndarray:
@@ -44,48 +34,6 @@ def eight_ball_rack(table, R: float, u: np.ndarray) -> np.ndarray:
 def rack(game: str, table, R: float, u: np.ndarray) -> np.ndarray:
     """The rack of ``game`` from uniforms ``u`` [n, >= 14] (9-ball takes the first 7)."""
     return nine_ball_rack(table, R, u[:, :7]) if game == "nine_ball" else eight_ball_rack(table, R, u[:, :14])
-
-
-@_jit
-def _legal_spot(x, y, pos, on, width, y_hi, R, pockets):
-    """The nearest point to (x, y) where a cue ball may be placed: clamped into
-    the allowed rectangle (centre R + SPOT_EDGE inside the cushions, y at most
-    ``y_hi``), then, if it overlaps a ball or a pocket, the first free point
-    of rings of radius k R / 4 (k = 1, 2, ...; 8 k points each, nearest ring
-    first). Returns (x, y, found)."""
-    edge = R + SPOT_EDGE
-    md = 2 * R + SPOT_CLEAR
-    x = min(max(x, edge), width - edge)
-    y = min(max(y, edge), y_hi)
-    if spot_free(x, y, pos, on, width, y_hi + edge, edge, pockets, md):
-        return x, y, True
-    for k in range(1, PLACE_RINGS):
-        r = 0.25 * R * k
-        m = 8 * k
-        for j in range(m):
-            a = 2.0 * math.pi * j / m
-            cx, cy = x + r * math.cos(a), y + r * math.sin(a)
-            if cy <= y_hi and spot_free(cx, cy, pos, on, width, y_hi + edge, edge, pockets, md):
-                return cx, cy, True
-    return x, y, False
-
-
-@_jit
-def place_cue(want, pos, pocket, kitchen, width, length, R, pockets, out, moved):
-    """Per table: the cue ball (ball 0) placed at the legal spot nearest to
-    ``want`` [n, 2]; ``kitchen[e]`` limits it to behind the head string.
-    Writes ``out`` [n, 2] and ``moved`` [n] (the spot differs from ``want``);
-    returns False if some table has no free spot."""
-    ok = True
-    for e in range(want.shape[0]):
-        on = pocket[e] < 0
-        on[0] = False  # the cue ball is in hand
-        y_hi = HEAD_STRING * length - KITCHEN_GAP if kitchen[e] else length - R - SPOT_EDGE
-        x, y, found = _legal_spot(want[e, 0], want[e, 1], pos[e], on, width, y_hi, R, pockets)
-        ok &= found
-        out[e, 0], out[e, 1] = x, y
-        moved[e] = x != want[e, 0] or y != want[e, 1]
-    return ok
 
 
 def respot(pos: np.ndarray, pocket: np.ndarray, balls: np.ndarray, table, R: float, pockets: np.ndarray) -> None:

@@ -9,13 +9,13 @@ import numpy as np
 
 from .core import GameCore
 from .spaces import OBSERVATION_DOC, action_space, info_row, make_config, observation_space
-from .versus import AGENT, make_opponent, new_games, opponent_turns
+from .versus import AGENT, check_opponent, make_opponent, new_games, opponent_turns
 
 
 class GameEnv(gym.Env):
     __doc__ = """One table of ``game``; the agent is player 0 and the opponent
-    (``opponent=``: a name of ``agents.game_policies.make_game_policy``,
-    default ``"ghost"``, or a callable ``core -> policy``) plays player 1.
+    (``opponent=``: a bot name of ``bots.make_bot``, default ``"ghost"``,
+    a ``module:factory`` or a bot object; docs/bots.md) plays player 1.
     Who breaks is drawn per game from the table's stream (``options=
     {"breaker": 0 or 1}`` fixes it; a seeded reset also reseeds the opponent
     with ``opponent_seed + seed``). ``step`` plays the agent's shot, then
@@ -35,6 +35,7 @@ class GameEnv(gym.Env):
     AGENT = AGENT
 
     def __init__(self, opponent="ghost", config=None, opponent_seed: int = 0, **overrides: Any):
+        check_opponent(opponent)
         self.config = make_config(config, overrides, self.game)
         self.core = GameCore(self.config, 1)
         self.observation_space = observation_space(self.core)
@@ -52,7 +53,7 @@ class GameEnv(gym.Env):
             self.core.streams.seed([0], [int(self.np_random.integers(2 ** 63))])
         self._seeded = True
         if self.opponent is None or seed is not None:  # a seeded reset reseeds the opponent too
-            self.opponent = make_opponent(self._opponent_spec, self.core, self._opponent_seed + (seed or 0))
+            self.opponent = make_opponent(self._opponent_spec, self._opponent_seed + (seed or 0))
         breaker = (options or {}).get("breaker")
         skipped, shots = new_games(self.core, self.opponent, [0], None if breaker is None else [int(breaker)])
         self._done = False

@@ -16,19 +16,26 @@ from gymnasium.vector import AutoresetMode
 from ..billiards import _autoreset_mode
 from ..streams import seed_vector_env
 from .batched import GameTables
+from ...bots import BOT_NAMES, is_bot_name, make_bot
 from .core import GameCore
+from .play import bot_actions
 from .spaces import OBSERVATION_DOC
 
 AGENT = 0  # the agent's player number on every table; the opponent is 1 - AGENT
 
 
-def make_opponent(spec, core: GameCore, seed: int):
-    """The opponent policy of ``spec``: a name of ``agents.game_policies.make_game_policy``
-    or a callable ``core -> policy`` (a policy has ``act(obs, idx) -> actions [n, 8]``)."""
-    if callable(spec):
-        return spec(core)
-    from agents.game_policies import make_game_policy  # the default opponents live in agents/
-    return make_game_policy(spec, core, seed=seed)
+def make_opponent(spec, seed: int):
+    """The opponent bot of ``spec``: a bot name or ``module:factory``
+    (``bots.make_bot``), or a bot (an object with ``act(view) -> ShotPlan``,
+    docs/bots.md)."""
+    return make_bot(spec, seed=seed)
+
+
+def check_opponent(spec) -> None:
+    """Raise a clear error now (at the env's construction) for an opponent that is no bot."""
+    if not (hasattr(spec, "act") or is_bot_name(spec)):
+        raise ValueError(f"opponent must be a bot name ({', '.join(BOT_NAMES)}) or an object with "
+                         f"act(view) -> ShotPlan (docs/bots.md), got {spec!r}")
 
 
 def opponent_turns(core: GameCore, opponent, idx) -> dict:
@@ -47,7 +54,7 @@ def opponent_turns(core: GameCore, opponent, idx) -> dict:
         if not len(rows):
             return dict(reward=reward, terminated=terminated, truncated=truncated, shots=shots)
         t = idx[rows]
-        out = core.step(core.validate_actions(opponent.act(None, t), len(t)), t)
+        out = core.step(bot_actions(core, opponent, t), t)
         shots[rows] += 1
         terminated[rows], truncated[rows] = out["terminated"], out["truncated"]
         reward[rows] = 0.0 - out["reward"]  # (not -x: no -0.0 rewards)
@@ -74,8 +81,8 @@ def new_games(core: GameCore, opponent, idx, breaker=None) -> tuple[np.ndarray, 
 
 class GameVersusVectorEnv(GameTables):
     __doc__ = """``num_envs`` tables of ``game``, on each the agent is player 0
-    and ``opponent`` (a name of ``agents.game_policies.make_game_policy``,
-    default ``"ghost"``, or a callable ``core -> policy``) player 1: the
+    and ``opponent`` (a bot: a name of ``bots.make_bot``,
+    default ``"ghost"``, a ``module:factory`` or a bot object; docs/bots.md) player 1: the
     batched ``GameEnv`` (``gymnasium.make_vec(id, num_envs,
     vectorization_mode="vector_entry_point", opponent=...)``). A step plays
     the agent's shot on every table in one simulator call, then the
@@ -112,6 +119,7 @@ class GameVersusVectorEnv(GameTables):
             raise ValueError("autoreset_mode must be 'next_step' or 'same_step' for a game against an opponent")
         self.metadata = {**type(self).metadata, "autoreset_mode": mode}
         super().__init__(num_envs, game, config, overrides)
+        check_opponent(opponent)
         self._opponent_spec, self._opponent_seed = opponent, int(opponent_seed)
         self.opponent = None
 
@@ -120,7 +128,7 @@ class GameVersusVectorEnv(GameTables):
         seed_vector_env(self, self.core.streams, seed)
         if self.opponent is None or seed is not None:  # a seeded reset reseeds the opponent too
             first = seed[0] if isinstance(seed, (list, tuple, np.ndarray)) else seed
-            self.opponent = make_opponent(self._opponent_spec, self.core, self._opponent_seed + int(first or 0))
+            self.opponent = make_opponent(self._opponent_spec, self._opponent_seed + int(first or 0))
         idx, breaker = self._reset_rows(options)
         skipped = np.zeros(N, dtype=np.int64)
         skipped[idx] = new_games(self.core, self.opponent, idx, breaker)[0]

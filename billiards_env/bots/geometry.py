@@ -20,10 +20,10 @@ import math
 
 import numpy as np
 
-from billiards_env.envs.target_frame import CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG, side_pockets
-from billiards_env.envs.target_frame import pocket_axes as _pocket_axes
-from billiards_env.physics import PhysicsParams, Table
-from billiards_env.physics.strike import Shots
+from ..envs.target_frame import CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG, side_pockets
+from ..envs.target_frame import pocket_axes as _pocket_axes
+from ..physics import PhysicsParams, Table
+from ..physics.strike import Shots
 
 
 def pocket_aim_points(table: Table, inset: float = 0.02) -> np.ndarray:

@@ -4,13 +4,18 @@
 with each breaking, on one ``GameCore`` of 2 * n_racks tables: table k and
 table n_racks + k share their seed, so both sides meet the same racks (and,
 with ``variable`` noise, the same noise factor). Each step shoots every live
-table once with one simulator call; each policy acts only on the tables
-where its player is to move.
+table once with one simulator call; each bot acts only on the tables where
+its player is to move (``envs.games.play``).
 
 ``tournament`` plays every pairing of the entrants and fits a
 Bradley-Terry model (ratings on the Elo scale, 95% intervals by bootstrap
-over games); ``wilson`` gives a win rate's 95% interval. A draw (a game cut
-at the shot cap) counts half a win.
+over games); a win rate's 95% interval is Wilson's
+(``stats.wilson_interval``). A draw (a game cut at the shot cap) counts half
+a win.
+
+Entrants are bots (``bots.make_bot``: names, ``module:factory`` strings or
+bot objects) or, through ``bot_factory(spec, seed) -> bot``, anything
+else (``scripts/match.py`` passes one that also loads trained models).
 """
 from __future__ import annotations
 
@@ -20,11 +25,11 @@ import math
 
 import numpy as np
 
-from billiards_env.envs.games import GameConfig, GameCore
+from ..bots import make_bot
+from ..envs.games import GameConfig, GameCore
+from ..envs.games.play import play_out
+from .stats import wilson_interval
 
-from .game_policies import make_game_policy
-
-Z95 = 1.959963984540054   # two-sided 95% normal quantile
 ELO = 400.0 / math.log(10.0)  # Elo points per unit of log-strength
 BT_ITERATIONS = 500           # minorisation-maximisation steps of the Bradley-Terry fit (converged well before)
 BT_PRIOR = 0.5                # virtual games won and lost by each entrant against a mean entrant (keeps
@@ -51,7 +56,7 @@ class PairingResult:
         return len(self.winner)
 
     def summary(self) -> dict:
-        lo, hi = wilson(self.score_a, self.n)
+        lo, hi = wilson_interval(self.score_a, self.n)
         return dict(a=self.a, b=self.b, game=self.game, noise=self.noise, games=self.n,
                     a_wins=int((self.winner == 0).sum()), b_wins=int((self.winner == 1).sum()),
                     draws=int((self.winner < 0).sum()), a_win_rate=self.score_a / self.n, ci95=[lo, hi],
@@ -60,22 +65,11 @@ class PairingResult:
                     mean_shots=float(self.shots.mean()))
 
 
-def wilson(k: float, n: int) -> tuple[float, float]:
-    """Wilson score 95% interval of a proportion k / n."""
-    if n == 0:
-        return 0.0, 1.0
-    p = k / n
-    d = 1 + Z95 ** 2 / n
-    c = (p + Z95 ** 2 / (2 * n)) / d
-    h = Z95 * math.sqrt(p * (1 - p) / n + Z95 ** 2 / (4 * n * n)) / d
-    return max(0.0, c - h), min(1.0, c + h)
-
-
-def play_pairing(a: str, b: str, game: str = "nine_ball", n_racks: int = 100, seed: int = 0,
-                 noise: str = "tournament", max_shots: int = 200, policy_factory=make_game_policy,
+def play_pairing(a, b, game: str = "nine_ball", n_racks: int = 100, seed: int = 0,
+                 noise: str = "tournament", max_shots: int = 200, bot_factory=make_bot,
                  **config) -> PairingResult:
     """``n_racks`` racks, each played twice (a breaks, then b breaks) between
-    policies ``a`` and ``b`` (names for ``policy_factory(name, core, seed)``)."""
+    bots ``a`` and ``b`` (specs for ``bot_factory(spec, seed)``)."""
     cfg = GameConfig(game=game, noise=noise, max_shots=max_shots, **config)
     E = 2 * n_racks
     core = GameCore(cfg, E)
@@ -83,19 +77,13 @@ def play_pairing(a: str, b: str, game: str = "nine_ball", n_racks: int = 100, se
     core.streams.seed(np.arange(E), seeds)
     breaker = np.repeat([0, 1], n_racks)  # player 0 is a
     core.reset_tables(np.arange(E), breaker)
-    pol = [policy_factory(a, core, seed), policy_factory(b, core, seed + 1)]
-    live = np.ones(E, dtype=bool)
-    while live.any():
-        idx = np.nonzero(live)[0]
-        to_move = core.constraints().shooter[idx]
-        actions = np.zeros((len(idx), 8))
-        for p in (0, 1):
-            m = to_move == p
-            if m.any():
-                actions[m] = pol[p].act(None, idx[m])
-        out = core.step(actions, idx)
-        live[idx[out["terminated"] | out["truncated"]]] = False
-    return PairingResult(a, b, game, noise, core.game.winner.copy(), breaker == 0, core.game.shots.copy())
+    bots = [bot_factory(a, seed), bot_factory(b, seed + 1)]
+    play_out(core, bots, np.arange(E))
+    return PairingResult(_name(a, bots[0]), _name(b, bots[1]), game, noise, core.game.winner.copy(), breaker == 0, core.game.shots.copy())
+
+
+def _name(spec, bot) -> str:
+    return spec if isinstance(spec, str) else getattr(bot, "name", type(bot).__name__)
 
 
 def bradley_terry(names: list, results: list) -> np.ndarray:

@@ -32,14 +32,13 @@ import math
 
 import numpy as np
 
-from billiards_env.envs.config import NoiseConfig
-from billiards_env.envs.tasks.base import ShotOutcome
-from billiards_env.envs.tasks.registry import get_task
-from billiards_env.physics import BallState, simulate, strike_velocity
-from billiards_env.physics.strike import Shots
-
+from ..envs.tasks.base import ShotOutcome
+from ..envs.tasks.registry import get_task
+from ..physics import BallState, simulate, strike_velocity
+from ..physics.noise import NoiseConfig
+from ..physics.strike import Shots
 from . import geometry as G
-from .baselines import SearchPolicy, native_env, to_action
+from .one_player import SearchPolicy, task_env, to_action
 
 # a score this small still beats "no candidate works"; it orders the fallbacks
 # by the search's closeness to the ghost-ball shot
@@ -71,7 +70,7 @@ class LookaheadPolicy:
     def __init__(self, env, k: int = 48, m: int = 6, n_noise: int = 6, n_noise_next: int = 6,
                  next_speeds: tuple = (1.0, 1.5), noise="tournament", miss_weight: float = 0.5,
                  seed: int = 0, chunk: int = 65536):
-        self.env = native_env(env)
+        self.env = task_env(env)
         self.task = get_task(self.env.task)
         self.search = SearchPolicy(self.env, k=k, seed=seed, chunk=chunk)
         self.k, self.m, self.n_noise, self.n_noise_next = int(k), int(m), int(n_noise), int(n_noise_next)

@@ -1,6 +1,6 @@
 """Ghost-ball geometry for the game policies as numba kernels over tables.
 
-The same constructions as ``agents.geometry`` (ghost ball, cut angle,
+The same constructions as ``bots.geometry`` (ghost ball, cut angle,
 approach to the pocket, blocked paths: see its docstring), written as loops
 so that a policy can weigh every legal target and pocket of a thousand
 tables in well under a millisecond per table: ``best_pots`` (the easiest
@@ -11,12 +11,33 @@ target).
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba
 import numpy as np
 
 _jit = numba.njit(cache=True, nogil=True)
 MIN_LINE = 1e-12  # m: a ball this close to a pocket's aim point has no direction to it
+
+
+class PotLimits(NamedTuple):
+    """What makes a pot open in ``best_pots``: ball radius ``R`` (m), paths
+    clear of other balls by 2R + ``clear`` (m), cut at most ``max_cut``
+    (rad); cost = cut + ``dist_weight`` x (distances, m)."""
+
+    R: float
+    clear: float
+    max_cut: float
+    dist_weight: float
+
+
+class SpotLimits(NamedTuple):
+    """Where ``straight_in_spots`` may put the cue ball: inside a table
+    ``width`` wide (m), ball radius ``R``, 2R + ``clear`` from every ball."""
+
+    width: float
+    R: float
+    clear: float
 
 
 @_jit
@@ -57,15 +78,25 @@ def _blocked(pos, on, skip1, skip2, ax, ay, bx, by, d2):
     return False
 
 
+def best_pots(pos, on, targets, aims, axes, limits, lim: PotLimits, out: dict) -> None:
+    """``_best_pots`` writing into ``out``'s arrays ``cost``, ``phi``,
+    ``d_cg``, ``d_op``, ``cut``, ``pocket``, ``ball`` [n]."""
+    _best_pots(pos, on, targets, (aims, axes, limits), tuple(lim),
+               (out["cost"], out["phi"], out["d_cg"], out["d_op"], out["cut"], out["pocket"], out["ball"]))
+
+
 @_jit
-def best_pots(pos, on, targets, aims, axes, limits, R, clear, max_cut, dist_weight, cost, phi, d_cg, d_op, cut,
-              pocket, ball):
+def _best_pots(pos, on, targets, pockets, lim, out):
     """Per table e: among legal targets b (``targets[e, b]``) and pockets p,
     the open ghost-ball pot of least ``cut + dist_weight (d_cg + d_op)``:
     cut below ``max_cut``, approach to the pocket within ``limits[p]``, both
     paths (cue -> ghost, ball -> aim point) clear of other balls by 2R +
     ``clear``. Writes the cost (inf: none), aim ``phi``, distances, cut,
-    pocket, ball."""
+    pocket, ball. ``pockets``: (aims, axes, limits); ``lim``: a
+    ``PotLimits``; ``out``: (cost, phi, d_cg, d_op, cut, pocket, ball)."""
+    aims, axes, limits = pockets
+    R, clear, max_cut, dist_weight = lim
+    cost, phi, d_cg, d_op, cut, pocket, ball = out
     d2 = (2.0 * R + clear) ** 2
     for e in range(pos.shape[0]):
         cost[e] = math.inf
@@ -98,14 +129,21 @@ def best_pots(pos, on, targets, aims, axes, limits, R, clear, max_cut, dist_weig
                                                                                   p, b)
 
 
+def straight_in_spots(pos, on, targets, y_hi, aims, backs, lim: SpotLimits, pockets, spot) -> int:
+    """``_straight_in_spots`` (a ``SpotLimits`` for the table and clearance)."""
+    return _straight_in_spots(pos, on, targets, y_hi, aims, backs, tuple(lim), pockets, spot)
+
+
 @_jit
-def straight_in_spots(pos, on, targets, y_hi, aims, backs, width, R, clear, pockets, spot):
+def _straight_in_spots(pos, on, targets, y_hi, aims, backs, lim, pockets, spot):
     """Per table e: a cue-ball spot for a straight-in pot of a legal target,
     ``backs[k]`` metres behind its ghost ball on the line pocket -> ball,
     inside the cushions, at most ``y_hi[e]`` along the table, more than 2R +
     ``clear`` from every other ball and off every pocket, with both paths
     clear; the least ``d_op + backs / 2`` wins. Leaves ``spot[e]`` unchanged
-    if there is none; returns the number of tables that found one."""
+    if there is none; returns the number of tables that found one.
+    ``lim``: (width, R, clear)."""
+    width, R, clear = lim
     d2 = 4.0 * R * R
     md2 = (2.0 * R + clear) ** 2
     found = 0

@@ -1,0 +1,234 @@
+"""The one-player tasks' baseline bots (``random``, ``ghost``, ``search<K>``).
+
+A bot here has ``act(obs) -> actions [N, 4]`` (batched over the tables of a
+one-player vector env). The geometric bots hold the native vector env
+(``env``: ``BilliardsVectorEnv`` or its ``BilliardsCore``, found under
+wrappers by ``task_env``) and read its ``.state``, ``.table``, ``.params``,
+``.effects``, ``legal_target()`` and ``shots_to_actions()``; they choose
+``Shots`` (aim angle, cue-ball speed, side a, height b) and map them into
+the env's action space with the env's own inverse mapping, so they work with
+either aim mode.
+
+- ``RandomPolicy``: uniform actions.
+- ``GhostBallPolicy``: ghost-ball aim at the easiest pocket (``bots.geometry``)
+  and a speed from the distances.
+- ``SearchPolicy``: K candidate shots per table (ghost-ball aims for every
+  pocket, jittered, at various speeds and spins) simulated in one batched
+  ``billiards_env.physics.simulate`` call on K copies of each table; plays
+  the best. An upper reference (it uses the simulator as a perfect model).
+"""
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Protocol
+
+import numpy as np
+
+from ..physics import BallState, simulate, strike_velocity
+from ..physics.strike import Shots, draw_to_speed
+from . import geometry as G
+
+MAX_WRAPPERS = 16  # wrapper layers ``task_env`` looks through
+
+
+class Policy(Protocol):
+    name: str
+
+    def act(self, obs: np.ndarray) -> np.ndarray: ...
+
+
+def task_env(env):
+    """The native one-player vector env (or core) under wrappers: the first
+    of ``env``, its ``.env`` / ``.venv`` / ``.unwrapped`` chain that has
+    ``legal_target()`` and ``shots_to_actions()``."""
+    for _ in range(MAX_WRAPPERS):
+        if hasattr(env, "legal_target") and hasattr(env, "shots_to_actions"):
+            return env
+        nxt = next((getattr(env, k) for k in ("env", "venv", "unwrapped") if getattr(env, k, env) is not env), None)
+        if nxt is None:
+            break
+        env = nxt
+    raise TypeError("this policy needs the native billiards vector env (with .state, legal_target(), shots_to_actions())")
+
+
+@dataclasses.dataclass(frozen=True)
+class _Draw:
+    min_draw: float
+
+
+@dataclasses.dataclass(frozen=True)
+class _Equipment:
+    """What ``SearchPolicy.candidates`` reads of an env."""
+
+    table: object
+    params: object
+    config: _Draw
+
+
+class RandomPolicy:
+    name = "random"
+
+    def __init__(self, env=None, seed: int | None = 0, action_dim: int = 4):
+        self.rng = np.random.default_rng(seed)
+        self.env = env
+        self.action_dim = action_dim
+
+    def act(self, obs: np.ndarray) -> np.ndarray:
+        n = obs.shape[0]
+        return self.rng.uniform(-1.0, 1.0, size=(n, self.action_dim)).astype(np.float32)
+
+
+class GhostBallPolicy:
+    """Aim the cue ball at the ghost ball of the easiest pocket.
+
+    Pocket choice: smallest ``cut + dist_weight * (d_cg + d_op)`` among
+    pockets whose paths are not blocked by another ball and which the object
+    ball approaches at most 60 deg (corner) / 50 deg (side) off the pocket's
+    axis. Speed: ``geometry.required_speed`` (rolling resistance mu_r, cut
+    transfer cos(theta)(1 + e_b)/2, slide losses) times ``margin``; a centre
+    ball hit (stun) so that on straight shots the cue ball stops.
+    """
+
+    name = "ghost"
+
+    def __init__(self, env, b: float = 0.0, margin: float = 1.0, dist_weight: float = 0.5, inset: float = 0.0):
+        self.env = task_env(env)
+        self.b, self.margin, self.dist_weight, self.inset = b, margin, dist_weight, inset
+
+    def shots(self, state: BallState, target: np.ndarray) -> Shots:
+        env = self.env
+        return G.ghost_ball_shot(state.pos, state.on_table, target, env.table, env.params, b=self.b,
+                                 margin=self.margin, dist_weight=self.dist_weight, inset=self.inset)
+
+    def act(self, obs: np.ndarray) -> np.ndarray:
+        env = self.env
+        target = np.asarray(env.legal_target(), dtype=np.int64)
+        return to_action(env, self.shots(env.state, target))
+
+
+def candidate_success(struck: BallState, target: np.ndarray, table, params, effects=None, models=None) -> np.ndarray:
+    """Success of each struck table (one candidate shot each): first contact
+    with its ``target`` ball, that ball pocketed, the cue ball not."""
+    res = simulate(struck, table, params, effects=effects, models=models, validate=False)
+    before = struck.pocket >= 0
+    after = res.state.pocket >= 0
+    newly = after & ~before
+    legal_first = res.first_contact == target
+    cue_safe = ~after[:, 0]
+    potted_target = newly[np.arange(len(target)), target]
+    return legal_first & cue_safe & potted_target
+
+
+def to_action(env, shots: Shots) -> np.ndarray:
+    """The env's actions (float32 [N, 4]) for ``shots``."""
+    return np.clip(np.asarray(env.shots_to_actions(shots), dtype=np.float32), -1.0, 1.0)
+
+
+class SearchPolicy:
+    """Try ``k`` candidate shots per table in the batched simulator; play the best.
+
+    Candidates (per table): the ghost-ball shot of every pocket at the
+    nominal speed, then random perturbations of them: aim jitter
+    N(0, ``aim_jitter_deg``), speed x log-uniform [0.6, 2.2], side a and
+    height b uniform in a disc of radius 0.35 R. Score: success (first
+    contact with the legal ball, an object ball pocketed, cue ball not
+    pocketed) + a small bonus for shots close to the nominal ghost-ball shot
+    (they are more robust to execution noise).
+    """
+
+    name = "search"
+
+    def __init__(self, env, k: int = 256, seed: int = 0, aim_jitter_deg: float = 1.5, chunk: int = 65536,
+                 map_chunks=None):
+        self.env = task_env(env)
+        self.k = int(k)
+        self.rng = np.random.default_rng(seed)
+        self.aim_jitter = math.radians(aim_jitter_deg)
+        self.chunk = chunk
+        # map_chunks(fn, list of argument tuples) -> list of results, in order;
+        # the default runs them here, agents.ray_eval on Ray workers
+        self.map_chunks = map_chunks or (lambda fn, args: [fn(*a) for a in args])
+        self.name = f"search{self.k}"
+
+    @classmethod
+    def for_table(cls, table, params, min_draw: float, k: int, seed: int = 0) -> "SearchPolicy":
+        """Candidates only (``candidates``), on ``table`` with ``params``, no
+        env: what the two-player ``SearchBot`` draws its pots from."""
+        self = cls.__new__(cls)
+        self.env = _Equipment(table, params, _Draw(min_draw))
+        self.k, self.rng = int(k), np.random.default_rng(seed)
+        self.aim_jitter = math.radians(1.5)
+        self.name = f"search{self.k}"
+        return self
+
+    def candidates(self, state: BallState, target: np.ndarray):
+        env = self.env
+        table, params = env.table, env.params
+        E, K = state.n_envs, self.k
+        sh = G.ghost_shots(state.pos, state.on_table, target, table, params, 0.0)
+        P = sh["phi"].shape[1]
+        # pockets ranked by the ghost-ball cost; candidates favour the easy ones
+        cost = sh["cut"] + 0.5 * (sh["d_cg"] + sh["d_op"])
+        cost = np.where(sh["valid"], cost, np.inf)
+        order = np.argsort(cost, axis=1)                       # [E, P]
+        n_valid = np.maximum(np.isfinite(cost).sum(axis=1), 1)
+        # pocket rank for each candidate: first P candidates cover every pocket
+        # once (nominal shot), the rest sample ranks with weights 1/(rank+1)
+        ranks = np.empty((E, K), dtype=np.int64)
+        ranks[:, :min(P, K)] = np.arange(min(P, K))[None]
+        if K > P:
+            w = 1.0 / (np.arange(P) + 1.0)
+            u = self.rng.random((E, K - P))
+            # restrict to the valid pockets of each table
+            wv = np.where(np.arange(P)[None] < n_valid[:, None], w[None], 0.0)
+            cdf = np.cumsum(wv, axis=1) / wv.sum(axis=1, keepdims=True)
+            ranks[:, P:] = (u[..., None] > cdf[:, None, :]).sum(axis=2)
+        ranks = np.minimum(ranks, P - 1)
+        pk = np.take_along_axis(order, ranks, axis=1)          # [E, K]
+        take = lambda a: np.take_along_axis(a, pk, axis=1)     # noqa: E731
+        phi0, cut, d_cg, d_op = take(sh["phi"]), take(sh["cut"]), take(sh["d_cg"]), take(sh["d_op"])
+        v0 = G.required_speed(d_cg, d_op, cut, params, b=0.0, margin=1.0)
+        nominal = np.zeros((E, K), dtype=bool)
+        nominal[:, :min(P, K)] = True
+        dphi = np.where(nominal, 0.0, self.rng.normal(0.0, self.aim_jitter, (E, K)))
+        smul = np.where(nominal, 1.0, np.exp(self.rng.uniform(math.log(0.6), math.log(2.2), (E, K))))
+        r = 0.35 * np.sqrt(self.rng.random((E, K)))
+        th = self.rng.uniform(0, 2 * math.pi, (E, K))
+        a = np.where(nominal, 0.0, r * np.cos(th))
+        b = np.where(nominal, 0.0, r * np.sin(th))
+        speed = np.clip(v0 * smul, 0.05, params.max_speed)
+        # keep speeds the env can express (its draw range)
+        lo = getattr(getattr(env, "config", None), "min_draw", 0.0)
+        speed = np.maximum(speed, draw_to_speed(lo, params))
+        closeness = np.abs(dphi) / self.aim_jitter + np.abs(np.log(smul)) + (a ** 2 + b ** 2)
+        return phi0 + dphi, speed, a, b, closeness
+
+    def evaluate(self, state: BallState, target: np.ndarray, phi, speed, a, b) -> np.ndarray:
+        """Success [E, K] of each candidate, simulated on K copies of each table."""
+        env = self.env
+        E, K = phi.shape
+        rep = np.repeat(np.arange(E), K)
+        big = state.take(rep)
+        struck = strike_velocity(big, phi.ravel(), speed.ravel(), a.ravel(), b.ravel(), env.params)
+        effects, models = getattr(env, "effects", None), getattr(env, "models", None)
+        args = []
+        for s0 in range(0, E * K, self.chunk):
+            sl = slice(s0, min(E * K, s0 + self.chunk))
+            sub = BallState(struck.pos[sl], struck.vel[sl], struck.omega[sl], struck.pocket[sl])
+            args.append((sub, target[rep[sl]], env.table, env.params, effects, models))
+        return np.concatenate(self.map_chunks(candidate_success, args)).reshape(E, K)
+
+    def shots(self, state: BallState, target: np.ndarray):
+        phi, speed, a, b, closeness = self.candidates(state, target)
+        ok = self.evaluate(state, target, phi, speed, a, b)
+        score = ok.astype(np.float64) * 10.0 - 0.01 * closeness
+        best = np.argmax(score, axis=1)
+        ar = np.arange(state.n_envs)
+        self.last_found = ok.any(axis=1)
+        return Shots(phi[ar, best], speed[ar, best], a[ar, best], b[ar, best])
+
+    def act(self, obs: np.ndarray) -> np.ndarray:
+        env = self.env
+        target = np.asarray(env.legal_target(), dtype=np.int64)
+        return to_action(env, self.shots(env.state, target))

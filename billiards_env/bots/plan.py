@@ -1,0 +1,89 @@
+"""``ShotPlan``: what a bot returns for a batch of tables, one row per table.
+
+Every field is an array over the view's rows (n):
+
+=============  ===========================================================
+``phi``        aim: the cue ball's direction (rad, from +x, counter-clockwise)
+``speed``      the cue ball's speed just after the strike (m/s, 0 .. max_speed)
+``a``, ``b``   the tip's side and height offsets (units of R; inside the
+               miscue disc ``hypot(a, b) < miscue_limit``)
+``placement``  [n, 2] where the cue ball goes with ball in hand (m); NaN
+               rows: leave it where it lies (tables without ball in hand
+               ignore it). An illegal spot is moved to the nearest legal one
+               before the shot and the aim is kept (absolute)
+``declare``    bool: declare a push-out (9-ball, when the view allows it) or,
+               right after the opponent's push-out, pass the shot back
+               (``may_pass``: no shot is played)
+``pocket``     the called pocket (index into ``Table.pockets``; -1: none), used
+               where the view says a call is needed (8-ball, on the 8)
+=============  ===========================================================
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from ..physics.strike import Shots
+
+
+@dataclasses.dataclass(eq=False)
+class ShotPlan:
+    phi: np.ndarray
+    speed: np.ndarray
+    a: np.ndarray
+    b: np.ndarray
+    placement: np.ndarray
+    declare: np.ndarray
+    pocket: np.ndarray
+
+    @classmethod
+    def of(cls, shots: Shots, placement=None, declare=None, pocket=None) -> "ShotPlan":
+        """A plan from ``Shots`` (arrays or scalars broadcast to the batch)
+        and optional placements, declarations and called pockets."""
+        given = [len(np.atleast_1d(v)) for v in (placement, declare, pocket) if v is not None]
+        n = max([np.size(v) for v in (shots.phi, shots.speed, shots.a, shots.b)] + given)
+        vec = [np.broadcast_to(np.asarray(v, dtype=np.float64), (n,)).copy() for v in shots]
+        place = np.full((n, 2), np.nan) if placement is None else np.asarray(placement, dtype=np.float64)
+        decl = np.zeros(n, dtype=bool) if declare is None else np.asarray(declare, dtype=bool)
+        pk = np.full(n, -1, dtype=np.int64) if pocket is None else np.asarray(pocket, dtype=np.int64)
+        return cls(*vec, place, decl, pk)
+
+    @property
+    def n(self) -> int:
+        return len(self.phi)
+
+    @property
+    def shots(self) -> Shots:
+        return Shots(self.phi, self.speed, self.a, self.b)
+
+    def take(self, rows) -> "ShotPlan":
+        return ShotPlan(*(getattr(self, f.name)[rows] for f in dataclasses.fields(self)))
+
+    def check(self, n: int, params) -> None:
+        """Raise a ValueError naming the first problem: a field of the wrong
+        shape, a NaN or infinite shot, a speed out of range, offsets outside
+        the miscue disc, a bad pocket index."""
+        for f in ("phi", "speed", "a", "b", "declare", "pocket"):
+            if np.shape(getattr(self, f)) != (n,):
+                raise ValueError(f"ShotPlan.{f} must have shape ({n},), got {np.shape(getattr(self, f))}")
+        if np.shape(self.placement) != (n, 2):
+            raise ValueError(f"ShotPlan.placement must have shape ({n}, 2), got {np.shape(self.placement)}")
+        for f in ("phi", "speed", "a", "b"):
+            v = getattr(self, f)
+            if not np.all(np.isfinite(v)):
+                raise ValueError(f"ShotPlan.{f} has NaN or infinite values (first at row {int(np.argmin(np.isfinite(v)))})")
+        bad = (self.speed < 0) | (self.speed > params.max_speed)
+        if bad.any():
+            r = int(np.argmax(bad))
+            raise ValueError(f"ShotPlan.speed must lie in [0, {params.max_speed}] m/s, got {self.speed[r]} at row {r}")
+        off = np.hypot(self.a, self.b) >= params.miscue_limit
+        if off.any():
+            r = int(np.argmax(off))
+            raise ValueError(f"ShotPlan tip offset (a, b) = ({self.a[r]}, {self.b[r]}) at row {r} is outside the "
+                             f"miscue disc (radius {params.miscue_limit} R)")
+        if ((self.pocket < -1) | (self.pocket > 5)).any():
+            raise ValueError(f"ShotPlan.pocket must be -1 (none) or a pocket index 0..5, got {self.pocket}")
+        p = self.placement[~np.isnan(self.placement[:, 0])]
+        if not np.all(np.isfinite(p)):
+            raise ValueError("ShotPlan.placement rows must be finite (or NaN in both coordinates)")

@@ -1,0 +1,89 @@
+"""``preview``: try candidate shots in the simulator and judge them by the
+rules, the one way every bot looks ahead.
+
+``preview(view, plan, rows)`` strikes ``plan`` row k on a copy of the table
+of view row ``rows[k]`` (the cue ball at ``plan.placement[k]`` where that is
+given, else where it lies), optionally with execution noise, simulates
+every copy to rest in batched calls of at most ``PREVIEW_CHUNK`` tables
+(memory stays bounded however many candidates a bot tries), and judges each
+shot with the game's rules from the row's game state, the plan's called
+pocket included. Push-outs and passes are not previewed (a plan's
+``declare`` is ignored).
+
+Noise: ``None`` strikes exactly as planned; ``"env"`` applies the env's own
+noise (``view.noise`` times ``view.noise_scale``); a ``NoiseConfig`` (or a
+preset name) applies that. Noise needs ``rng`` (a ``numpy.random.Generator``):
+four standard normals per shot, in ``physics.noise.perturb``'s order.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from ..physics import BallState, simulate, strike_velocity
+from ..physics.noise import NoiseConfig, perturb
+from ..rules import Constraints, ShotInput, ShotRecord
+
+PREVIEW_CHUNK = 16384  # tables per simulator call (an 8-ball chunk's contact buffers stay under ~35 MB)
+
+
+@dataclasses.dataclass(eq=False)
+class Preview:
+    """The outcome of previewed shots, one row per shot: ``record`` (the
+    rules' ``ShotRecord``: legal, foul, turn over, winner, ...), ``pos`` [k,
+    B, 2] and ``pocket`` [k, B] after the shot, ``first_contact`` [k] and
+    ``next`` (the next shooter's ``Constraints``)."""
+
+    record: ShotRecord
+    pos: np.ndarray
+    pocket: np.ndarray
+    first_contact: np.ndarray
+    next: Constraints
+
+    @property
+    def on_table(self) -> np.ndarray:
+        return self.pocket < 0
+
+
+def _noise_of(view, spec, rows):
+    if spec is None:
+        return None, None
+    if isinstance(spec, str) and spec == "env":
+        return view.noise, view.noise_scale[rows]
+    return NoiseConfig.from_any(spec), None
+
+
+def preview(view, plan, rows=None, noise=None, rng=None, chunk: int = PREVIEW_CHUNK) -> Preview:
+    """See the module docstring."""
+    rows = np.arange(view.n) if rows is None else np.asarray(rows, dtype=np.int64)
+    k, B = len(rows), view.n_balls
+    if plan.n != k:
+        raise ValueError(f"preview: the plan has {plan.n} rows, rows selects {k} tables")
+    start = BallState(view.pos[rows].copy(), np.zeros((k, B, 2)), np.zeros((k, B, 3)), view.pocket[rows].copy())
+    place = ~np.isnan(plan.placement[:, 0])
+    start.pos[place, 0] = plan.placement[place]
+    start.pocket[:, 0] = -1
+    shots = plan.shots
+    cfg, scale = _noise_of(view, noise, rows)
+    if cfg is not None and cfg.enabled:
+        if rng is None:
+            raise ValueError("preview with noise needs rng (a numpy.random.Generator)")
+        z = rng.normal(size=(k, 4))
+        if scale is not None:
+            z *= scale[:, None]
+        shots = perturb(shots, z, cfg, view.params)
+    struck = strike_velocity(start, *shots, view.params)
+    pos, pocket = np.empty((k, B, 2)), np.empty((k, B), dtype=np.int64)
+    first = np.empty(k, dtype=np.int64)
+    rails, object_rails = np.empty((k, B), dtype=np.int64), np.empty((k, B), dtype=np.int64)
+    for s0 in range(0, k, chunk):
+        sl = slice(s0, min(k, s0 + chunk))
+        sub = BallState(struck.pos[sl], struck.vel[sl], struck.omega[sl], struck.pocket[sl])
+        res = simulate(sub, view.table, view.params, effects=view.effects, models=view.models, validate=False)
+        pos[sl], pocket[sl], first[sl] = res.state.pos, res.state.pocket, res.first_contact
+        rails[sl], object_rails[sl] = res.cushion_hits_after_contact, res.cushion_hits
+    called = np.where(view.call_needed[rows], plan.pocket, -1)
+    shot = ShotInput(start.pocket, pocket, first, rails, object_rails, called_pocket=called)
+    rec, after = view.rules.judge(view.state.take(rows), shot)
+    return Preview(rec, pos, pocket, first, view.rules.constraints(after, pocket))

@@ -1,0 +1,59 @@
+"""Bots by name: what the envs' ``opponent=``, ``scripts/match.py`` and the
+games benchmark accept.
+
+- ``random``, ``ghost``, ``ghost-safety``, ``search<K>`` (K candidates per
+  pot, default 64): the built-in bots;
+- ``module:factory`` (for example ``my_bots:planner``): a bot of your own;
+  ``factory(seed=...)`` must return an object with ``name`` and
+  ``act(view: GameView) -> ShotPlan`` (docs/bots.md);
+- a bot object (anything with ``act``) is used as it is.
+"""
+from __future__ import annotations
+
+import importlib
+
+BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "<module>:<factory>")
+DEFAULT_SEARCH_K = 64
+
+
+def is_bot_name(name) -> bool:
+    """Whether ``name`` names a built-in bot or a ``module:factory``."""
+    return isinstance(name, str) and (name in ("random", "ghost", "ghost-safety") or ":" in name
+                                      or (name.startswith("search") and (name[6:].isdigit() or name == "search")))
+
+
+def make_bot(spec, seed: int = 0):
+    """The bot of ``spec`` (see the module docstring), seeded with ``seed``."""
+    if hasattr(spec, "act"):
+        return spec
+    if not isinstance(spec, str):
+        raise TypeError(f"a bot is a name, a 'module:factory' string or an object with act(view); got {spec!r}")
+    if spec == "random":
+        from .random_bot import RandomBot
+        return RandomBot(seed=seed)
+    if spec in ("ghost", "ghost-safety"):
+        from .ghost import GhostBot
+        return GhostBot(seed=seed, safety=spec == "ghost-safety")
+    if spec.startswith("search") and (spec[6:].isdigit() or spec == "search"):
+        from .search import SearchBot
+        return SearchBot(seed=seed, k=int(spec[6:]) if spec[6:] else DEFAULT_SEARCH_K)
+    if ":" in spec:
+        return _user_bot(spec, seed)
+    raise ValueError(f"unknown bot {spec!r}; choose one of {BOT_NAMES}")
+
+
+def _user_bot(spec: str, seed: int):
+    mod_name, _, attr = spec.partition(":")
+    try:
+        mod = importlib.import_module(mod_name)
+    except ImportError as exc:
+        raise ValueError(f"bot {spec!r}: cannot import module {mod_name!r} ({exc}); is it on PYTHONPATH?") from exc
+    factory = getattr(mod, attr, None)
+    if factory is None:
+        raise ValueError(f"bot {spec!r}: module {mod_name!r} has no attribute {attr!r}")
+    bot = factory(seed=seed)
+    if not hasattr(bot, "act"):
+        raise TypeError(f"bot {spec!r}: {attr}(seed=...) returned {type(bot).__name__}, which has no act(view)")
+    if not getattr(bot, "name", None):
+        bot.name = spec
+    return bot

@@ -1,0 +1,177 @@
+"""``GameView``: what a bot of the two-player games is handed, a read-only
+picture of a batch of tables (one row per table where the bot is to move).
+
+A bot never touches an env: the env (or the match harness) builds a view of
+the tables where the bot's player is to move, the bot returns a
+``ShotPlan`` with one row per view row, and the env plays it. Everything a
+bot needs is on the view:
+
+- the balls: ``pos`` [n, B, 2] (m, float64; ball 0 the cue ball, a ball in a
+  pocket keeps its last position), ``pocket`` [n, B] (the pocket each ball
+  fell in, -1 on the table) and ``on_table`` [n, B];
+- the game: ``to_move`` (player 0 or 1), ``groups`` [n, 2] (8-ball:
+  ``rules.GROUP_*`` of each player), ``fouls`` [n, 2] (consecutive fouls of
+  each player), ``shots`` (taken in the game);
+- the shooter's constraints: ``ball_in_hand`` (``rules.IN_HAND_*``),
+  ``targets`` [n, B] (the balls the cue ball may legally hit first),
+  ``push_out_allowed``, ``may_pass``, ``call_needed``, ``is_break``;
+- the equipment and physics: ``table`` (``physics.Table``: ``width`` across,
+  x; ``length`` along, y, from the head rail at y = 0; ``pockets``),
+  ``params`` (``physics.PhysicsParams``), ``effects``, ``models``, and
+  ``marks`` (the head string, the head and foot spots);
+- the execution noise the env applies to every shot: ``noise``
+  (``physics.noise.NoiseConfig``) times ``noise_scale`` [n] (the per-game
+  factor of ``variable`` noise; 1 otherwise);
+- helpers: ``legal_placement`` (the ball-in-hand test), ``preview`` (try
+  candidate shots in the simulator and judge them by the rules: see
+  ``bots.preview``), ``take`` (a view of some rows) and ``observation`` (the
+  env's float32 observation rows, for learned bots).
+
+All arrays are read-only; copy one to change it.
+"""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+
+from ..physics import Effects, Models, PhysicsParams, Table
+from ..physics.noise import NoiseConfig
+from ..rules import records as R
+from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP, place_cue
+
+
+@dataclasses.dataclass(frozen=True)
+class TableMarks:
+    """The marks the rules name, in table coordinates (m): the head string
+    ``y = head_string``, the ``head_spot`` (where the break's cue ball
+    starts) and the ``foot_spot`` (the rack's apex; where balls are
+    respotted); ``kitchen_y_max``: the largest y of a cue ball placed behind
+    the head string."""
+
+    head_string: float
+    head_spot: tuple
+    foot_spot: tuple
+    kitchen_y_max: float
+
+    @classmethod
+    def of(cls, table: Table) -> "TableMarks":
+        y = HEAD_STRING * table.length
+        return cls(y, (table.width / 2, y), (table.width / 2, FOOT_SPOT * table.length), y - KITCHEN_GAP)
+
+
+def _frozen(a) -> np.ndarray:
+    a = np.array(a)
+    a.flags.writeable = False
+    return a
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class GameView:
+    game: str
+    rows: np.ndarray              # [n] the env's table numbers of the rows (for a bot's own bookkeeping)
+    pos: np.ndarray               # [n, B, 2]
+    pocket: np.ndarray            # [n, B] the pocket each ball fell in (-1: on the table)
+    to_move: np.ndarray           # [n]
+    ball_in_hand: np.ndarray      # [n]
+    targets: np.ndarray           # [n, B]
+    push_out_allowed: np.ndarray  # [n]
+    may_pass: np.ndarray          # [n]
+    call_needed: np.ndarray       # [n]
+    is_break: np.ndarray          # [n]
+    groups: np.ndarray            # [n, 2]
+    fouls: np.ndarray             # [n, 2]
+    shots: np.ndarray             # [n]
+    table: Table
+    params: PhysicsParams
+    effects: Effects
+    models: Models
+    noise: NoiseConfig
+    noise_scale: np.ndarray       # [n]
+    min_draw: float               # m: the shortest cue draw the env plays (its slowest shot)
+    rules: object                 # the ruleset (``rules.get_rules(game)``): ``preview`` judges with it
+    state: R.GameState            # the rows' game states (``preview`` judges from them)
+    _observe: object = None       # () -> float32 observation rows, or None
+    _core: object = None          # the env's core: only for the repository's learned-agent adapters (agents/),
+                                  # which predate this API; a bot must not use it
+
+    @classmethod
+    def build(cls, **fields) -> "GameView":
+        """A view from arrays (copied and made read-only)."""
+        arrays = {k: _frozen(v) for k, v in fields.items() if isinstance(v, np.ndarray)}
+        return cls(**{**fields, **arrays})
+
+    # --- sizes and marks ----------------------------------------------------
+    @property
+    def n(self) -> int:
+        return len(self.rows)
+
+    @property
+    def n_balls(self) -> int:
+        return self.pos.shape[1]
+
+    @property
+    def marks(self) -> TableMarks:
+        return TableMarks.of(self.table)
+
+    @property
+    def pockets(self) -> np.ndarray:
+        """Pocket centres and capture radii [P, 3] (x, y, r), in ``Table.pockets`` order."""
+        return np.ascontiguousarray(self.table.geometry(True)[3], dtype=np.float64)
+
+    @property
+    def on_table(self) -> np.ndarray:
+        """[n, B] bool: the ball is on the table."""
+        return self.pocket < 0
+
+    @property
+    def in_hand(self) -> np.ndarray:
+        """[n] bool: the shooter places the cue ball (anywhere or behind the head string)."""
+        return self.ball_in_hand != R.IN_HAND_NONE
+
+    def nominal_target(self) -> np.ndarray:
+        """[n] the lowest-numbered legal target (-1 none)."""
+        t = self.targets
+        return np.where(t.any(axis=1), np.argmax(t, axis=1), -1).astype(np.int64)
+
+    # --- helpers --------------------------------------------------------------
+    def legal_placement(self, xy, rows=None) -> tuple[np.ndarray, np.ndarray]:
+        """The legal cue-ball spots nearest to ``xy`` [k, 2] on view rows
+        ``rows`` (default: all) under their ball-in-hand constraint
+        (behind the head string when ``ball_in_hand`` is ``IN_HAND_KITCHEN``;
+        clear of the cushions, every ball and every pocket): (spots [k, 2],
+        moved [k]). A spot that is already legal is returned unchanged."""
+        rows = np.arange(self.n) if rows is None else np.asarray(rows, dtype=np.int64)
+        xy = np.ascontiguousarray(np.asarray(xy, dtype=np.float64).reshape(len(rows), 2))
+        kitchen = np.ascontiguousarray(self.ball_in_hand[rows] == R.IN_HAND_KITCHEN)
+        out, moved = np.empty((len(rows), 2)), np.zeros(len(rows), dtype=bool)
+        ok = place_cue(xy, np.ascontiguousarray(self.pos[rows]), np.ascontiguousarray(self.pocket[rows]), kitchen, self.table.width,
+                       self.table.length, self.params.R, self.pockets, out, moved)
+        if not ok:
+            raise RuntimeError("no free spot for the cue ball")
+        return out, moved
+
+    def preview(self, plan, rows=None, noise=None, rng=None):
+        """Play ``plan`` (one row per entry of ``rows``, default one per view
+        row) on copies of the rows' tables and judge each by the rules:
+        ``bots.preview.Preview``. See ``bots.preview.preview``."""
+        from .preview import preview
+        return preview(self, plan, rows, noise, rng)
+
+    def take(self, rows) -> "GameView":
+        """A view of some of this view's rows."""
+        rows = np.asarray(rows, dtype=np.int64)
+        sub = {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+        for k, v in sub.items():
+            if isinstance(v, np.ndarray):
+                sub[k] = _frozen(v[rows])
+        sub["state"] = self.state.take(rows)
+        obs = self._observe
+        sub["_observe"] = None if obs is None else (lambda: obs()[rows])
+        return GameView(**sub)
+
+    def observation(self) -> np.ndarray:
+        """The env's observation rows [n, obs_dim] (float32; ``envs.games``' layout)."""
+        if self._observe is None:
+            raise RuntimeError("this view was built without the env's observation")
+        return self._observe()

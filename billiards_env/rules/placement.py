@@ -1,0 +1,68 @@
+"""Where the cue ball may be placed with ball in hand, and the table's marks
+the rules name (WPA World Standardized Rules, 8.1 and 8.2: the head string,
+the foot spot; "behind the head string" is the kitchen).
+
+Coordinates: x across the table (0 .. width), y along it from the head rail
+(y = 0) to the foot rail (y = length); the head string is the line
+y = HEAD_STRING * length, the foot spot (width / 2, FOOT_SPOT * length).
+A legal spot keeps the cue ball's centre R + SPOT_EDGE inside the cushions,
+clear of every ball by SPOT_CLEAR beyond 2R and outside every pocket's
+capture circle (``physics.state.spot_free``), and, in the kitchen, behind
+the head string by KITCHEN_GAP.
+"""
+from __future__ import annotations
+
+import math
+
+import numba
+
+from ..physics.state import SPOT_CLEAR, SPOT_EDGE, spot_free
+
+HEAD_STRING = 0.25   # the head string's distance from the head rail, as a fraction of the table's length
+FOOT_SPOT = 0.75     # the foot spot's, likewise
+KITCHEN_GAP = 1e-6   # m: a cue ball placed behind the head string keeps its centre this far behind the line
+PLACE_RINGS = 400    # rings of the nearest-legal-spot search (radius step R/4: covers any table)
+
+_jit = numba.njit(cache=True, nogil=True)
+
+
+@_jit
+def _legal_spot(x, y, pos, on, width, y_hi, R, pockets):
+    """The nearest point to (x, y) where a cue ball may be placed: clamped into
+    the allowed rectangle (centre R + SPOT_EDGE inside the cushions, y at most
+    ``y_hi``), then, if it overlaps a ball or a pocket, the first free point
+    of rings of radius k R / 4 (k = 1, 2, ...; 8 k points each, nearest ring
+    first). Returns (x, y, found)."""
+    edge = R + SPOT_EDGE
+    md = 2 * R + SPOT_CLEAR
+    x = min(max(x, edge), width - edge)
+    y = min(max(y, edge), y_hi)
+    if spot_free(x, y, pos, on, width, y_hi + edge, edge, pockets, md):
+        return x, y, True
+    for k in range(1, PLACE_RINGS):
+        r = 0.25 * R * k
+        m = 8 * k
+        for j in range(m):
+            a = 2.0 * math.pi * j / m
+            cx, cy = x + r * math.cos(a), y + r * math.sin(a)
+            if cy <= y_hi and spot_free(cx, cy, pos, on, width, y_hi + edge, edge, pockets, md):
+                return cx, cy, True
+    return x, y, False
+
+
+@_jit
+def place_cue(want, pos, pocket, kitchen, width, length, R, pockets, out, moved):
+    """Per table: the cue ball (ball 0) placed at the legal spot nearest to
+    ``want`` [n, 2]; ``kitchen[e]`` limits it to behind the head string.
+    Writes ``out`` [n, 2] and ``moved`` [n] (the spot differs from ``want``);
+    returns False if some table has no free spot."""
+    ok = True
+    for e in range(want.shape[0]):
+        on = pocket[e] < 0
+        on[0] = False  # the cue ball is in hand
+        y_hi = HEAD_STRING * length - KITCHEN_GAP if kitchen[e] else length - R - SPOT_EDGE
+        x, y, found = _legal_spot(want[e, 0], want[e, 1], pos[e], on, width, y_hi, R, pockets)
+        ok &= found
+        out[e, 0], out[e, 1] = x, y
+        moved[e] = x != want[e, 0] or y != want[e, 1]
+    return ok
