@@ -10,7 +10,6 @@ scratched), foul (any foul), balls pocketed, shots.
 from __future__ import annotations
 
 import json
-import math
 import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path

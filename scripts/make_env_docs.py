@@ -90,7 +90,7 @@ def render() -> str:
              "", "| id | task | classes | config |", "|---|---|---|---|"]
     for t in builtin:
         rel = t.default_config_path.relative_to(ROOT)
-        parts.append(f"| [`{t.env_id}`](#{t.env_id.lower().replace('-', '')}) | `{t.name}` | "
+        parts.append(f"| [`{t.env_id}`](#{t.env_id.lower()}) | `{t.name}` | "
                      f"`{t.class_prefix}Env`, `{t.class_prefix}VectorEnv` | `{rel}` |")
     for t in builtin:
         parts += ["", f"## {t.env_id}", "", _md(t.__doc__), "",

@@ -28,6 +28,7 @@ import numpy as np
 
 from ..envs.target_frame import CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG
 from ..envs.tasks.nine_ball import break_shots
+from ..physics.noise import perturb
 from ..physics.strike import Shots
 from ..rules import records as R
 from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP
@@ -117,22 +118,18 @@ class GhostBot:
     def eight_ball_shot(self, view, rows, pos, shots: Shots, pocket):
         """The pot on the 8 played as the variant (speed x ``EIGHT_SPEEDS``,
         height ``EIGHT_HEIGHTS``) that wins most often over ``EIGHT_DRAWS``
-        executions with the table's shot noise (the first one without); if
-        none wins, a soft hit (``SOFT_SPEED``)."""
+        executions with the env's shot noise (``physics.noise.perturb``, the
+        first execution without); if none wins, a soft hit (``SOFT_SPEED``)."""
         phi, speed = shots.phi, shots.speed
         n = len(rows)
         V = len(EIGHT_SPEEDS) * len(EIGHT_HEIGHTS)
         sf, hb = (np.array(v, dtype=np.float64).ravel() for v in np.meshgrid(EIGHT_SPEEDS, EIGHT_HEIGHTS))
         rep = np.repeat(np.arange(n), V * EIGHT_DRAWS)
         var = np.tile(np.repeat(np.arange(V), EIGHT_DRAWS), n)
-        ph, sp, bb = phi[rep], np.minimum(speed[rep] * sf[var], view.params.max_speed), hb[var]
-        nz, R_ = view.noise, view.params.R
+        planned = Shots(phi[rep], np.minimum(speed[rep] * sf[var], view.params.max_speed), 0.0, hb[var])
         scale = view.noise_scale[rows][rep] * (np.tile(np.arange(EIGHT_DRAWS), n * V) > 0)
-        z = self.rng.normal(size=(len(rep), 3)) * scale[:, None]
-        ph = ph + z[:, 0] * math.radians(nz.aim_deg)
-        sp = np.clip(sp + z[:, 1] * nz.speed, 0.05, view.params.max_speed)
-        bb = bb + z[:, 2] * nz.height_mm * 1e-3 / R_
-        rec = self.judge(view, rows, pos, Shots(ph, sp, np.zeros(len(rep)), bb), pocket, rep)
+        z = self.rng.normal(size=(len(rep), 4)) * scale[:, None]
+        rec = self.judge(view, rows, pos, perturb(planned, z, view.noise, view.params), pocket, rep)
         wins = (rec.winner == rec.shooter).reshape(n, V, EIGHT_DRAWS)
         score = wins.sum(axis=2) + 0.5 * wins[:, :, 0]
         k = np.argmax(score, axis=1)

@@ -28,14 +28,13 @@ n_noise_next`` simulated shots per table (P pockets).
 """
 from __future__ import annotations
 
-import math
 
 import numpy as np
 
 from ..envs.tasks.base import ShotOutcome
 from ..envs.tasks.registry import get_task
 from ..physics import BallState, simulate, strike_velocity
-from ..physics.noise import NoiseConfig
+from ..physics.noise import NoiseConfig, perturb
 from ..physics.strike import Shots
 from . import geometry as G
 from .one_player import SearchPolicy, task_env, to_action
@@ -46,20 +45,6 @@ _FALLBACK_WEIGHT = 1e-3
 # the value of a pot that leaves no next shot, relative to a leave that
 # always gives one: small, so any leave with a shot wins, but above a failure
 _LEAVELESS = 0.01
-
-
-def _perturb(phi, speed, a, b, z: np.ndarray, noise: NoiseConfig, params):
-    """Shots with Gaussian execution noise from standard normals ``z`` [n, 4]
-    (the env's noise model: aim in degrees, speed in m/s, offsets in mm,
-    offsets kept inside the miscue limit)."""
-    R = params.R
-    phi = phi + z[:, 0] * math.radians(noise.aim_deg)
-    speed = np.clip(speed + z[:, 1] * noise.speed, 0.0, params.max_speed)
-    a = a + z[:, 2] * noise.side_mm * 1e-3 / R
-    b = b + z[:, 3] * noise.height_mm * 1e-3 / R
-    r = np.hypot(a, b)
-    scale = np.where(r > params.miscue_limit, params.miscue_limit / np.maximum(r, 1e-300), 1.0)
-    return phi, speed, a * scale, b * scale
 
 
 class LookaheadPolicy:
@@ -114,7 +99,7 @@ class LookaheadPolicy:
         n = start.n_envs
         rep = np.tile(np.arange(n), n_samples)
         z = self.rng.standard_normal((n * n_samples, 4))
-        shots = _perturb(phi[rep], speed[rep], a[rep], b[rep], z, self.noise, self.env.params)
+        shots = perturb(Shots.of_arrays(phi[rep], speed[rep], a[rep], b[rep]), z, self.noise, self.env.params)
         _, cls = self.play(start.take(rep), *shots)
         return (cls >= 0).reshape(n_samples, n).mean(axis=0)
 

@@ -44,7 +44,8 @@ from ...rules import records as R
 from ..config import NoiseConfig, _number
 from ..core import BilliardsCore, ShotContext, _context, _observe
 from ..streams import TableStreams
-from .setup import FOOT_SPOT, HEAD_STRING, place_cue, rack, respot
+from ...rules.placement import FOOT_SPOT, HEAD_STRING, place_cue
+from .setup import rack, respot
 
 ACTION_DIM = 8
 N_POCKETS = 6

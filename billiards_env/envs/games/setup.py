@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...physics.state import _triangle, free_spot
-from ...rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP, place_cue  # noqa: F401 (re-exported)
+from ...rules.placement import FOOT_SPOT
 from ..tasks.nine_ball import nine_ball_rack
 
 
