@@ -59,7 +59,7 @@ def search_policy_fn(spec: str, seed: int, search_k: int, tables: int) -> Callab
     """``policy_fn`` of the search baseline ``spec`` (``search`` or
     ``search<K>``) whose candidate chunks run as Ray tasks: about two chunks
     per cluster CPU for ``tables`` tables."""
-    from .baselines import SearchPolicy
+    from .baselines import SearchPolicy, native_env
 
     k = int(spec[6:]) if spec[6:] else search_k
     chunk = max(1, math.ceil(tables * k / (2 * cluster_cpus())))

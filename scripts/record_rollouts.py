@@ -8,7 +8,7 @@ For each env id, each autoreset mode (next_step, same_step) and each policy
 (uniform random actions, the ghost-ball baseline) a vector env of ``--tables``
 tables is reset with a fixed seed and stepped ``--steps`` times; every
 observation, reward, termination flag and info array is stored. Only the
-public Gymnasium API and ``agents.baselines.GhostBallPolicy`` are used, so the
+public Gymnasium API and the ghost-ball baseline (``billiards_env.bots.one_player``; ``agents.baselines`` in older trees) are used, so the
 same file runs against an older tree (``PYTHONPATH=<tree>``) and ``compare``
 shows whether two trees behave bit-identically.
 """
@@ -36,7 +36,10 @@ def record(path: str, steps: int, tables: int) -> None:
     import gymnasium as gym
 
     import billiards_env  # noqa: F401  (registers the ids)
-    from agents.baselines import GhostBallPolicy
+    try:
+        from billiards_env.bots.one_player import GhostBallPolicy
+    except ImportError:  # an older tree (PYTHONPATH=<tree>): the baselines lived in agents/
+        from agents.baselines import GhostBallPolicy
 
     arrays = {}
     for env_id in ENV_IDS:

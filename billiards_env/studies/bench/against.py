@@ -39,11 +39,7 @@ class Comparison:
 def worker_command(tree: Path, opts: RunOptions, section: str, json_path: Path, warm: bool = False) -> list[str]:
     """The command running ``section`` in ``tree``'s own benchmark script
     (``warm``: the smallest run, which only compiles or loads the kernels)."""
-    script = tree / "scripts" / "benchmark.py"
-    if "--worker" not in script.read_text():
-        raise RuntimeError(f"{script} has no --worker mode (a revision older than --against): "
-                           "it cannot be compared")
-    cmd = [sys.executable, str(script), "--worker", str(json_path), "--only", section,
+    cmd = [sys.executable, str(tree / "scripts" / "benchmark.py"), "--worker", str(json_path), "--only", section,
            "--batch", str(2 if warm else opts.batch), "--repeats", str(1 if warm else opts.repeats)]
     if opts.quick or warm:
         cmd.append("--quick")
@@ -61,7 +57,9 @@ def run_in_tree(tree: Path, opts: RunOptions, section: str, warm: bool = False) 
         out = subprocess.run(worker_command(tree, opts, section, path, warm), cwd=tree, env=env,
                              capture_output=True, text=True)
         if out.returncode != 0:
-            raise RuntimeError(f"benchmark section {section!r} failed in {tree}:\n{out.stderr[-3000:]}")
+            hint = ("\n(its scripts/benchmark.py has no --worker mode: the revision predates --against, "
+                    "4e85f32, and cannot be compared)" if "unrecognized arguments: --worker" in out.stderr else "")
+            raise RuntimeError(f"benchmark section {section!r} failed in {tree}:\n{out.stderr[-3000:]}{hint}")
         return json.loads(path.read_text())
 
 

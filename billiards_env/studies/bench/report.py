@@ -16,8 +16,8 @@ ROW_KEY = ("section", "scene", "solver", "effects", "batch", "autoreset", "note"
 
 
 def _solver_table(rows: list[dict], nt: int) -> list[str]:
-    lines = [f"| scene | solver | events/shot | shots/s, 1 thread | shots/s, {nt} threads | single-table latency (ms) |",
-             "|---|---|---:|---:|---:|---:|"]
+    lines = ["| scene | solver | events/shot | shots/s, 1 thread | "
+             f"shots/s, {nt} threads | single-table latency (ms) |", "|---|---|---:|---:|---:|---:|"]
     for r in rows:
         lines.append(f"| {r['scene']} | {r['solver']} | {r['events_per_shot']:.1f} | {r['shots_per_s_1t']:,.0f} | "
                      f"{r[f'shots_per_s_{nt}t']:,.0f} | {r['latency_ms']:.3f} |")
@@ -60,9 +60,9 @@ def markdown(rows: list[dict]) -> str:
             lines += _effects_table(part[k], nt)
     if part["env"]:
         lines += _env_table(part["env"])
-    if part["rllib"]:  # the RLlib backend's section (agents/rllib_bench.py)
-        from agents.rllib_bench import rllib_markdown
-        lines += rllib_markdown(part["rllib"])
+    if part["rllib"]:  # the RLlib backend's section (agents/rllib_bench.py, plugged in by scripts/benchmark.py)
+        from .sections import PLUGGED
+        lines += PLUGGED["rllib"][1](part["rllib"])
     if part["cold start"]:
         lines += _cold_table(part["cold start"])
     return "\n".join(lines)

@@ -186,11 +186,23 @@ def cold_start_rows(opts: RunOptions | None = None) -> list[dict]:
     return rows
 
 
+# Sections measured by code above the library (the RLlib backend lives in the
+# checkout's agents/): scripts/benchmark.py plugs them in with ``plug_in``.
+PLUGGED: dict = {}
+
+
+def plug_in(name: str, rows, markdown) -> None:
+    """Add a section: ``rows(opts) -> list[dict]`` and ``markdown(rows) -> list[str]``."""
+    PLUGGED[name] = (rows, markdown)
+
+
 def rllib_rows(opts: RunOptions) -> list[dict]:
-    """RLlib vs SB3 vs the bare env (``agents/rllib_bench.py``, from the
-    checkout; needs the ``ray`` extra)."""
-    from agents.rllib_bench import rllib_rows as rows
-    return rows(opts)
+    """RLlib vs SB3 vs the bare env (plugged in by scripts/benchmark.py from
+    ``agents/rllib_bench.py``; needs the ``ray`` extra)."""
+    if "rllib" not in PLUGGED:
+        raise RuntimeError("the rllib section is measured by agents/rllib_bench.py: run it through "
+                           "scripts/benchmark.py --only rllib from a checkout")
+    return PLUGGED["rllib"][0](opts)
 
 
 def games_markdown(opts: RunOptions) -> str:
