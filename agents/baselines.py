@@ -7,13 +7,9 @@ vector env). Geometric policies hold a reference to the native vector env
 angle, cue-ball speed, side a, height b) and map them into the env's action
 space with the env's own inverse mapping, so they work with either aim mode.
 
-- ``RandomPolicy``: uniform actions.
-- ``GhostBallPolicy``: ghost-ball aim at the easiest pocket (agents.geometry)
-  and a speed from the distances.
-- ``SearchPolicy``: K candidate shots per table (ghost-ball aims for every
-  pocket, jittered, at various speeds and spins) simulated in one batched
-  ``billiards_env.physics.simulate`` call on K copies of each table; plays
-  the best. An upper reference (it uses the simulator as a perfect model).
+The baseline bots (random, ghost-ball, search, lookahead) live in the
+library, ``billiards_env.bots``; ``agents.policies.make_policy`` builds them
+by name.
 - ``SB3Policy``: a trained stable-baselines3 model (with its VecNormalize
   observation statistics), deterministic.
 """
@@ -21,8 +17,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from billiards_env.bots.one_player import (GhostBallPolicy, Policy, RandomPolicy, SearchPolicy,  # noqa: F401
-                                           candidate_success, to_action)
 from .features import agent_features, transform_actions
 from .game_view import game_view_of
 from .sb3_vec_env import env_chain

@@ -9,7 +9,9 @@ from billiards_env.bots import make_bot
 from billiards_env.bots.lookahead import LookaheadPolicy
 from billiards_env.envs.games.play import bot_actions
 
-from .baselines import GhostBallPolicy, Policy, RandomPolicy, SB3Policy, SearchPolicy, native_env
+from billiards_env.bots.one_player import BotPolicy, GhostBallPolicy, Policy, RandomPolicy, SearchPolicy
+
+from .baselines import SB3Policy, native_env
 from .game_view import game_view_of
 
 BASELINE_NAMES = ("random", "ghost", "lookahead")  # besides search<K>
@@ -32,14 +34,14 @@ def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
     if name in GAME_ONLY_NAMES:
         raise ValueError(f"{name!r} plays the two-player games only (Billiards-NineBall2P-v0, Billiards-EightBall-v0)")
     if name == "random":
-        return RandomPolicy(env, seed=seed)
+        return RandomPolicy(seed=seed)
     if name == "ghost":
-        return GhostBallPolicy(native_env(env))
+        return BotPolicy(GhostBallPolicy(), native_env(env))
     if name == "lookahead":
-        return LookaheadPolicy(native_env(env), seed=seed)
+        return BotPolicy(LookaheadPolicy(seed=seed), native_env(env))
     if name.startswith("search"):
         kk = int(name[6:]) if name[6:] else k
-        return SearchPolicy(native_env(env), k=kk, seed=seed)
+        return BotPolicy(SearchPolicy(k=kk, seed=seed), native_env(env))
     return SB3Policy.load(name, env=env)
 
 

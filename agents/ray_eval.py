@@ -59,12 +59,14 @@ def search_policy_fn(spec: str, seed: int, search_k: int, tables: int) -> Callab
     """``policy_fn`` of the search baseline ``spec`` (``search`` or
     ``search<K>``) whose candidate chunks run as Ray tasks: about two chunks
     per cluster CPU for ``tables`` tables."""
-    from .baselines import SearchPolicy, native_env
+    from billiards_env.bots.one_player import BotPolicy, SearchPolicy
+
+    from .baselines import native_env
 
     k = int(spec[6:]) if spec[6:] else search_k
     chunk = max(1, math.ceil(tables * k / (2 * cluster_cpus())))
     mapper = RayChunkMap()
-    return lambda env: SearchPolicy(native_env(env), k=k, seed=seed, chunk=chunk, map_chunks=mapper)
+    return lambda env: BotPolicy(SearchPolicy(k=k, seed=seed, chunk=chunk, map_chunks=mapper), native_env(env))
 
 
 def evaluate_ray(policy_fn: Callable, env_id: str, n_episodes: int = 1000, seed: int = 0, noise: str = "none",

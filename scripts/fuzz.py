@@ -1,6 +1,6 @@
 """Long fuzzing run: random racks, shots and presets, checking every
 invariant of billiards_env.testing on every shot; failing shots are saved as
-JSON regression cases (replayed by tests/test_regressions.py).
+JSON regression cases (replayed by tests/physics/test_regressions.py).
 
     python scripts/fuzz.py --shots 1000000 --solver event
     python scripts/fuzz.py --shots 20000 --solver step --dt 1e-3

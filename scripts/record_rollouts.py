@@ -37,9 +37,12 @@ def record(path: str, steps: int, tables: int) -> None:
 
     import billiards_env  # noqa: F401  (registers the ids)
     try:
-        from billiards_env.bots.one_player import GhostBallPolicy
+        from billiards_env.bots.one_player import BotPolicy, GhostBallPolicy
+
+        def ghost_policy(env):
+            return BotPolicy(GhostBallPolicy(), env)
     except ImportError:  # an older tree (PYTHONPATH=<tree>): the baselines lived in agents/
-        from agents.baselines import GhostBallPolicy
+        from agents.baselines import GhostBallPolicy as ghost_policy
 
     arrays = {}
     for env_id in ENV_IDS:
@@ -49,7 +52,7 @@ def record(path: str, steps: int, tables: int) -> None:
                                    autoreset_mode=mode)
                 obs, info = env.reset(seed=1234)
                 rng = np.random.default_rng(99)
-                ghost = GhostBallPolicy(env.unwrapped) if pol == "ghost" else None
+                ghost = ghost_policy(env.unwrapped) if pol == "ghost" else None
                 cols = {"obs": [obs], "reset.legal_target": [np.asarray(info["legal_target"])]}
                 for t in range(steps):
                     if ghost is None:

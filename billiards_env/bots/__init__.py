@@ -16,9 +16,9 @@ The one-player tasks' baselines (``random``, ``ghost``, ``search<K>``,
 ``lookahead``) live in ``bots.one_player`` and ``bots.lookahead``.
 """
 from .plan import ShotPlan
-from .preview import PREVIEW_CHUNK, Preview, preview
+from .preview import Preview, preview
 from .registry import BOT_NAMES, is_bot_name, make_bot
 from .view import GameView, TableMarks
 
-__all__ = ["ShotPlan", "Preview", "preview", "PREVIEW_CHUNK", "BOT_NAMES", "is_bot_name", "make_bot", "GameView",
+__all__ = ["ShotPlan", "Preview", "preview", "BOT_NAMES", "is_bot_name", "make_bot", "GameView",
            "TableMarks"]

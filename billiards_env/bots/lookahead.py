@@ -32,12 +32,12 @@ from __future__ import annotations
 import numpy as np
 
 from ..envs.tasks.base import ShotOutcome
-from ..envs.tasks.registry import get_task
 from ..physics import BallState, simulate, strike_velocity
 from ..physics.noise import NoiseConfig, perturb
 from ..physics.strike import Shots
 from . import geometry as G
-from .one_player import SearchPolicy, task_env, to_action
+from .one_player import SearchPolicy, _at_rest
+from .plan import ShotPlan
 
 # a score this small still beats "no candidate works"; it orders the fallbacks
 # by the search's closeness to the ghost-ball shot
@@ -52,46 +52,38 @@ class LookaheadPolicy:
 
     name = "lookahead"
 
-    def __init__(self, env, k: int = 48, m: int = 6, n_noise: int = 6, n_noise_next: int = 6,
+    def __init__(self, k: int = 48, m: int = 6, n_noise: int = 6, n_noise_next: int = 6,
                  next_speeds: tuple = (1.0, 1.5), noise="tournament", miss_weight: float = 0.5,
                  seed: int = 0, chunk: int = 65536):
-        self.env = task_env(env)
-        self.task = get_task(self.env.task)
-        self.search = SearchPolicy(self.env, k=k, seed=seed, chunk=chunk)
+        self.search = SearchPolicy(k=k, seed=seed, chunk=chunk)
         self.k, self.m, self.n_noise, self.n_noise_next = int(k), int(m), int(n_noise), int(n_noise_next)
         self.next_speeds = tuple(float(s) for s in next_speeds)
         self.noise = NoiseConfig.from_any(noise)
         self.miss_weight = float(miss_weight)
         self.rng = np.random.default_rng(seed)
-        self.chunk = int(chunk)
         self.sims = 0   # shots simulated so far (cost accounting)
 
     # -- simulation and rules -------------------------------------------------
-    def play(self, start: BallState, phi, speed, a, b):
+    def play(self, view, start: BallState, shots):
         """Simulate one shot on each table of ``start`` (at rest); returns the
         end states (at rest) and the value class of each outcome: +1 win,
         0 keeps the table with a ball pocketed, -1 a legal miss that keeps the
         table, -2 the episode ends without a win."""
-        env = self.env
+        env, task = view, view.rules
         n = start.n_envs
-        struck = strike_velocity(start, phi, speed, a, b, env.params)
-        pos, pocket = np.empty_like(start.pos), np.empty_like(start.pocket)
-        first = np.empty(n, dtype=np.int64)
-        for s0 in range(0, n, self.chunk):
-            sl = slice(s0, min(n, s0 + self.chunk))
-            sub = BallState(struck.pos[sl], struck.vel[sl], struck.omega[sl], struck.pocket[sl])
-            res = simulate(sub, env.table, env.params, effects=env.effects, models=env.models, validate=False)
-            pos[sl], pocket[sl], first[sl] = res.state.pos, res.state.pocket, res.first_contact
+        struck = strike_velocity(start, *shots, env.params)
+        res = simulate(struck, env.table, env.params, effects=env.effects, models=env.models, validate=False)
+        pos, pocket, first = res.state.pos, res.state.pocket, res.first_contact
         self.sims += n
-        target = self.task.legal_target(start.pos, start.pocket)
+        target = task.legal_target(start.pos, start.pocket)
         shot = ShotOutcome(pocketed=(pocket >= 0) & (start.pocket < 0), pocket_after=pocket,
                            first_contact=first, target=target)
-        j = self.task.judge(shot)
+        j = task.judge(shot)
         cls = np.where(j.success, 1, np.where(j.terminated, -2, np.where(shot.n_pocketed > 0, 0, -1)))
         end = BallState(pos, np.zeros_like(start.vel), np.zeros_like(start.omega), pocket)
         return end, cls
 
-    def _noisy_success(self, start: BallState, phi, speed, a, b, n_samples: int) -> np.ndarray:
+    def _noisy_success(self, view, start: BallState, shots, n_samples: int) -> np.ndarray:
         """Fraction of ``n_samples`` noisy executions of each shot that win or
         keep the table with a ball pocketed (all tables x samples in one call)."""
         if n_samples == 0:
@@ -99,17 +91,18 @@ class LookaheadPolicy:
         n = start.n_envs
         rep = np.tile(np.arange(n), n_samples)
         z = self.rng.standard_normal((n * n_samples, 4))
-        shots = perturb(Shots.of_arrays(phi[rep], speed[rep], a[rep], b[rep]), z, self.noise, self.env.params)
-        _, cls = self.play(start.take(rep), *shots)
+        phi, speed, a, b = shots
+        noisy = perturb(Shots.of_arrays(phi[rep], speed[rep], a[rep], b[rep]), z, self.noise, view.params)
+        _, cls = self.play(view, start.take(rep), noisy)
         return (cls >= 0).reshape(n_samples, n).mean(axis=0)
 
     # -- leave ---------------------------------------------------------------
-    def leave_value(self, state: BallState) -> np.ndarray:
+    def leave_value(self, view, state: BallState) -> np.ndarray:
         """Success probability of the best next shot from each table of
         ``state`` (balls at rest), under sampled noise; 0 with no target."""
-        env = self.env
+        env = view
         n = state.n_envs
-        target = self.task.legal_target(state.pos, state.pocket)
+        target = view.rules.legal_target(state.pos, state.pocket)
         has = target > 0
         tgt = np.where(has, target, 1)
         sh = G.ghost_shots(state.pos, state.pocket < 0, tgt, env.table, env.params, 0.0)
@@ -123,23 +116,23 @@ class LookaheadPolicy:
         C = S * P
         rep = np.repeat(np.arange(n), C)
         zeros = np.zeros(n * C)
-        p = self._noisy_success(state.take(rep), phi.ravel(), speed.ravel(), zeros, zeros, self.n_noise_next)
+        p = self._noisy_success(view, state.take(rep), (phi.ravel(), speed.ravel(), zeros, zeros), self.n_noise_next)
         p = np.where(valid.ravel(), p, 0.0).reshape(n, C)
         return np.where(has, p.max(axis=1), 0.0)
 
     # -- decision ------------------------------------------------------------
-    def shots(self, state: BallState, target: np.ndarray) -> Shots:
+    def shots(self, view, state: BallState, target: np.ndarray) -> Shots:
         E = state.n_envs
         start = BallState(state.pos.copy(), np.zeros_like(state.vel), np.zeros_like(state.omega),
                           state.pocket.copy())
-        phi, speed, a, b, closeness = self.search.candidates(start, np.where(target > 0, target, 1))
+        phi, speed, a, b, closeness = self.search.candidates(view, start, np.where(target > 0, target, 1))
         K = phi.shape[1]
         rep = np.repeat(np.arange(E), K)
         big = start.take(rep)
-        end, cls = self.play(big, phi.ravel(), speed.ravel(), a.ravel(), b.ravel())
+        cands = (phi.ravel(), speed.ravel(), a.ravel(), b.ravel())
+        end, cls = self.play(view, big, cands)
         cls = cls.reshape(E, K)
-        p_noisy = self._noisy_success(big, phi.ravel(), speed.ravel(), a.ravel(), b.ravel(),
-                                      self.n_noise).reshape(E, K)
+        p_noisy = self._noisy_success(view, big, cands, self.n_noise).reshape(E, K)
         works = cls > -2
         pre = np.where(works, p_noisy + (cls == 1), -1.0) - _FALLBACK_WEIGHT * closeness
         # leaves of the m most promising candidates that keep the table
@@ -151,7 +144,7 @@ class LookaheadPolicy:
         if need.any():
             e_idx, j_idx = np.nonzero(need)
             flat = e_idx * K + top[e_idx, j_idx]
-            v = self.leave_value(end.take(flat))
+            v = self.leave_value(view, end.take(flat))
             value[e_idx, j_idx] = np.where(top_cls[e_idx, j_idx] == -1, self.miss_weight * v, v)
         p_top = np.take_along_axis(p_noisy, top, axis=1)
         # a pot with no leave still beats a shot that fails (value + _LEAVELESS)
@@ -162,7 +155,5 @@ class LookaheadPolicy:
         self.last_scores = score
         return Shots(phi[ar, best], speed[ar, best], a[ar, best], b[ar, best])
 
-    def act(self, obs: np.ndarray) -> np.ndarray:
-        env = self.env
-        target = np.asarray(env.legal_target(), dtype=np.int64)
-        return to_action(env, self.shots(env.state, target))
+    def act(self, view) -> ShotPlan:
+        return ShotPlan.of(self.shots(view, _at_rest(view), np.asarray(view.target, dtype=np.int64)))

@@ -1,13 +1,13 @@
 """The one-player tasks' baseline bots (``random``, ``ghost``, ``search<K>``).
 
-A bot here has ``act(obs) -> actions [N, 4]`` (batched over the tables of a
-one-player vector env). The geometric bots hold the native vector env
-(``env``: ``BilliardsVectorEnv`` or its ``BilliardsCore``, found under
-wrappers by ``task_env``) and read its ``.state``, ``.table``, ``.params``,
-``.effects``, ``legal_target()`` and ``shots_to_actions()``; they choose
-``Shots`` (aim angle, cue-ball speed, side a, height b) and map them into
-the env's action space with the env's own inverse mapping, so they work with
-either aim mode.
+A one-player bot acts like a game bot, on a read-only ``TaskView``
+(``bots.view``: float64 positions, the legal target, the equipment, the
+noise and the task's rules) and returns a ``ShotPlan`` (only its shots
+matter here) or the env's actions [n, 4]. The env turns a plan into its
+actions with its own inverse mapping (``actions_of``), so a bot works with
+every aim mode. ``BotPolicy`` gives a bot the ``act(obs) -> actions``
+interface the evaluation harness, the training's baselines and the SB3 and
+RLlib adapters call: it asks the env for its view first.
 
 - ``RandomPolicy``: uniform actions.
 - ``GhostBallPolicy``: ghost-ball aim at the easiest pocket (``bots.geometry``)
@@ -19,7 +19,6 @@ either aim mode.
 """
 from __future__ import annotations
 
-import dataclasses
 import math
 from typing import Protocol
 
@@ -28,6 +27,7 @@ import numpy as np
 from ..physics import BallState, simulate, strike_velocity
 from ..physics.strike import Shots, draw_to_speed
 from . import geometry as G
+from .plan import ShotPlan
 
 MAX_WRAPPERS = 16  # wrapper layers ``task_env`` looks through
 
@@ -41,41 +41,46 @@ class Policy(Protocol):
 def task_env(env):
     """The native one-player vector env (or core) under wrappers: the first
     of ``env``, its ``.env`` / ``.venv`` / ``.unwrapped`` chain that has
-    ``legal_target()`` and ``shots_to_actions()``."""
+    ``view()`` and ``actions_of()``."""
     for _ in range(MAX_WRAPPERS):
-        if hasattr(env, "legal_target") and hasattr(env, "shots_to_actions"):
+        if hasattr(env, "view") and hasattr(env, "actions_of"):
             return env
         nxt = next((getattr(env, k) for k in ("env", "venv", "unwrapped") if getattr(env, k, env) is not env), None)
         if nxt is None:
             break
         env = nxt
-    raise TypeError("this policy needs the native billiards vector env (with .state, legal_target(), shots_to_actions())")
+    raise TypeError("a bot needs a billiards env that hands views (view() and actions_of())")
 
 
-@dataclasses.dataclass(frozen=True)
-class _Draw:
-    min_draw: float
+class BotPolicy:
+    """A bot behind ``act(obs) -> actions``: each call asks the native env
+    (``task_env(env)``) for its ``view()``, lets the bot act on it and maps
+    the plan with the env's ``actions_of``."""
+
+    def __init__(self, bot, env):
+        self.bot, self.env = bot, task_env(env)
+        self.name = bot.name
+
+    def act(self, obs=None) -> np.ndarray:
+        return self.env.actions_of(self.bot.act(self.env.view()))
 
 
-@dataclasses.dataclass(frozen=True)
-class _Equipment:
-    """What ``SearchPolicy.candidates`` reads of an env."""
-
-    table: object
-    params: object
-    config: _Draw
+def _at_rest(view) -> BallState:
+    """The view's tables as a ``BallState`` at rest (copies)."""
+    n, B = view.pos.shape[:2]
+    return BallState(view.pos.copy(), np.zeros((n, B, 2)), np.zeros((n, B, 3)), view.pocket.copy())
 
 
 class RandomPolicy:
     name = "random"
 
-    def __init__(self, env=None, seed: int | None = 0, action_dim: int = 4):
+    def __init__(self, seed: int | None = 0, action_dim: int = 4):
         self.rng = np.random.default_rng(seed)
-        self.env = env
         self.action_dim = action_dim
 
-    def act(self, obs: np.ndarray) -> np.ndarray:
-        n = obs.shape[0]
+    def act(self, view) -> np.ndarray:
+        """Uniform actions [n, action_dim] (``view``: a view, or observations [n, ...])."""
+        n = view.n if hasattr(view, "n") else view.shape[0]
         return self.rng.uniform(-1.0, 1.0, size=(n, self.action_dim)).astype(np.float32)
 
 
@@ -92,19 +97,12 @@ class GhostBallPolicy:
 
     name = "ghost"
 
-    def __init__(self, env, b: float = 0.0, margin: float = 1.0, dist_weight: float = 0.5, inset: float = 0.0):
-        self.env = task_env(env)
+    def __init__(self, b: float = 0.0, margin: float = 1.0, dist_weight: float = 0.5, inset: float = 0.0):
         self.b, self.margin, self.dist_weight, self.inset = b, margin, dist_weight, inset
 
-    def shots(self, state: BallState, target: np.ndarray) -> Shots:
-        env = self.env
-        return G.ghost_ball_shot(state.pos, state.on_table, target, env.table, env.params, b=self.b,
-                                 margin=self.margin, dist_weight=self.dist_weight, inset=self.inset)
-
-    def act(self, obs: np.ndarray) -> np.ndarray:
-        env = self.env
-        target = np.asarray(env.legal_target(), dtype=np.int64)
-        return to_action(env, self.shots(env.state, target))
+    def act(self, view) -> ShotPlan:
+        return ShotPlan.of(G.ghost_ball_shot(view.pos, view.on_table, view.target, view.table, view.params, b=self.b,
+                                             margin=self.margin, dist_weight=self.dist_weight, inset=self.inset))
 
 
 def candidate_success(struck: BallState, target: np.ndarray, table, params, effects=None, models=None) -> np.ndarray:
@@ -118,11 +116,6 @@ def candidate_success(struck: BallState, target: np.ndarray, table, params, effe
     cue_safe = ~after[:, 0]
     potted_target = newly[np.arange(len(target)), target]
     return legal_first & cue_safe & potted_target
-
-
-def to_action(env, shots: Shots) -> np.ndarray:
-    """The env's actions (float32 [N, 4]) for ``shots``."""
-    return np.clip(np.asarray(env.shots_to_actions(shots), dtype=np.float32), -1.0, 1.0)
 
 
 class SearchPolicy:
@@ -139,9 +132,8 @@ class SearchPolicy:
 
     name = "search"
 
-    def __init__(self, env, k: int = 256, seed: int = 0, aim_jitter_deg: float = 1.5, chunk: int = 65536,
+    def __init__(self, k: int = 256, seed: int = 0, aim_jitter_deg: float = 1.5, chunk: int = 65536,
                  map_chunks=None):
-        self.env = task_env(env)
         self.k = int(k)
         self.rng = np.random.default_rng(seed)
         self.aim_jitter = math.radians(aim_jitter_deg)
@@ -151,20 +143,11 @@ class SearchPolicy:
         self.map_chunks = map_chunks or (lambda fn, args: [fn(*a) for a in args])
         self.name = f"search{self.k}"
 
-    @classmethod
-    def for_table(cls, table, params, min_draw: float, k: int, seed: int = 0) -> "SearchPolicy":
-        """Candidates only (``candidates``), on ``table`` with ``params``, no
-        env: what the two-player ``SearchBot`` draws its pots from."""
-        self = cls.__new__(cls)
-        self.env = _Equipment(table, params, _Draw(min_draw))
-        self.k, self.rng = int(k), np.random.default_rng(seed)
-        self.aim_jitter = math.radians(1.5)
-        self.name = f"search{self.k}"
-        return self
-
-    def candidates(self, state: BallState, target: np.ndarray):
-        env = self.env
-        table, params = env.table, env.params
+    def candidates(self, view, state: BallState, target: np.ndarray):
+        """K candidates per table of ``state`` (the view gives the table,
+        physics and the env's slowest shot, ``min_draw``): arrays [E, K] of
+        aim, speed, side, height and closeness to the nominal shot."""
+        table, params = view.table, view.params
         E, K = state.n_envs, self.k
         sh = G.ghost_shots(state.pos, state.on_table, target, table, params, 0.0)
         P = sh["phi"].shape[1]
@@ -199,19 +182,21 @@ class SearchPolicy:
         b = np.where(nominal, 0.0, r * np.sin(th))
         speed = np.clip(v0 * smul, 0.05, params.max_speed)
         # keep speeds the env can express (its draw range)
-        lo = getattr(getattr(env, "config", None), "min_draw", 0.0)
+        lo = view.min_draw
         speed = np.maximum(speed, draw_to_speed(lo, params))
         closeness = np.abs(dphi) / self.aim_jitter + np.abs(np.log(smul)) + (a ** 2 + b ** 2)
         return phi0 + dphi, speed, a, b, closeness
 
-    def evaluate(self, state: BallState, target: np.ndarray, phi, speed, a, b) -> np.ndarray:
-        """Success [E, K] of each candidate, simulated on K copies of each table."""
-        env = self.env
+    def evaluate(self, view, state: BallState, target: np.ndarray, shots) -> np.ndarray:
+        """Success [E, K] of each candidate (``shots``: aims, speeds, sides,
+        heights [E, K]), simulated on K copies of each table."""
+        env = view
+        phi, speed, a, b = shots
         E, K = phi.shape
         rep = np.repeat(np.arange(E), K)
         big = state.take(rep)
         struck = strike_velocity(big, phi.ravel(), speed.ravel(), a.ravel(), b.ravel(), env.params)
-        effects, models = getattr(env, "effects", None), getattr(env, "models", None)
+        effects, models = env.effects, env.models
         args = []
         for s0 in range(0, E * K, self.chunk):
             sl = slice(s0, min(E * K, s0 + self.chunk))
@@ -219,16 +204,14 @@ class SearchPolicy:
             args.append((sub, target[rep[sl]], env.table, env.params, effects, models))
         return np.concatenate(self.map_chunks(candidate_success, args)).reshape(E, K)
 
-    def shots(self, state: BallState, target: np.ndarray):
-        phi, speed, a, b, closeness = self.candidates(state, target)
-        ok = self.evaluate(state, target, phi, speed, a, b)
+    def shots(self, view, state: BallState, target: np.ndarray):
+        phi, speed, a, b, closeness = self.candidates(view, state, target)
+        ok = self.evaluate(view, state, target, (phi, speed, a, b))
         score = ok.astype(np.float64) * 10.0 - 0.01 * closeness
         best = np.argmax(score, axis=1)
         ar = np.arange(state.n_envs)
         self.last_found = ok.any(axis=1)
         return Shots(phi[ar, best], speed[ar, best], a[ar, best], b[ar, best])
 
-    def act(self, obs: np.ndarray) -> np.ndarray:
-        env = self.env
-        target = np.asarray(env.legal_target(), dtype=np.int64)
-        return to_action(env, self.shots(env.state, target))
+    def act(self, view) -> ShotPlan:
+        return ShotPlan.of(self.shots(view, _at_rest(view), np.asarray(view.target, dtype=np.int64)))

@@ -4,8 +4,9 @@ rules, the one way every bot looks ahead.
 ``preview(view, plan, rows)`` strikes ``plan`` row k on a copy of the table
 of view row ``rows[k]`` (the cue ball at ``plan.placement[k]`` where that is
 given, else where it lies), optionally with execution noise, simulates
-every copy to rest in batched calls of at most ``PREVIEW_CHUNK`` tables
-(memory stays bounded however many candidates a bot tries), and judges each
+every copy to rest in one ``physics.simulate`` call (which runs large
+batches in chunks, so memory stays bounded however many candidates a bot
+tries), and judges each
 shot with the game's rules from the row's game state, the plan's called
 pocket included. Push-outs and passes are not previewed (a plan's
 ``declare`` is ignored).
@@ -24,8 +25,6 @@ import numpy as np
 from ..physics import BallState, simulate, strike_velocity
 from ..physics.noise import NoiseConfig, perturb
 from ..rules import Constraints, ShotInput, ShotRecord
-
-PREVIEW_CHUNK = 16384  # tables per simulator call (an 8-ball chunk's contact buffers stay under ~35 MB)
 
 
 @dataclasses.dataclass(eq=False)
@@ -54,7 +53,7 @@ def _noise_of(view, spec, rows):
     return NoiseConfig.from_any(spec), None
 
 
-def preview(view, plan, rows=None, noise=None, rng=None, chunk: int = PREVIEW_CHUNK) -> Preview:
+def preview(view, plan, rows=None, noise=None, rng=None) -> Preview:
     """See the module docstring."""
     rows = np.arange(view.n) if rows is None else np.asarray(rows, dtype=np.int64)
     k, B = len(rows), view.n_balls
@@ -74,15 +73,9 @@ def preview(view, plan, rows=None, noise=None, rng=None, chunk: int = PREVIEW_CH
             z *= scale[:, None]
         shots = perturb(shots, z, cfg, view.params)
     struck = strike_velocity(start, *shots, view.params)
-    pos, pocket = np.empty((k, B, 2)), np.empty((k, B), dtype=np.int64)
-    first = np.empty(k, dtype=np.int64)
-    rails, object_rails = np.empty((k, B), dtype=np.int64), np.empty((k, B), dtype=np.int64)
-    for s0 in range(0, k, chunk):
-        sl = slice(s0, min(k, s0 + chunk))
-        sub = BallState(struck.pos[sl], struck.vel[sl], struck.omega[sl], struck.pocket[sl])
-        res = simulate(sub, view.table, view.params, effects=view.effects, models=view.models, validate=False)
-        pos[sl], pocket[sl], first[sl] = res.state.pos, res.state.pocket, res.first_contact
-        rails[sl], object_rails[sl] = res.cushion_hits_after_contact, res.cushion_hits
+    res = simulate(struck, view.table, view.params, effects=view.effects, models=view.models, validate=False)
+    pos, pocket, first = res.state.pos, res.state.pocket, res.first_contact
+    rails, object_rails = res.cushion_hits_after_contact, res.cushion_hits
     called = np.where(view.call_needed[rows], plan.pocket, -1)
     shot = ShotInput(start.pocket, pocket, first, rails, object_rails, called_pocket=called)
     rec, after = view.rules.judge(view.state.take(rows), shot)

@@ -29,12 +29,12 @@ class SearchBot(GhostBot):
         if not len(rows):
             return
         if self.search is None:  # one candidate generator per bot (its own random stream)
-            self.search = SearchPolicy.for_table(view.table, view.params, view.min_draw, self.k, self.search_seed)
+            self.search = SearchPolicy(k=self.k, seed=self.search_seed)
         K = self.k
         st = BallState(pos[rows].copy(), np.zeros_like(pos[rows]), np.zeros(pos[rows].shape[:2] + (3,)),
                        view.pocket[rows].copy())
         st.pocket[:, 0] = -1
-        cph, csp, ca, cb, close = self.search.candidates(st, balls)
+        cph, csp, ca, cb, close = self.search.candidates(view, st, balls)
         rep = np.repeat(rows, K)
         rec = self.judge(view, np.arange(view.n), pos, Shots(cph.ravel(), csp.ravel(), ca.ravel(), cb.ravel()),
                          np.full(view.n, -1), rep)

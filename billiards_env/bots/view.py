@@ -175,3 +175,37 @@ class GameView:
         if self._observe is None:
             raise RuntimeError("this view was built without the env's observation")
         return self._observe()
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class TaskView:
+    """What a bot of the one-player tasks is handed: the same kind of
+    read-only picture as ``GameView``, for the tables of a one-player env.
+
+    ``pos`` [n, B, 2], ``pocket`` [n, B] and ``on_table`` as in ``GameView``;
+    ``target`` [n] the legal target ball (-1: none); ``shots`` [n] taken in
+    the episode; the equipment (``table``, ``params``, ``effects``,
+    ``models``), the env's ``noise`` and slowest shot (``min_draw``), and
+    ``rules``: the task (``envs.tasks``), whose ``legal_target(pos, pocket)``
+    and ``judge(ShotOutcome)`` rule any table a bot simulates."""
+
+    task: str
+    rows: np.ndarray
+    pos: np.ndarray
+    pocket: np.ndarray
+    target: np.ndarray
+    shots: np.ndarray
+    table: Table
+    params: PhysicsParams
+    effects: Effects
+    models: Models
+    noise: NoiseConfig
+    min_draw: float
+    rules: object
+    _observe: object = None
+
+    build = classmethod(GameView.build.__func__)
+    n = GameView.n
+    n_balls = GameView.n_balls
+    on_table = GameView.on_table
+    observation = GameView.observation

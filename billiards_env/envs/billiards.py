@@ -228,6 +228,14 @@ class BilliardsEnv(gym.Env):
         clipped to [-1, 1])."""
         return self._core.shots_to_actions(shots, np.zeros(len(shots), dtype=np.int64))
 
+    def view(self):
+        """The read-only ``bots.TaskView`` of the table (one row), for a bot (docs/bots.md)."""
+        return self._core.view(np.array([0]))
+
+    def actions_of(self, plan) -> np.ndarray:
+        """A bot's one-row ``ShotPlan`` -> actions [1, 4] (float32)."""
+        return self._core.actions_of(plan, np.array([0]))
+
     def set_state(self, state) -> np.ndarray:
         """Start a new episode from ``state`` (a one-table ``BallState``, or
         positions [B, 2]), balls at rest; returns the observation."""
@@ -365,6 +373,14 @@ class BilliardsVectorEnv(VectorEnv):
     def shots_to_actions(self, shots: Shots) -> np.ndarray:
         """``Shots`` [N] (or scalars) -> actions [N, 4] (float64, clipped to [-1, 1]) for the current tables."""
         return self._core.shots_to_actions(shots, np.arange(self.num_envs))
+
+    def view(self):
+        """The read-only ``bots.TaskView`` of every table, for a bot (docs/bots.md)."""
+        return self._core.view(np.arange(self.num_envs))
+
+    def actions_of(self, plan) -> np.ndarray:
+        """A bot's ``ShotPlan`` for every table -> actions [N, 4] (float32)."""
+        return self._core.actions_of(plan, np.arange(self.num_envs))
 
     def set_state(self, state) -> np.ndarray:
         """Start new episodes on every table from ``state`` (a ``BallState``

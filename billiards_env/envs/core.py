@@ -27,6 +27,7 @@ import numpy as np
 from ..physics import BallState, simulate
 from ..physics.noise import OFFSET_SAFETY, clip_offset as _clip_offset, perturb  # noqa: F401 (OFFSET_SAFETY re-exported)
 from ..physics.strike import Shots, apply_strike, draw_to_speed, speed_to_draw
+from ..bots.view import TaskView
 from . import target_frame
 from .config import TaskConfig
 from .impact import impact_actions, impact_phis
@@ -215,6 +216,28 @@ class BilliardsCore:
             a1 = 2.0 * (draw - lo) / (hi - lo) - 1.0
         out = np.stack([rel, a1, a / lim, b / lim], axis=1)
         return np.clip(out, -1.0, 1.0)
+
+    # --- bots ----------------------------------------------------------------
+    def view(self, idx=None) -> TaskView:
+        """The read-only ``TaskView`` of tables ``idx`` (default: all) that a bot acts on."""
+        idx = self._every_table() if idx is None else np.asarray(idx, dtype=np.int64)
+        s = self.state
+        return TaskView.build(task=self.cfg.task, rows=idx, pos=s.pos[idx], pocket=s.pocket[idx],
+                              target=self.legal_target()[idx], shots=self.shots[idx], table=self.table,
+                              params=self.params, effects=self.effects, models=self.models, noise=self.cfg.noise,
+                              min_draw=self.cfg.min_draw, rules=self.task, _observe=lambda: self.observe()[idx])
+
+    def actions_of(self, plan, idx=None) -> np.ndarray:
+        """The actions [n, 4] (float32, clipped) that play a bot's ``ShotPlan``
+        on tables ``idx`` (the env's inverse mapping of its shots); a bot's
+        own actions [n, 4] are returned as they are."""
+        if isinstance(plan, np.ndarray):
+            return plan
+        idx = self._every_table() if idx is None else idx
+        return np.clip(np.asarray(self.shots_to_actions(plan.shots, idx), dtype=np.float32), -1.0, 1.0)
+
+    def _every_table(self) -> np.ndarray:
+        return np.arange(self.n_envs)
 
     def apply_noise(self, shots: Shots, idx, scale: np.ndarray | None = None) -> Shots:
         """Shot noise for tables ``idx``, drawn from their streams (4 normals

@@ -1,4 +1,4 @@
-"""Random shots for fuzzing (tests/test_fuzz.py, scripts/fuzz.py) and their
+"""Random shots for fuzzing (tests/physics/test_fuzz.py, scripts/fuzz.py) and their
 JSON regression files."""
 from __future__ import annotations
 
@@ -75,7 +75,7 @@ def case_dict(state, e, params, solver, dt, violations, effects=None, models=Non
 
 def save_case(case, directory, tag="fuzz"):
     """Write a failing case as JSON into ``directory`` (tests/regressions/ in
-    this repository, replayed by tests/test_regressions.py)."""
+    this repository, replayed by tests/physics/test_regressions.py)."""
     directory = pathlib.Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     path = directory / f"{tag}_{case['solver']}_{time.strftime('%Y%m%d_%H%M%S')}_{abs(hash(json.dumps(case['pos']))) % 10**8:08d}.json"

@@ -68,7 +68,7 @@ from .. import constants as C
 # Impulse steps in the compression of a frictionless ball: at 200 the
 # outgoing velocities (and R x spins) differ from a 100x finer integration
 # by at most ~0.1% of the incoming speed over speeds to 12 m/s and spins to
-# 400 rad/s (median ~1e-6 m/s; tests/test_new_models.py checks 0.2%), far
+# 400 rad/s (median ~1e-6 m/s; tests/physics/test_new_models.py checks 0.2%), far
 # below the spread of measured restitution and friction; cost is linear in it.
 IMPULSE_STEPS = 200
 # Bound on the steps of one phase, in units of IMPULSE_STEPS: with both

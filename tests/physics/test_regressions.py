@@ -9,7 +9,8 @@ from billiards_env.physics import Effects, Models
 
 from billiards_env.testing import load_case, run_checked
 
-REGRESSIONS = pathlib.Path(__file__).parent / "regressions"
+# tests/regressions/, shared with scripts/fuzz.py (its default --regressions)
+REGRESSIONS = pathlib.Path(__file__).resolve().parents[1] / "regressions"
 
 CASES = sorted(REGRESSIONS.glob("*.json"))
 

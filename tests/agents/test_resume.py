@@ -13,7 +13,7 @@ from agents.checkpoints import latest_checkpoint, load_checkpoint
 from agents.config import load_config, load_run_config
 from agents.training import build_env, train
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 N_ENVS, N_STEPS, TOTAL, EVERY = 64, 16, 16384, 2048   # rollouts of 1,024 steps
 OVERRIDES = [f"n_envs={N_ENVS}", f"ppo.n_steps={N_STEPS}", "ppo.batch_size=256", "ppo.n_epochs=1",
              "policy.net_arch=[16]", f"train.total_timesteps={TOTAL}", f"train.checkpoint_every={EVERY}",

@@ -13,13 +13,14 @@ import pytest
 
 pytest.importorskip("stable_baselines3")
 
-from agents.baselines import GhostBallPolicy, SB3Policy, SearchPolicy  # noqa: E402
+from agents.baselines import SB3Policy  # noqa: E402
+from billiards_env.bots.one_player import BotPolicy, GhostBallPolicy, SearchPolicy  # noqa: E402
 from agents.config import load_config  # noqa: E402
 from agents.evaluation import evaluate, parse_noise, wilson_interval  # noqa: E402
 from agents.sb3_vec_env import NativeVecEnv, make_sb3_vec_env, split_infos  # noqa: E402
 from billiards_env.physics import BallState  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 POT = "Billiards-PotOne-v0"
 
 
@@ -153,8 +154,8 @@ def test_ghost_ball_pots_a_straight_in_shot():
     st.vel[:] = 0.0
     st.omega[:] = 0.0
     st.pocket[:] = -1
-    pol = GhostBallPolicy(env)
-    phi, speed, a, b = pol.shots(st, np.array([1]))
+    pol = BotPolicy(GhostBallPolicy(), env)
+    phi, speed, a, b = pol.bot.act(nat.view()).shots
     assert phi[0] == pytest.approx(math.atan2(-d[1], -d[0]), abs=1e-9)
     obs, rew, dones, infos = env.step(pol.act(env._obs))
     assert infos[0]["success"] and not infos[0]["scratch"]
@@ -163,15 +164,15 @@ def test_ghost_ball_pots_a_straight_in_shot():
 
 
 def test_search_policy_finds_pots_and_beats_random():
-    r = evaluate(lambda env: SearchPolicy(env, k=32, seed=0), POT, 40, seed=5)
-    g = evaluate(lambda env: GhostBallPolicy(env), POT, 40, seed=5)
+    r = evaluate(lambda env: BotPolicy(SearchPolicy(k=32, seed=0), env), POT, 40, seed=5)
+    g = evaluate(lambda env: BotPolicy(GhostBallPolicy(), env), POT, 40, seed=5)
     assert r.success_rate >= 0.8 and r.success_rate >= g.success_rate - 0.05
     assert isinstance(BallState, type)
 
 
 def test_evaluation_same_tables_for_every_policy():
-    a = evaluate(lambda env: GhostBallPolicy(env), POT, 30, seed=11)
-    b = evaluate(lambda env: GhostBallPolicy(env), POT, 30, seed=11)
+    a = evaluate(lambda env: BotPolicy(GhostBallPolicy(), env), POT, 30, seed=11)
+    b = evaluate(lambda env: BotPolicy(GhostBallPolicy(), env), POT, 30, seed=11)
     assert a.per_episode == b.per_episode
 
 
@@ -181,8 +182,8 @@ def test_noise_spec_parsing_and_aim_noise_lowers_success():
     for bad in ("aim_deg=x", "aim=1", "aim_deg=-1"):
         with pytest.raises(ValueError, match="aim"):
             parse_noise(bad)
-    clean = evaluate(lambda env: GhostBallPolicy(env), POT, 60, seed=3)
-    noisy = evaluate(lambda env: GhostBallPolicy(env), POT, 60, seed=3, noise="aim_deg=2")
+    clean = evaluate(lambda env: BotPolicy(GhostBallPolicy(), env), POT, 60, seed=3)
+    noisy = evaluate(lambda env: BotPolicy(GhostBallPolicy(), env), POT, 60, seed=3, noise="aim_deg=2")
     assert noisy.noise == "aim_deg=2" and noisy.success_rate < clean.success_rate - 0.2
 
 

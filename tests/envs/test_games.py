@@ -275,7 +275,7 @@ def test_match_script_with_a_saved_model(tmp_path):
     model = sb3.PPO("MlpPolicy", env, n_steps=16, batch_size=16, n_epochs=1, seed=0, device="cpu")
     model.learn(16)
     model.save(tmp_path / "model.zip")
-    root = Path(__file__).resolve().parents[1]
+    root = Path(__file__).resolve().parents[2]
     out = subprocess.run([sys.executable, str(root / "scripts" / "match.py"), "--racks", "3", "--max-shots", "20",
                           "--policies", "random", str(tmp_path / "model.zip"), "--out", str(tmp_path)],
                          capture_output=True, text=True, cwd=root, timeout=300)

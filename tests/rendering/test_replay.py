@@ -32,7 +32,7 @@ from billiards_env.rendering import (RecordReplay, Replay, ball_color, ball_path
                                      save_replay_animation, save_replay_html)
 from billiards_env.rendering import draw
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 # Python evaluation vs the simulator: the same closed forms in float64, so
 # they differ by rounding only (~1e-15 m at table scale).
 POS_TOL = 1e-9

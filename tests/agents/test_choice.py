@@ -20,7 +20,7 @@ from agents.sb3_vec_env import make_sb3_vec_env  # noqa: E402
 from billiards_env.physics import simulate, strike_velocity  # noqa: E402
 from billiards_env.physics.strike import Shots  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 NINE = "Billiards-NineBall-v0"
 NOMINAL = (choice.SPEED_LEVELS.index(1.0), choice.HEIGHT_LEVELS.index(0.0))
 

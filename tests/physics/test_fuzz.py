@@ -12,7 +12,8 @@ from billiards_env.physics import Effects, Models
 from billiards_env.physics.models import REGISTRIES
 from billiards_env.testing import LAYOUTS, case_dict, random_batch, run_batch, save_case
 
-REGRESSIONS = pathlib.Path(__file__).parent / "regressions"
+# tests/regressions/, shared with scripts/fuzz.py (its default --regressions)
+REGRESSIONS = pathlib.Path(__file__).resolve().parents[1] / "regressions"
 
 SETTINGS = settings(max_examples=12, deadline=None, derandomize=True,
                     suppress_health_check=[HealthCheck.too_slow])

@@ -14,7 +14,7 @@ from billiards_env.physics import BallState, PhysicsParams, Table, simulate, str
 from billiards_env.physics import constants as C
 from billiards_env.studies import accuracy, scenes
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 P = PhysicsParams.standard()
 BIG = Table.pocketless(20.0, 20.0)
 REL = 1e-9

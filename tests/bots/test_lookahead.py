@@ -33,13 +33,14 @@ def test_prefers_the_pot_whose_leave_has_a_shot():
     env = _env(2)
     u = env.unwrapped
     u.set_state(POSITIONS)
-    pol = LookaheadPolicy(env, n_noise=16, n_noise_next=16, seed=3)
+    pol = LookaheadPolicy(n_noise=16, n_noise_next=16, seed=3)
+    view = u.view()
     sh = G.ghost_shots(POSITIONS, np.ones((2, 4), bool), np.ones(2, int), u.table, u.params, 0.0)
     phi = sh["phi"][:, TOP_RIGHT]
     v0 = G.required_speed(sh["d_cg"][:, TOP_RIGHT], sh["d_op"][:, TOP_RIGHT], sh["cut"][:, TOP_RIGHT], u.params,
                           margin=1.0)
 
-    def two_candidates(state, target):  # stun first, then draw
+    def two_candidates(view, state, target):  # stun first, then draw
         cand = (np.stack([phi, phi], 1), np.stack([v0, DRAW_SPEED * v0], 1), np.zeros((2, 2)),
                 np.tile([STUN_B, DRAW_B], (2, 1)), np.zeros((2, 2)))
         return cand
@@ -47,13 +48,13 @@ def test_prefers_the_pot_whose_leave_has_a_shot():
     pol.search.candidates = two_candidates
     # both shots pot ball 1 and keep the table: they are equally easy pots
     for b, sp in ((STUN_B, 1.0), (DRAW_B, DRAW_SPEED)):
-        _, cls = pol.play(u.state, phi, sp * v0, np.zeros(2), np.full(2, b))
+        _, cls = pol.play(view, u.state, (phi, sp * v0, np.zeros(2), np.full(2, b)))
         assert (cls == 0).all()
-    shots = pol.shots(u.state, u.legal_target())
+    shots = pol.shots(view, u.state, u.legal_target())
     assert np.allclose(shots.b, [DRAW_B, STUN_B]), shots
     # reversed candidate order: the same choices
-    pol.search.candidates = lambda s, t: tuple(x[:, ::-1] for x in two_candidates(s, t))
-    shots = pol.shots(u.state, u.legal_target())
+    pol.search.candidates = lambda v, s, t: tuple(x[:, ::-1] for x in two_candidates(v, s, t))
+    shots = pol.shots(view, u.state, u.legal_target())
     assert np.allclose(shots.b, [DRAW_B, STUN_B]), shots
 
 
@@ -64,10 +65,10 @@ def test_leave_value_sees_a_snooker():
     pos[:, 1] = [0.3, 0.4]           # ball 1 out of the way
     pos[:, 0] = [[0.93, 2.20], [0.93, 2.20]]
     u.set_state(pos)
-    pol = LookaheadPolicy(env, n_noise_next=16, seed=1)
+    pol = LookaheadPolicy(n_noise_next=16, seed=1)
     state = u.state
     state.pocket[:, 1] = 0           # ball 1 pocketed: ball 2 is the target
-    v = pol.leave_value(state)
+    v = pol.leave_value(u.view(), state)
     assert v[0] >= 0.75 and v[1] <= 0.25, v
 
 

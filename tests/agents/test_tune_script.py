@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 pytest.importorskip("optuna")
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _run(tmp_path, trials):
