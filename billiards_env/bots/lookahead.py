@@ -31,9 +31,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..envs.tasks.base import ShotOutcome
-from ..physics import BallState, simulate, strike_velocity
-from ..physics.noise import NoiseConfig, perturb
+from ..physics import BallState
+from ..physics.noise import NoiseConfig
 from ..physics.strike import Shots
 from . import geometry as G
 from .one_player import SearchPolicy, _at_rest
@@ -64,23 +63,18 @@ class LookaheadPolicy:
         self.sims = 0   # shots simulated so far (cost accounting)
 
     # -- simulation and rules -------------------------------------------------
-    def play(self, view, start: BallState, shots):
-        """Simulate one shot on each table of ``start`` (at rest); returns the
+    def play(self, view, start: BallState, shots, noise=None):
+        """Preview one shot on each table of ``start`` (at rest; ``noise``: a
+        ``NoiseConfig`` drawn from this bot's generator, or None); returns the
         end states (at rest) and the value class of each outcome: +1 win,
         0 keeps the table with a ball pocketed, -1 a legal miss that keeps the
         table, -2 the episode ends without a win."""
-        env, task = view, view.rules
         n = start.n_envs
-        struck = strike_velocity(start, *shots, env.params)
-        res = simulate(struck, env.table, env.params, effects=env.effects, models=env.models, validate=False)
-        pos, pocket, first = res.state.pos, res.state.pocket, res.first_contact
+        pv = view.preview(ShotPlan.of(Shots.of_arrays(*shots)), noise=noise, rng=self.rng, start=start)
         self.sims += n
-        target = task.legal_target(start.pos, start.pocket)
-        shot = ShotOutcome(pocketed=(pocket >= 0) & (start.pocket < 0), pocket_after=pocket,
-                           first_contact=first, target=target)
-        j = task.judge(shot)
+        j, shot = pv.judged, pv.outcome
         cls = np.where(j.success, 1, np.where(j.terminated, -2, np.where(shot.n_pocketed > 0, 0, -1)))
-        end = BallState(pos, np.zeros_like(start.vel), np.zeros_like(start.omega), pocket)
+        end = BallState(pv.pos, np.zeros_like(start.vel), np.zeros_like(start.omega), pv.pocket)
         return end, cls
 
     def _noisy_success(self, view, start: BallState, shots, n_samples: int) -> np.ndarray:
@@ -90,10 +84,8 @@ class LookaheadPolicy:
             return np.ones(start.n_envs)
         n = start.n_envs
         rep = np.tile(np.arange(n), n_samples)
-        z = self.rng.standard_normal((n * n_samples, 4))
         phi, speed, a, b = shots
-        noisy = perturb(Shots.of_arrays(phi[rep], speed[rep], a[rep], b[rep]), z, self.noise, view.params)
-        _, cls = self.play(view, start.take(rep), noisy)
+        _, cls = self.play(view, start.take(rep), (phi[rep], speed[rep], a[rep], b[rep]), self.noise)
         return (cls >= 0).reshape(n_samples, n).mean(axis=0)
 
     # -- leave ---------------------------------------------------------------

@@ -45,38 +45,86 @@ class Preview:
         return self.pocket < 0
 
 
+@dataclasses.dataclass(eq=False)
+class TaskPreview:
+    """The outcome of previewed shots on a one-player task, one row per shot:
+    ``outcome`` (the ``envs.tasks.ShotOutcome`` the task judges), ``judged``
+    (the task's ruling: ``success``, ``terminated``, ...), ``pos`` [k, B, 2]
+    and ``pocket`` [k, B] after the shot."""
+
+    outcome: object
+    judged: object
+    pos: np.ndarray
+    pocket: np.ndarray
+
+    @property
+    def on_table(self) -> np.ndarray:
+        return self.pocket < 0
+
+
 def _noise_of(view, spec, rows):
     if spec is None:
         return None, None
     if isinstance(spec, str) and spec == "env":
-        return view.noise, view.noise_scale[rows]
+        scale = getattr(view, "noise_scale", None)
+        return view.noise, None if scale is None else scale[rows]
     return NoiseConfig.from_any(spec), None
 
 
-def preview(view, plan, rows=None, noise=None, rng=None) -> Preview:
-    """See the module docstring."""
-    rows = np.arange(view.n) if rows is None else np.asarray(rows, dtype=np.int64)
+def _rest_state(view, rows) -> BallState:
     k, B = len(rows), view.n_balls
-    if plan.n != k:
-        raise ValueError(f"preview: the plan has {plan.n} rows, rows selects {k} tables")
-    start = BallState(view.pos[rows].copy(), np.zeros((k, B, 2)), np.zeros((k, B, 3)), view.pocket[rows].copy())
-    place = ~np.isnan(plan.placement[:, 0])
-    start.pos[place, 0] = plan.placement[place]
-    start.pocket[:, 0] = -1
-    shots = plan.shots
-    cfg, scale = _noise_of(view, noise, rows)
+    return BallState(view.pos[rows].copy(), np.zeros((k, B, 2)), np.zeros((k, B, 3)), view.pocket[rows].copy())
+
+
+def play_shots(view, start: BallState, shots, noise=None, rng=None, rows=None):
+    """Strike ``shots`` on the tables of ``start`` (with ``noise``, see the
+    module docstring; ``rows``: the view rows, for the env noise's per-table
+    factor) and simulate them to rest with the view's equipment: the
+    ``physics.SimResult``. What every preview is made of."""
+    cfg, scale = _noise_of(view, noise, np.arange(start.n_envs) if rows is None else rows)
     if cfg is not None and cfg.enabled:
         if rng is None:
             raise ValueError("preview with noise needs rng (a numpy.random.Generator)")
-        z = rng.normal(size=(k, 4))
+        z = rng.normal(size=(start.n_envs, 4))
         if scale is not None:
             z *= scale[:, None]
         shots = perturb(shots, z, cfg, view.params)
     struck = strike_velocity(start, *shots, view.params)
-    res = simulate(struck, view.table, view.params, effects=view.effects, models=view.models, validate=False)
+    return simulate(struck, view.table, view.params, effects=view.effects, models=view.models, validate=False)
+
+
+def preview(view, plan, rows=None, noise=None, rng=None, start: BallState | None = None):
+    """See the module docstring. ``start`` (one-player views only): tables to
+    play from instead of the view's rows (a bot looking past its first shot)."""
+    if not hasattr(view, "call_needed"):
+        return _task_preview(view, plan, rows, (noise, rng), start)
+    rows = np.arange(view.n) if rows is None else np.asarray(rows, dtype=np.int64)
+    k = len(rows)
+    if plan.n != k:
+        raise ValueError(f"preview: the plan has {plan.n} rows, rows selects {k} tables")
+    start = _rest_state(view, rows)
+    place = ~np.isnan(plan.placement[:, 0])
+    start.pos[place, 0] = plan.placement[place]
+    start.pocket[:, 0] = -1
+    res = play_shots(view, start, plan.shots, noise, rng, rows)
     pos, pocket, first = res.state.pos, res.state.pocket, res.first_contact
     rails, object_rails = res.cushion_hits_after_contact, res.cushion_hits
     called = np.where(view.call_needed[rows], plan.pocket, -1)
     shot = ShotInput(start.pocket, pocket, first, rails, object_rails, called_pocket=called)
     rec, after = view.rules.judge(view.state.take(rows), shot)
     return Preview(rec, pos, pocket, first, view.rules.constraints(after, pocket))
+
+
+def _task_preview(view, plan, rows, noise_rng, start) -> TaskPreview:
+    from ..envs.tasks.base import ShotOutcome
+    if start is None:
+        rows = np.arange(view.n) if rows is None else np.asarray(rows, dtype=np.int64)
+        start = _rest_state(view, rows)
+    if plan.n != start.n_envs:
+        raise ValueError(f"preview: the plan has {plan.n} rows for {start.n_envs} tables")
+    res = play_shots(view, start, plan.shots, *noise_rng, rows)
+    pocket = res.state.pocket
+    task = view.rules
+    outcome = ShotOutcome(pocketed=(pocket >= 0) & (start.pocket < 0), pocket_after=pocket,
+                          first_contact=res.first_contact, target=task.legal_target(start.pos, start.pocket))
+    return TaskPreview(outcome, task.judge(outcome), res.state.pos, pocket)

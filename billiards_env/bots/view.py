@@ -204,6 +204,12 @@ class TaskView:
     rules: object
     _observe: object = None
 
+    def preview(self, plan, rows=None, noise=None, rng=None, start=None):
+        """Play ``plan`` on copies of the rows' tables (or on ``start``, a
+        ``BallState``) and judge each shot by the task: ``bots.preview.TaskPreview``."""
+        from .preview import preview
+        return preview(self, plan, rows, noise, rng, start)
+
     build = classmethod(GameView.build.__func__)
     n = GameView.n
     n_balls = GameView.n_balls
