@@ -10,13 +10,13 @@ task (e.g. pot_one has one object ball) are the task's own ``validate``.
 from __future__ import annotations
 
 import dataclasses
-import math
 from pathlib import Path
 
 import yaml
 
 from ..physics import Effects, Models, PhysicsParams, Table
-from ..physics.noise import NOISE_PRESETS, NoiseConfig, check_keys  # noqa: F401 (re-exported)
+from ..physics.noise import NoiseConfig, check_keys  # noqa: F401 (NoiseConfig re-exported)
+from ..physics.validation import finite_number as _number
 from .tasks.base import CONFIG_DIR
 from .tasks.registry import get_task
 
@@ -25,14 +25,6 @@ AIMS = ("relative", "absolute", "impact")        # meaning of action a0 (billiar
 SPEED_SCALES = ("linear", "log")                  # meaning of action a1 (billiards._COMMON_DOC)
 OBSERVATIONS = ("table", "target_frame")          # observation layouts (billiards._COMMON_DOC)
 __all__ = ["TaskConfig", "RewardConfig", "NoiseConfig", "CONFIG_DIR", "CONFIG_VERSION", "check_keys"]
-
-
-def _number(v, name: str, lo: float | None = None) -> float:
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-        raise ValueError(f"{name} must be a finite number, got {v!r}")
-    if lo is not None and v < lo:
-        raise ValueError(f"{name} must be >= {lo}, got {v!r}")
-    return float(v)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -25,6 +25,7 @@ import numba
 import numpy as np
 
 from .strike import Shots
+from .validation import finite_number
 
 # radial clip just inside the miscue limit: strike's own check is strict (|(a, b)| < limit)
 OFFSET_SAFETY = 1.0 - 1e-9
@@ -49,14 +50,6 @@ def check_keys(cls, d: dict, where: str) -> None:
         raise ValueError(f"unknown key(s) {sorted(unknown)} in {where}; known keys: {sorted(names)}")
 
 
-def _deviation(v, name: str) -> float:
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-        raise ValueError(f"{name} must be a finite number, got {v!r}")
-    if v < 0.0:
-        raise ValueError(f"{name} must be >= 0.0, got {v!r}")
-    return float(v)
-
-
 @dataclasses.dataclass(frozen=True)
 class NoiseConfig:
     """Gaussian execution noise (standard deviations) on the aim angle
@@ -71,7 +64,7 @@ class NoiseConfig:
 
     def __post_init__(self):
         for f in dataclasses.fields(self):
-            object.__setattr__(self, f.name, _deviation(getattr(self, f.name), f"noise.{f.name}"))
+            object.__setattr__(self, f.name, finite_number(getattr(self, f.name), f"noise.{f.name}", 0.0))
 
     @property
     def enabled(self) -> bool:

@@ -2,9 +2,20 @@
 that names the problem, before anything is modified."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from . import constants as C
+
+
+def finite_number(v, name: str, lo: float | None = None) -> float:
+    """``v`` as a float: a finite int or float (not a bool), at least ``lo`` if given."""
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+        raise ValueError(f"{name} must be a finite number, got {v!r}")
+    if lo is not None and v < lo:
+        raise ValueError(f"{name} must be >= {lo}, got {v!r}")
+    return float(v)
 
 
 def as_batch_vector(x, E: int, name: str) -> np.ndarray:
