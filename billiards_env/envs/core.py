@@ -318,7 +318,7 @@ class BilliardsCore:
         same call."""
         R, m, B, t = self.params.R, self.cfg.margin, self.n_balls, self.table
         out = np.empty((len(idx), B, 2))
-        ok = place_balls(self.streams, idx, B, R + m, R + m, t.width - R - m, t.length - R - m, self.pockets,
+        ok = place_balls(self.streams, idx, B, (R + m, R + m, t.width - R - m, t.length - R - m), self.pockets,
                          2 * R + m, max_tries, out)
         if not ok.all():
             raise ValueError(f"could not place {B} balls without overlap on {t.name}")

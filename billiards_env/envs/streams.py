@@ -132,15 +132,16 @@ class TableStreams:
 
 
 # ------------------------------------------------------------ placement --
-def place_balls(streams: TableStreams, idx, B, lo_x, lo_y, hi_x, hi_y, pockets, min_dist, max_tries, out):
+def place_balls(streams: TableStreams, idx, B, box, pockets, min_dist, max_tries, out):
     """Rejection-sample ``B`` ball centres per table ``idx[j]`` into ``out[j]``
     (``physics.state.place_from_candidates``: candidates uniform in the box
-    [lo, hi], two draws each from the table's stream, rejected inside a
+    ``box`` = (lo_x, lo_y, hi_x, hi_y), two draws each from the table's stream, rejected inside a
     pocket capture circle or closer than ``min_dist`` to a ball already
     placed on that table). Each stream advances by two draws per candidate
     used, so a table's result does not depend on the other tables. Returns
     a bool per table: all ``B`` placed within ``max_tries`` candidates."""
     idx = np.ascontiguousarray(idx, dtype=np.int64)
+    lo_x, lo_y, hi_x, hi_y = box
     n = len(idx)
     start = streams.counters[idx].copy()
     used = np.empty(n, dtype=np.int64)

@@ -9,6 +9,8 @@ per metre. ``world_to_pixel`` gives the pixel (column, row) of a table point.
 """
 from __future__ import annotations
 
+import dataclasses
+
 from pathlib import Path
 
 import numpy as np
@@ -203,13 +205,27 @@ def _check_suffix(path) -> Path:
     return path
 
 
-def save_shot_animation(path, table, params, log, n_balls: int, fps: int = 30, ppm: float = PPM,
-                        speedup: float = 1.0, max_seconds: float = 30.0, paths: bool = True,
-                        effects=None) -> Path:
+@dataclasses.dataclass(frozen=True)
+class Animation:
+    """How an animation is drawn: ``fps`` frames per second of video,
+    ``ppm`` pixels per metre, ``speedup`` (> 1 plays faster than real
+    time), at most ``max_seconds`` of video per shot, ``paths`` (draw each
+    ball's path), ``hold`` (frames of the resting table after a shot, where
+    an animation holds)."""
+
+    fps: int = 30
+    ppm: float = PPM
+    speedup: float = 1.0
+    max_seconds: float = 30.0
+    paths: bool = True
+    hold: int = 5
+
+
+def save_shot_animation(path, table, params, log, n_balls: int, anim: Animation = Animation(), effects=None) -> Path:
     """Write a recorded shot (an ``EventLog`` from ``simulate(..., record=True)``)
-    as an animated GIF (``.gif``) or MP4 (``.mp4``, needs imageio-ffmpeg).
-    Frames are ``fps`` per second of video; ``speedup`` > 1 plays faster.
-    Returns the path."""
+    as an animated GIF (``.gif``) or MP4 (``.mp4``, needs imageio-ffmpeg),
+    drawn as ``anim`` says. Returns the path."""
+    fps, ppm, speedup, max_seconds, paths = anim.fps, anim.ppm, anim.speedup, anim.max_seconds, anim.paths
     path = _check_suffix(path)
     t_end = float(log.time[-1]) if len(log) else 0.0
     n_frames = int(min(t_end / speedup, max_seconds) * fps) + 2

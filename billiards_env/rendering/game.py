@@ -16,7 +16,7 @@ from PIL import Image, ImageDraw, ImageFont
 
 from ..rules import END_NAMES, FOUL_NAMES
 from ..rules import records as R
-from .draw import BORDER, PPM, positions_at, render_table, world_to_pixel, write_animation
+from .draw import BORDER, PPM, Animation, positions_at, render_table, world_to_pixel, write_animation
 
 PANEL_LINES = 4
 LINE_PX = 14             # pixel height of a status line
@@ -88,8 +88,9 @@ def render_game(core, k: int = 0, info: dict | None = None, pos=None, on=None, p
     return np.asarray(canvas, dtype=np.uint8).copy()
 
 
-def _shot_frames(core, start_pos, start_on, log, info, fps: int, speedup: float, max_seconds: float, ppm: float):
+def _shot_frames(core, start_pos, start_on, log, info, anim: Animation):
     """Frames of one recorded shot: balls the log never mentions stay where they were."""
+    fps, speedup, max_seconds, ppm = anim.fps, anim.speedup, anim.max_seconds, anim.ppm
     from .draw import ball_paths
     B = core.n_balls
     t_end = float(log.time[-1]) if len(log) else 0.0
@@ -105,13 +106,16 @@ def _shot_frames(core, start_pos, start_on, log, info, fps: int, speedup: float,
     return frames
 
 
-def save_game_animation(path, game: str = "nine_ball", policies=("ghost", "ghost"), seed: int = 0, fps: int = 10,
-                        speedup: float = 2.0, hold: int = 5, max_shots: int = 60, max_seconds: float = 8.0,
-                        ppm: float = PPM, noise: str = "tournament") -> Path:
-    """Play one seeded game between two game policies (names for
-    ``bots.make_bot``, or bots) and write it as a GIF (or
-    MP4): every shot animated at ``speedup`` x real time, then ``hold``
-    frames of the resting table with the ruling. Returns the path."""
+GAME_ANIMATION = Animation(fps=10, speedup=2.0, max_seconds=8.0, hold=5)  # a game: short shots, brisk
+
+
+def save_game_animation(path, game: str = "nine_ball", policies=("ghost", "ghost"), seed: int = 0,
+                        anim: Animation = GAME_ANIMATION, max_shots: int = 60, noise: str = "tournament") -> Path:
+    """Play one seeded game between two bots (names for ``bots.make_bot``,
+    or bots) and write it as a GIF (or MP4): every shot animated at
+    ``anim.speedup`` x real time, then ``anim.hold`` frames of the resting
+    table with the ruling. Returns the path."""
+    ppm, hold = anim.ppm, anim.hold
     from ..bots import make_bot
     from ..envs.games import GameConfig, GameCore
     from ..envs.games.play import bot_actions
@@ -129,9 +133,9 @@ def save_game_animation(path, game: str = "nine_ball", policies=("ghost", "ghost
         placed = out["info"]["placement"][0]
         start_pos[0], start_on[0] = placed, True
         if not out["info"]["passed"][0] and log is not None:
-            frames += _shot_frames(core, start_pos, start_on, log, info, fps, speedup, max_seconds, ppm)
+            frames += _shot_frames(core, start_pos, start_on, log, info, anim)
         info = out["info"]
         frames += [render_game(core, 0, info, ppm=ppm)] * hold
         if out["terminated"][0] or out["truncated"][0]:
             break
-    return write_animation(path, np.stack(frames), fps)
+    return write_animation(path, np.stack(frames), anim.fps)

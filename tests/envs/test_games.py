@@ -219,8 +219,9 @@ def test_render_game_state_and_gif(tmp_path):
     assert img.ndim == 3 and img.shape[0] > img.shape[1] and img.dtype == np.uint8
     lines = status_lines(core, 0)
     assert "P1 to move" in lines[0] and "behind the head string" in lines[0] and "groups: P0 open" in lines[1]
-    path = save_game_animation(tmp_path / "game.gif", "nine_ball", ("ghost", "random"), seed=1, fps=4,
-                               speedup=8.0, hold=1, max_shots=3, ppm=60)
+    from billiards_env.rendering import Animation
+    path = save_game_animation(tmp_path / "game.gif", "nine_ball", ("ghost", "random"), seed=1,
+                               anim=Animation(fps=4, speedup=8.0, hold=1, ppm=60), max_shots=3)
     import imageio.v3 as iio
     frames = iio.imread(path)
     assert path.exists() and len(frames) >= 4

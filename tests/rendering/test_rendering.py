@@ -5,7 +5,7 @@ import pytest
 
 import billiards_env  # noqa: F401
 from billiards_env.envs import NineBallEnv, PotOneEnv, RunOutVectorEnv
-from billiards_env.rendering import FELT_COLOR, ball_color, ball_paths, image_size, save_shot_animation, world_to_pixel
+from billiards_env.rendering import Animation, FELT_COLOR, ball_color, ball_paths, image_size, save_shot_animation, world_to_pixel
 from billiards_env.rendering.draw import NUMBER_DISC_RADIUS, NUMBER_MIN_RADIUS, PPM
 
 
@@ -89,8 +89,8 @@ def test_save_shot_animation_gif(tmp_path):
     env = PotOneEnv(render_mode="rgb_array")
     env.reset(seed=1)
     env.step(np.array([0.0, -0.6, 0.0, 0.0], np.float32))
-    path = save_shot_animation(tmp_path / "shot.gif", env.table, env.params, env.last_events, 2, fps=10,
-                               ppm=60, speedup=4.0)
+    path = save_shot_animation(tmp_path / "shot.gif", env.table, env.params, env.last_events, 2,
+                               Animation(fps=10, ppm=60, speedup=4.0))
     frames = iio.imread(path)
     assert frames.ndim == 4 and frames.shape[0] > 1
     assert frames.shape[1:3] == image_size(env.table, 60)
