@@ -4,7 +4,7 @@ For every task and algorithm with a block in ``configs/<algo>.yaml``: train
 with that config (its own budget, or the ``steps`` given, which the table
 then labels as a short budget), evaluating the policy on held seeds during
 training (the learning curve, ``HeldOutEvaluation``); then evaluate the
-final model on ``episodes`` held tables (``agents.evaluation.evaluate``,
+final model on ``episodes`` held tables (``agents.evaluation.harness.evaluate``,
 seed ``EVAL_SEED``) without noise and with ``tournament`` noise. One row
 per run: config, budget in env steps, training wall time (held-seed
 evaluations excluded), env steps/s including the updates, time to beat the
@@ -48,7 +48,7 @@ def configured(algo: str, env_id: str, config=None) -> bool:
 
 def run_one(env_id: str, algo: str, out_dir: Path, steps: int | None, episodes: int, curve_points: int,
             curve_episodes: int, extra: tuple = (), command: str = "", config=None) -> dict:
-    from .training import train
+    from .sb3.training import train
 
     path = config_file(algo, config)
     cfg0 = load_config(path, env_id, list(extra), algo=algo)
@@ -68,8 +68,8 @@ def _row(s: dict, run_dir: Path, curve: Path, path: Path, cfg0, out_dir: Path, e
          command: str) -> dict:
     """The table's row of a trained run: its summary ``s``, the final model
     of ``run_dir`` evaluated on ``episodes`` held tables under each noise."""
-    from .baselines import SB3Policy
-    from .evaluation import evaluate
+    from .sb3.policy import SB3Policy
+    from .evaluation.harness import evaluate
 
     env_id, algo = s["env_id"], s["algo"]
     pol = SB3Policy.load(run_dir, name=algo)

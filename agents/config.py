@@ -7,7 +7,7 @@ into frozen dataclasses, with dotted command-line overrides.
       algo: ppo
       n_envs: 128
       ppo: {learning_rate: 3.0e-4, n_steps: 4, ...}   # SB3 constructor kwargs
-      rllib: {num_env_runners: 2, lr: 3.0e-4, ...}    # RLlib PPO (agents.rllib_backend)
+      rllib: {num_env_runners: 2, lr: 3.0e-4, ...}    # RLlib PPO (agents.rllib.backend)
       policy: {net_arch: [256, 256], log_std_init: -0.7, ...}
       normalize: {obs: true, reward: false, ...}
       train: {total_timesteps: ..., eval_episodes: ..., ...}
@@ -72,7 +72,7 @@ class TrainSettings:
     eval_baselines: tuple = ("random", "ghost", "search")
     search_k: int = 256
     eval_noise: tuple = ("none", "tournament")
-    # held-seed evaluations during training (``agents.training.HeldOutEvaluation``):
+    # held-seed evaluations during training (``agents.sb3.training.HeldOutEvaluation``):
     # every ``eval_every`` env steps (0: none), ``eval_every_episodes`` episodes
     # of seed ``eval_seed`` without noise; their time is not training time
     eval_every: int = 0
@@ -84,7 +84,7 @@ class TrainSettings:
     tensorboard: bool = True
 
 
-# How the policy's action becomes the env's (agents.features.transform_actions).
+# How the policy's action becomes the env's (agents.interface.features.transform_actions).
 ACTION_MODES = ("direct", "residual", "choice")
 
 
@@ -100,12 +100,12 @@ class TrainConfig:
     version: int = CONFIG_VERSION
     n_envs: int = 128
     env_kwargs: dict = dataclasses.field(default_factory=dict)
-    features: bool = True     # agent-side ghost-ball features (agents.features)
+    features: bool = True     # agent-side ghost-ball features (agents.interface.features)
     aim_scale: float = 1.0    # policy a0 -> env a0 = aim_scale * a0
-    action_mode: str = "direct"  # ACTION_MODES: direct | residual (ghost-ball corrections) | choice (agents.choice)
+    action_mode: str = "direct"  # ACTION_MODES: direct | residual (ghost-ball corrections) | choice (agents.interface.choice)
     ppo: dict = dataclasses.field(default_factory=dict)   # SB3 PPO kwargs
     sac: dict = dataclasses.field(default_factory=dict)   # SB3 SAC kwargs
-    rllib: dict = dataclasses.field(default_factory=dict)  # RLlib PPO settings (agents.rllib_backend)
+    rllib: dict = dataclasses.field(default_factory=dict)  # RLlib PPO settings (agents.rllib.backend)
     policy: PolicyConfig = dataclasses.field(default_factory=PolicyConfig)
     normalize: NormalizeConfig = dataclasses.field(default_factory=NormalizeConfig)
     train: TrainSettings = dataclasses.field(default_factory=TrainSettings)

@@ -1,5 +1,5 @@
 """Learning curves (training success rate and reward vs env steps) from a
-run's ``progress.csv`` (written by ``agents.training.EpisodeLogger``)."""
+run's ``progress.csv`` (written by ``agents.sb3.training.EpisodeLogger``)."""
 from __future__ import annotations
 
 import csv

@@ -1,6 +1,6 @@
 """Hyper-parameter search with Optuna (what ``scripts/tune.py`` runs).
 
-One trial = one training run (``agents.training.train``) with hyper-
+One trial = one training run (``agents.sb3.training.train``) with hyper-
 parameters drawn by the TPE sampler over the search space of its algorithm
 (``SPACES``), given as dotted overrides of the env's block in
 ``configs/<algo>.yaml``. During the run the policy is evaluated on held seeds
@@ -91,7 +91,7 @@ def objective_fn(env_id: str, algo: str, run_dir: Path, steps: int, n_evals: int
                  fixed: tuple = (), config_path=None):
     import optuna
 
-    from .training import train
+    from .sb3.training import train
 
     def objective(trial) -> float:
         over = sample_overrides(trial, algo, fixed)

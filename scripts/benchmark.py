@@ -17,11 +17,11 @@ if __name__ == "__main__":
     from billiards_env.studies.bench.sections import plug_in
 
     def _rllib_rows(opts):
-        from agents.rllib_bench import rllib_rows
+        from agents.rllib.bench import rllib_rows
         return rllib_rows(opts)
 
     def _rllib_markdown(rows):
-        from agents.rllib_bench import rllib_markdown
+        from agents.rllib.bench import rllib_markdown
         return rllib_markdown(rows)
 
     plug_in("rllib", _rllib_rows, _rllib_markdown)

@@ -50,12 +50,12 @@ def main(argv=None) -> int:
     if a.address and a.backend != "ray":
         ap.error("--address needs --backend ray")
 
-    from agents.evaluation import evaluate_policies, evaluate_spec, format_table, save_results
+    from agents.evaluation.harness import evaluate_policies, evaluate_spec, format_table, save_results
 
     run = evaluate_spec
     if a.backend == "ray":
-        from agents.ray_eval import evaluate_spec as run
-        from agents.rllib_backend import start_ray
+        from agents.rllib.evaluation import evaluate_spec as run
+        from agents.rllib.backend import start_ray
         start_ray(a.address)
     results = evaluate_policies(a.policy, a.env, a.episodes, a.seed, a.noise, a.search_k, a.batch_size, a.name,
                                 run=run, opponent=a.opponent)

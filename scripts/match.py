@@ -25,7 +25,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(1, str(Path.cwd()))  # module:factory bots in the current directory
 
-from agents.game_policies import bot_factory  # noqa: E402
+from agents.evaluation.entrants import bot_factory  # noqa: E402
 from billiards_env.studies import match_report  # noqa: E402
 from billiards_env.studies.matches import tournament  # noqa: E402
 

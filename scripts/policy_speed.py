@@ -30,8 +30,8 @@ def main(argv=None) -> int:
 
     import numpy as np
 
-    from agents.policies import make_policy
-    from agents.sb3_vec_env import make_sb3_vec_env
+    from agents.evaluation.policies import make_policy
+    from agents.sb3.vec_env import make_sb3_vec_env
 
     warm = make_sb3_vec_env(a.env, 4, seed=a.seed)
     make_policy(a.policy, warm).act(warm.reset())

@@ -10,7 +10,7 @@ HTML viewer page, a GIF or MP4 animation, or replay JSON.
 The output kind follows each ``--out`` suffix: ``.html`` (self-contained
 viewer), ``.json`` (replay), ``.gif`` / ``.mp4`` (raster renderer; MP4 needs
 imageio-ffmpeg). ``--policy``: ``ghost``, ``random``, ``search<K>`` (e.g.
-``search64``) or a saved model (agents.policies.make_policy); the episode
+``search64``) or a saved model (agents.evaluation.policies.make_policy); the episode
 is the first one of a one-table vector env reset with ``--seed``.
 ``--scene``: ``cut-draw`` (a cut shot with draw) or ``break`` (a 9-ball
 break at 8 m/s).
@@ -67,7 +67,7 @@ def episode(env_id: str, policy: str, seed: int, noise: str | None = None, max_s
     import numpy as np
 
     import billiards_env  # noqa: F401  (registers the ids)
-    from agents.policies import make_policy
+    from agents.evaluation.policies import make_policy
     from billiards_env.rendering import record_env_shot, replay_for_env
 
     kw = {"noise": noise} if noise else {}

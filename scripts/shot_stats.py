@@ -7,7 +7,7 @@
 Plays the first episode of the held tables of scripts/evaluate.py (same
 seed, no noise) and classifies every shot by the position before it: the
 legal ball has an *open pot* (a ghost-ball shot into some pocket whose paths
-are clear and whose approach the pocket accepts, agents.geometry.open_pots)
+are clear and whose approach the pocket accepts, billiards_env.bots.geometry.open_pots)
 or not. Reports, per policy: shots per episode; the share of shots with an
 open pot; how often a shot with an open pot pots a ball legally; how often
 one without pots anyway, or is a legal miss (keeps the table) or a foul /
@@ -30,8 +30,8 @@ def shot_stats(spec: str, env_id: str, episodes: int, seed: int) -> dict:
     import numpy as np
 
     from billiards_env.bots import geometry as G
-    from agents.evaluation import policy_factory
-    from agents.sb3_vec_env import make_sb3_vec_env
+    from agents.evaluation.harness import policy_factory
+    from agents.sb3.vec_env import make_sb3_vec_env
 
     policy_fn, name, env_kwargs = policy_factory(spec, seed=0)
     env = make_sb3_vec_env(env_id, episodes, **env_kwargs)

@@ -25,7 +25,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from agents.config import load_config  # noqa: E402
-from agents.training import train_and_evaluate  # noqa: E402
+from agents.sb3.training import train_and_evaluate  # noqa: E402
 
 
 def main(argv=None) -> int:
@@ -49,9 +49,9 @@ def main(argv=None) -> int:
     t_start = time.perf_counter()
     command = "python " + " ".join(shlex.quote(a) for a in [sys.argv[0]] + list(argv if argv is not None else sys.argv[1:]))
     if args.resume:  # the run's own config.yaml; the command is appended to its command.txt
-        from agents.rllib_policy import is_rllib_run
+        from agents.rllib.policy import is_rllib_run
         if is_rllib_run(args.resume):
-            from agents import rllib_backend
+            from agents.rllib import backend as rllib_backend
             rllib_backend.resume(args.resume, command, t_start, address=args.address)
         else:
             train_and_evaluate(None, args.resume, command, t_start, resume=True)
@@ -62,7 +62,7 @@ def main(argv=None) -> int:
     name = args.name or f"{prefix}_{short}_{time.strftime('%Y%m%d-%H%M%S')}"
     run_dir = Path(args.runs_dir) / name
     if args.backend == "rllib":
-        from agents import rllib_backend
+        from agents.rllib import backend as rllib_backend
         rllib_backend.train_and_evaluate(cfg, run_dir, command, t_start, address=args.address)
         return 0
     train_and_evaluate(cfg, run_dir, command, t_start)

@@ -98,8 +98,8 @@ def test_graph_sees_function_level_and_relative_imports():
     g = import_graph()
     assert "billiards_env.envs.tasks.registry" in g["billiards_env.envs.config"]  # relative, module level
     assert "billiards_env.physics.validation" in g["billiards_env.envs.core"]  # inside a method
-    assert "agents.plotting" in g["agents.training"]  # inside a function
-    assert "agents.training" in g["scripts.train"]
+    assert "agents.plotting" in g["agents.sb3.training"]  # inside a function
+    assert "agents.sb3.training" in g["scripts.train"]
 
 
 def test_no_import_cycle():
@@ -141,5 +141,5 @@ def test_layers_only_look_down():
 
 def test_layer_check_sees_a_violation():
     assert layer_of("billiards_env.physics.simulate") == 0 and layer_of("billiards_env.bots.ghost") == 2
-    assert layer_of("billiards_env") == 3 and layer_of("agents.training") == 4
-    assert layer_of("billiards_env.envs.games.versus") < layer_of("agents.game_policies")
+    assert layer_of("billiards_env") == 3 and layer_of("agents.sb3.training") == 4
+    assert layer_of("billiards_env.envs.games.versus") < layer_of("agents.evaluation.entrants")

@@ -139,7 +139,7 @@ class SearchPolicy:
         self.aim_jitter = math.radians(aim_jitter_deg)
         self.chunk = chunk
         # map_chunks(fn, list of argument tuples) -> list of results, in order;
-        # the default runs them here, agents.ray_eval on Ray workers
+        # the default runs them here, agents.rllib.evaluation on Ray workers
         self.map_chunks = map_chunks or (lambda fn, args: [fn(*a) for a in args])
         self.name = f"search{self.k}"
 

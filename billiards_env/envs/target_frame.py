@@ -51,7 +51,7 @@ _jit = numba.njit(cache=True, nogil=True)
 # pocket still takes a ball rolling straight in: a side pocket's mouth faces
 # straight across the table, so a shallow approach meets the far jaw; a
 # corner's mouth spans both rails. Also the ghost-ball baseline's pocket
-# limits (agents.geometry.choose_pocket): on PotOne its shot into the
+# limits (billiards_env.bots.geometry.choose_pocket): on PotOne its shot into the
 # straightest pocket pots 0.837 of 1,000 held tables, 0.904 with these
 # limits (docs/agents.md).
 SIDE_ACCEPT_DEG = 50.0

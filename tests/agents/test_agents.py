@@ -13,11 +13,11 @@ import pytest
 
 pytest.importorskip("stable_baselines3")
 
-from agents.baselines import SB3Policy  # noqa: E402
+from agents.sb3.policy import SB3Policy  # noqa: E402
 from billiards_env.bots.one_player import BotPolicy, GhostBallPolicy, SearchPolicy  # noqa: E402
 from agents.config import load_config  # noqa: E402
-from agents.evaluation import evaluate, parse_noise, wilson_interval  # noqa: E402
-from agents.sb3_vec_env import NativeVecEnv, make_sb3_vec_env, split_infos  # noqa: E402
+from agents.evaluation.harness import evaluate, parse_noise, wilson_interval  # noqa: E402
+from agents.sb3.vec_env import NativeVecEnv, make_sb3_vec_env, split_infos  # noqa: E402
 from billiards_env.physics import BallState  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -43,7 +43,7 @@ def test_wilson_interval_matches_hand_computation():
 def test_wilson_interval_is_exact_at_the_ends_and_charts_them(tmp_path):
     """k = 0 and k = n give bounds of exactly 0 and 1 (the formula alone left
     2e-19, a negative error bar that stopped bar_chart)."""
-    from agents.evaluation import EvalResult, bar_chart
+    from agents.evaluation.harness import EvalResult, bar_chart
     assert wilson_interval(0, 1000)[0] == 0.0 and wilson_interval(1000, 1000)[1] == 1.0
     res = [EvalResult("none-ever", POT, "none", 1000, 11, 0.0, wilson_interval(0, 1000), 0.0, 0.0, 0.0, 0.0, 0.0,
                       1.0, 0.1)]
@@ -202,7 +202,7 @@ def test_config_overrides_and_typos():
 # ---------------------------------------------------------------- training
 @pytest.mark.parametrize("algo", ["ppo", "sac"])
 def test_training_smoke_save_reload_evaluate(algo, tmp_path):
-    from agents.training import train
+    from agents.sb3.training import train
     over = ["n_envs=16", "train.total_timesteps=2048", "train.progress_bar=false", "train.checkpoint_every=1024",
             "policy.net_arch=[32, 32]"]
     if algo == "ppo":

@@ -1,4 +1,4 @@
-"""``action_mode: choice`` (agents/choice.py): the shot menu, its features,
+"""``action_mode: choice`` (agents/interface/choice.py): the shot menu, its features,
 its action space in the wrappers, config validation and a training round trip."""
 from __future__ import annotations
 
@@ -10,13 +10,13 @@ import pytest
 
 pytest.importorskip("stable_baselines3")
 
-from agents import choice  # noqa: E402
+from agents.interface import choice  # noqa: E402
 from billiards_env.bots import geometry as G  # noqa: E402
-from agents.baselines import SB3Policy  # noqa: E402
+from agents.sb3.policy import SB3Policy  # noqa: E402
 from agents.config import load_config  # noqa: E402
-from agents.evaluation import evaluate  # noqa: E402
-from agents.features import ShotFeatures  # noqa: E402
-from agents.sb3_vec_env import make_sb3_vec_env  # noqa: E402
+from agents.evaluation.harness import evaluate  # noqa: E402
+from agents.interface.features import ShotFeatures  # noqa: E402
+from agents.sb3.vec_env import make_sb3_vec_env  # noqa: E402
 from billiards_env.physics import simulate, strike_velocity  # noqa: E402
 from billiards_env.physics.strike import Shots  # noqa: E402
 
@@ -89,7 +89,7 @@ def test_bad_choices_and_modes_are_refused():
 
 
 def test_choice_training_round_trip(tmp_path):
-    from agents.training import train
+    from agents.sb3.training import train
     over = ["n_envs=16", "train.total_timesteps=1024", "train.progress_bar=false", "train.checkpoint_every=512",
             "policy.net_arch=[16, 16]", "ppo.n_steps=32", "ppo.batch_size=128", "ppo.n_epochs=1",
             "train.eval_every=0"]

@@ -1,4 +1,4 @@
-"""Resuming a killed training run from its newest checkpoint (agents.checkpoints)."""
+"""Resuming a killed training run from its newest checkpoint (agents.sb3.checkpoints)."""
 import json
 import pickle
 import subprocess
@@ -9,9 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from agents.checkpoints import latest_checkpoint, load_checkpoint
+from agents.sb3.checkpoints import latest_checkpoint, load_checkpoint
 from agents.config import load_config, load_run_config
-from agents.training import build_env, train
+from agents.sb3.training import build_env, train
 
 ROOT = Path(__file__).resolve().parents[2]
 N_ENVS, N_STEPS, TOTAL, EVERY = 64, 16, 16384, 2048   # rollouts of 1,024 steps
@@ -51,7 +51,7 @@ def test_killed_run_resumes_to_the_same_step_count(tmp_path):
     assert model.num_timesteps == ck.steps and ck.steps % (N_ENVS * N_STEPS) == 0
     assert vecnorm.obs_rms.count == saved_count and np.array_equal(vecnorm.obs_rms.mean, saved_mean)
     # a checkpoint loaded for evaluation normalises like the restored VecNormalize
-    from agents.baselines import SB3Policy
+    from agents.sb3.policy import SB3Policy
     pol = SB3Policy.load(ck.model_path)
     obs = np.random.default_rng(0).random((5, vecnorm.obs_rms.mean.shape[0])).astype(np.float32)
     vecnorm.training = False

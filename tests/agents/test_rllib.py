@@ -1,5 +1,5 @@
-"""The Ray RLlib backend and distributed evaluation (agents.rllib_backend,
-agents.ray_eval): local training through the native vector entry point, a
+"""The Ray RLlib backend and distributed evaluation (agents.rllib.backend,
+agents.rllib.evaluation): local training through the native vector entry point, a
 checkpoint loaded into the evaluation harness, a two-node cluster on one
 machine, distributed evaluation equal to local evaluation, an EnvRunner
 killed mid-run, and resuming a stopped run.
@@ -46,7 +46,7 @@ def local_ray():
     its own cluster)."""
     ray = _ray()
     ray.shutdown()
-    from agents.rllib_backend import start_ray
+    from agents.rllib.backend import start_ray
     start_ray(num_cpus=2)
     yield ray
     ray.shutdown()
@@ -68,8 +68,8 @@ def test_vector_features_wrapper_matches_the_sb3_wrapper():
     import gymnasium as gym
 
     import billiards_env  # noqa: F401
-    from agents.features import ShotFeatures, VectorShotFeatures
-    from agents.sb3_vec_env import make_sb3_vec_env
+    from agents.interface.features import ShotFeatures, VectorShotFeatures
+    from agents.sb3.vec_env import make_sb3_vec_env
 
     n = 8
     sb3 = make_sb3_vec_env("Billiards-PotOne-v0", n, seed=3)
@@ -91,9 +91,9 @@ def test_vector_features_wrapper_matches_the_sb3_wrapper():
 
 # ---------------------------------------------------------------- ray tests --
 def test_local_run_steps_the_vector_env_and_loads_into_the_harness(local_ray, tmp_path):
-    from agents.evaluation import evaluate, load_trained
-    from agents.rllib_backend import train
-    from agents.rllib_policy import RLlibPolicy, checkpoints
+    from agents.evaluation.harness import evaluate, load_trained
+    from agents.rllib.backend import train
+    from agents.rllib.policy import RLlibPolicy, checkpoints
 
     run = tmp_path / "run"
     s = train(_cfg("train.total_timesteps=192", "train.checkpoint_every=64"), run, "test")
@@ -122,7 +122,7 @@ def test_local_run_steps_the_vector_env_and_loads_into_the_harness(local_ray, tm
 
 def test_unknown_rllib_setting_is_an_error_naming_it():
     _ray()
-    from agents.rllib_backend import algo_config
+    from agents.rllib.backend import algo_config
 
     with pytest.raises(ValueError, match="learning_rate"):
         algo_config(_cfg("rllib.learning_rate=1e-3"))
@@ -131,8 +131,8 @@ def test_unknown_rllib_setting_is_an_error_naming_it():
 
 
 def test_distributed_evaluation_equals_local(local_ray, tmp_path):
-    from agents.evaluation import evaluate_policies
-    from agents.ray_eval import evaluate_spec
+    from agents.evaluation.harness import evaluate_policies
+    from agents.rllib.evaluation import evaluate_spec
 
     specs = ["random", "ghost", "search8"]
     kw = dict(env_id="Billiards-PotOne-v0", n_episodes=48, seed=777, noises=["none", "tournament"], batch_size=16)
@@ -147,7 +147,7 @@ def test_distributed_evaluation_equals_local(local_ray, tmp_path):
 def test_killed_env_runner_is_restarted_and_training_continues(local_ray):
     from ray.rllib.utils.metrics import ENV_RUNNER_RESULTS, NUM_ENV_STEPS_SAMPLED_LIFETIME
 
-    from agents.rllib_backend import algo_config, env_runner_facts
+    from agents.rllib.backend import algo_config, env_runner_facts
 
     algo = algo_config(_cfg()).build_algo()
     try:
@@ -170,8 +170,8 @@ def test_killed_env_runner_is_restarted_and_training_continues(local_ray):
 
 
 def test_resume_continues_from_the_last_checkpoint(local_ray, tmp_path):
-    from agents.rllib_backend import train
-    from agents.rllib_policy import checkpoints
+    from agents.rllib.backend import train
+    from agents.rllib.policy import checkpoints
 
     run = tmp_path / "run"
     cfg = _cfg("train.total_timesteps=256", "train.checkpoint_every=128")
@@ -192,7 +192,7 @@ def test_push_batch_equals_rllibs_pushes_row_by_row():
     _ray()
     from ray.rllib.utils.filter import RunningStat
 
-    from agents.rllib_sampling import push_batch
+    from agents.rllib.sampling import push_batch
 
     rng = np.random.default_rng(0)
     one, batched = RunningStat((5,)), RunningStat((5,))
@@ -221,7 +221,7 @@ def test_lean_observation_filter_matches_rllibs_filter():
     from ray.rllib.connectors.env_to_module import MeanStdFilter as RLlibFilter
     from ray.rllib.env.single_agent_episode import SingleAgentEpisode
 
-    from agents.rllib_sampling import MeanStdFilter
+    from agents.rllib.sampling import MeanStdFilter
 
     obs_space = gym.spaces.Box(-np.inf, np.inf, (6,), np.float32)
     act_space = gym.spaces.Box(-1.0, 1.0, (2,), np.float32)
@@ -264,7 +264,7 @@ def test_lean_runner_gives_the_learner_complete_episodes():
     _ray()
     from ray.rllib.env.single_agent_env_runner import SingleAgentEnvRunner
 
-    from agents.rllib_backend import algo_config
+    from agents.rllib.backend import algo_config
 
     cfg = load_config(None, "Billiards-PotOne-v0", ["rllib.num_env_runners=0", "rllib.num_envs_per_env_runner=16"])
     runner = SingleAgentEnvRunner(config=algo_config(cfg, lean=True))
@@ -291,7 +291,7 @@ def test_tuned_gc_is_undone_after_the_block():
     _ray()
     import gc
 
-    from agents.rllib_sampling import WORKER_GC_GEN0_THRESHOLD, tuned_gc
+    from agents.rllib.sampling import WORKER_GC_GEN0_THRESHOLD, tuned_gc
 
     before = gc.get_threshold()
     with tuned_gc():
@@ -305,7 +305,7 @@ def test_process_cpu_account_sees_a_busy_child():
     import subprocess
     import sys
 
-    from agents.rllib_bench import cpu_account, process_tree_cpu
+    from agents.rllib.bench import cpu_account, process_tree_cpu
 
     if not os.path.isdir("/proc"):
         pytest.skip("no /proc (not Linux)")
@@ -330,7 +330,7 @@ def test_two_node_cluster_places_env_runners_on_both_nodes(tmp_path):
     ray = _ray()
     from ray.cluster_utils import Cluster
 
-    from agents.rllib_backend import train
+    from agents.rllib.backend import train
 
     ray.shutdown()
     cluster = Cluster(initialize_head=True, head_node_args={"num_cpus": 1})

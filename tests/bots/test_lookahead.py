@@ -1,11 +1,11 @@
-"""The position-playing search baseline (agents.lookahead) on constructed positions."""
+"""The position-playing search baseline (billiards_env.bots.lookahead) on constructed positions."""
 import gymnasium as gym
 import numpy as np
 
 import billiards_env  # noqa: F401
 from billiards_env.bots import geometry as G
-from agents.policies import make_policy
-from agents.evaluation import evaluate
+from agents.evaluation.policies import make_policy
+from agents.evaluation.harness import evaluate
 from billiards_env.bots.lookahead import LookaheadPolicy
 
 RUNOUT = "Billiards-RunOut-v0"

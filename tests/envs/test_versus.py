@@ -1,6 +1,6 @@
 """The two-player games against a fixed opponent, batched
 (``billiards_env.envs.games.versus``), and the agent machinery on them
-(``agents.game_view``): the batched env is ``GameEnv`` on many tables, every
+(``agents.interface.game_view``): the batched env is ``GameEnv`` on many tables, every
 observation is one the agent acts on, ball in hand is placed where the view
 shows it, and a PPO menu agent trains and evaluates on both games."""
 import gymnasium as gym
@@ -92,7 +92,7 @@ def _ball_in_hand(env, rng, steps=60):
 
 
 def test_view_places_the_cue_ball_where_the_shot_is_played_from():
-    from agents.game_view import agent_native
+    from agents.interface.game_view import agent_native
     env = versus("Billiards-NineBall2P-v0", 16, opponent="ghost")
     rng = np.random.default_rng(4)
     k = _ball_in_hand(env, rng)
@@ -113,9 +113,9 @@ def test_view_places_the_cue_ball_where_the_shot_is_played_from():
 def test_view_shots_keep_their_aim_and_the_menu_calls_its_pocket():
     """A menu item's shot reaches the env with the menu's absolute aim, from the placed cue ball; the called pocket
     is the item's pocket."""
-    from agents import choice
-    from agents.features import transform_actions
-    from agents.game_view import agent_native
+    from agents.interface import choice
+    from agents.interface.features import transform_actions
+    from agents.interface.game_view import agent_native
     env = versus("Billiards-EightBall-v0", 16, opponent="ghost")
     k = _ball_in_hand(env, np.random.default_rng(5))
     view = agent_native(env)
@@ -135,22 +135,22 @@ def test_view_shots_keep_their_aim_and_the_menu_calls_its_pocket():
 
 
 def test_game_baselines_and_names():
-    from agents.evaluation import evaluate
-    from agents.policies import make_policy
+    from agents.evaluation.harness import evaluate
+    from agents.evaluation.policies import make_policy
     r = evaluate(lambda env: make_policy("ghost-safety", env), "Billiards-NineBall2P-v0", 24, 0, "none",
                  env_kwargs={"opponent": "ghost"})
     assert r.policy == "ghost-safety" and 0 <= r.success_rate <= 1 and r.shots_per_episode >= 1
-    from agents.sb3_vec_env import make_sb3_vec_env
+    from agents.sb3.vec_env import make_sb3_vec_env
     with pytest.raises(ValueError, match="two-player"):
         make_policy("ghost-safety", make_sb3_vec_env("Billiards-PotOne-v0", 2))
 
 
 @pytest.mark.parametrize("env_id", IDS)
 def test_menu_agent_trains_and_evaluates(env_id, tmp_path):
-    from agents.baselines import SB3Policy
+    from agents.sb3.policy import SB3Policy
     from agents.config import CONFIG_DIR, load_config
-    from agents.evaluation import evaluate
-    from agents.training import train
+    from agents.evaluation.harness import evaluate
+    from agents.sb3.training import train
     cfg = load_config(CONFIG_DIR / "ppo_games.yaml", env_id,
                       ["n_envs=16", "ppo.n_steps=8", "ppo.batch_size=64", "train.total_timesteps=256",
                        "train.checkpoint_every=0", "train.eval_every=128", "train.eval_every_episodes=16",
@@ -161,7 +161,7 @@ def test_menu_agent_trains_and_evaluates(env_id, tmp_path):
     r = evaluate(lambda env: pol.bind(env), env_id, 16, 1, "tournament", env_kwargs=pol.env_kwargs)
     assert r.n_episodes == 16 and 0 <= r.success_rate <= 1
     # the saved model also plays matches on a self-play core, either side breaking (studies.matches)
-    from agents.game_policies import bot_factory
+    from agents.evaluation.entrants import bot_factory
     from billiards_env.studies.matches import play_pairing
     game = "nine_ball" if "Nine" in env_id else "eight_ball"
     m = play_pairing(str(tmp_path), "ghost", game, n_racks=3, seed=0, noise="none", max_shots=40,
@@ -188,7 +188,7 @@ def test_benchmark_rows_of_a_game(tmp_path):
 
 def test_game_run_checkpoints_and_resumes(tmp_path):
     from agents.config import CONFIG_DIR, load_config
-    from agents.training import train
+    from agents.sb3.training import train
     over = ["n_envs=16", "policy.net_arch=[16]", "ppo.n_steps=8", "ppo.batch_size=64", "train.checkpoint_every=128",
             "train.tensorboard=false", "train.eval_every=0"]
     path = CONFIG_DIR / "ppo_games.yaml"
@@ -199,7 +199,7 @@ def test_game_run_checkpoints_and_resumes(tmp_path):
 
 
 def test_evaluation_names_the_opponent():
-    from agents.evaluation import evaluate_policies
+    from agents.evaluation.harness import evaluate_policies
     r = evaluate_policies(["ghost"], "Billiards-EightBall-v0", 8, 0, opponent="ghost-safety")
     assert len(r) == 1 and r[0].n_episodes == 8
     with pytest.raises(ValueError, match="two-player"):

@@ -60,7 +60,7 @@ def markdown(rows: list[dict]) -> str:
             lines += _effects_table(part[k], nt)
     if part["env"]:
         lines += _env_table(part["env"])
-    if part["rllib"]:  # the RLlib backend's section (agents/rllib_bench.py, plugged in by scripts/benchmark.py)
+    if part["rllib"]:  # the RLlib backend's section (agents/rllib/bench.py, plugged in by scripts/benchmark.py)
         from .sections import PLUGGED
         lines += PLUGGED["rllib"][1](part["rllib"])
     if part["cold start"]:

@@ -198,9 +198,9 @@ def plug_in(name: str, rows, markdown) -> None:
 
 def rllib_rows(opts: RunOptions) -> list[dict]:
     """RLlib vs SB3 vs the bare env (plugged in by scripts/benchmark.py from
-    ``agents/rllib_bench.py``; needs the ``ray`` extra)."""
+    ``agents/rllib/bench.py``; needs the ``ray`` extra)."""
     if "rllib" not in PLUGGED:
-        raise RuntimeError("the rllib section is measured by agents/rllib_bench.py: run it through "
+        raise RuntimeError("the rllib section is measured by agents/rllib/bench.py: run it through "
                            "scripts/benchmark.py --only rllib from a checkout")
     return PLUGGED["rllib"][0](opts)
 

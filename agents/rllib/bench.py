@@ -5,7 +5,7 @@ and the bare vector env, all measured in one run on PotOne.
 Sampling (env steps/s, one numba thread per env stepper):
 
 - ``bare env``: the vector env exactly as an EnvRunner builds it
-  (``rllib_backend.make_vector_env``: native env, next-step autoreset, agent
+  (``backend.make_vector_env``: native env, next-step autoreset, agent
   features, residual actions) stepped in a loop with random actions; only
   real shots count (the autoreset steps in between cost time, count nothing);
 - ``sb3 rollout``: SB3 PPO's ``collect_rollouts`` on the default config's env
@@ -13,7 +13,7 @@ Sampling (env steps/s, one numba thread per env stepper):
 - ``rllib N runners``: N remote EnvRunners (``num_envs_per_env_runner``
   tables each) sampling at once; steps of all runners over the wall time
   (1 and 2 runners interleaved in each repeat), with the backend's lean
-  sampling (``rllib_backend.algo_config(lean=True)``, the default) and
+  sampling (``backend.algo_config(lean=True)``, the default) and
   with RLlib's own observation filter, collector and action pass.
 
 RLlib's sampling overhead is ``1 - rllib 1 runner / bare env`` at the same
@@ -50,7 +50,7 @@ ENV_ID = "Billiards-PotOne-v0"
 
 
 def _cfg(overrides=()):
-    from .config import load_config
+    from ..config import load_config
 
     return load_config(None, ENV_ID, list(overrides))
 
@@ -60,7 +60,7 @@ def bare_env_rate(tables: int, shots: int, repeats: int) -> tuple[float, float]:
     second and per CPU-second of this process (medians)."""
     import numba
 
-    from .rllib_backend import env_context, make_vector_env
+    from .backend import env_context, make_vector_env
 
     cfg = _cfg()
     ctx = {**env_context(cfg), "num_envs": tables, "numba_threads": 1}
@@ -88,7 +88,7 @@ def sb3_rollout_rate(repeats: int) -> float:
     import numba
     import torch
 
-    from .training import build_env, build_model
+    from ..sb3.training import build_env, build_model
 
     cfg = _cfg(["train.tensorboard=false"])
     torch.set_num_threads(cfg.train.torch_threads)
@@ -197,7 +197,7 @@ def rllib_sample_rates(tables: int, shots: int, repeats: int, lean: bool = True)
     runner that is the wall time), and the cores each kind of process used
     (``cores``: CPU seconds over wall seconds; Ray's daemons, the driver,
     the runners). ``lean``: ``algo_config``'s lean sampling or RLlib's own."""
-    from .rllib_backend import algo_config
+    from .backend import algo_config
 
     cfg = _cfg(["rllib.num_env_runners=2", f"rllib.num_envs_per_env_runner={tables}",
                 f"rllib.train_batch_size_per_learner={2 * tables}", f"rllib.minibatch_size={2 * tables}"])
@@ -248,8 +248,8 @@ def sample_breakdown(tables: int, shots: int, lean: bool = True, repeats: int = 
     import torch
     from ray.rllib.env.single_agent_env_runner import SingleAgentEnvRunner
 
-    from .rllib_backend import algo_config
-    from .rllib_sampling import tune_worker_gc
+    from .backend import algo_config
+    from .sampling import tune_worker_gc
 
     torch.set_num_threads(1)
     cfg = _cfg(["rllib.num_env_runners=0", f"rllib.num_envs_per_env_runner={tables}"])
@@ -305,8 +305,8 @@ def runner_cpu_rate(tables: int = 256, shots: int = 16, repeats: int = 5, lean: 
     import torch
     from ray.rllib.env.single_agent_env_runner import SingleAgentEnvRunner
 
-    from .rllib_backend import algo_config
-    from .rllib_sampling import tune_worker_gc
+    from .backend import algo_config
+    from .sampling import tune_worker_gc
 
     torch.set_num_threads(1)
     cfg = _cfg(["rllib.num_env_runners=0", f"rllib.num_envs_per_env_runner={tables}"])
@@ -339,8 +339,8 @@ def gc_sample_rates(tables: int = 256, shots: int = 16, samples: int = 6) -> dic
     import torch
     from ray.rllib.env.single_agent_env_runner import SingleAgentEnvRunner
 
-    from .rllib_backend import algo_config
-    from .rllib_sampling import tune_worker_gc
+    from .backend import algo_config
+    from .sampling import tune_worker_gc
 
     torch.set_num_threads(1)
     cfg = _cfg(["rllib.num_env_runners=0", f"rllib.num_envs_per_env_runner={tables}"])
@@ -372,7 +372,7 @@ def episode_object_us(n: int = 4000) -> dict:
     ``to_numpy``) with PotOne's observation and action sizes."""
     from ray.rllib.env.single_agent_episode import SingleAgentEpisode
 
-    from .rllib_backend import env_context, make_vector_env
+    from .backend import env_context, make_vector_env
 
     env = make_vector_env({**env_context(_cfg()), "num_envs": 1})
     obs_space, act_space = env.single_observation_space, env.single_action_space
@@ -419,8 +419,8 @@ def train_rates(train_steps: int, tmp) -> dict:
     learner; start-up included: ``... driver cpu``)."""
     from pathlib import Path
 
-    from . import rllib_backend
-    from .training import train
+    from ..sb3.training import train
+    from .backend import train as rllib_train
 
     tmp = Path(tmp)
     common = [f"train.total_timesteps={train_steps}", "train.checkpoint_every=0", "train.progress_bar=false",
@@ -429,7 +429,7 @@ def train_rates(train_steps: int, tmp) -> dict:
     out = dict(sb3=_iteration_rate(tmp / "sb3" / "progress.csv"))
     for name, lean in (("rllib", True), ("rllib own", False)):
         c0 = time.process_time()
-        rllib_backend.train(_cfg(common), tmp / name, lean=lean)
+        rllib_train(_cfg(common), tmp / name, lean=lean)
         out[name + " driver cpu"] = time.process_time() - c0
         out[name] = _iteration_rate(tmp / name / "progress.csv")
     return out
@@ -445,7 +445,7 @@ def rllib_rows(args) -> list[dict]:
 
     import ray
 
-    from .rllib_backend import start_ray
+    from .backend import start_ray
 
     tables = 64 if args.quick else 256
     shots = 4 if args.quick else 16

@@ -1,6 +1,6 @@
 """Cheaper sampling inside an RLlib EnvRunner: the parts of RLlib's per-step
 cost that can be removed without changing what the Learner receives
-(``rllib_backend.algo_config(cfg, lean=True)``, the default). Needs
+(``backend.algo_config(cfg, lean=True)``, the default). Needs
 ``ray[rllib]``; the backend imports it only when it builds a config or an
 EnvRunner's env.
 

@@ -1,6 +1,7 @@
-"""Policies by name: the baselines of ``agents.baselines``, the lookahead
-search of ``billiards_env.bots.lookahead`` and saved models (what ``scripts/evaluate.py
---policy`` and the training's final evaluation accept)."""
+"""Policies by name: the one-player baselines of ``billiards_env.bots.one_player``,
+the lookahead search of ``billiards_env.bots.lookahead``, the game bots of
+``billiards_env.bots`` and saved models (``agents.sb3.policy.SB3Policy``; what
+``scripts/evaluate.py --policy`` and the training's final evaluation accept)."""
 from __future__ import annotations
 
 import numpy as np
@@ -11,8 +12,8 @@ from billiards_env.envs.games.play import bot_actions
 
 from billiards_env.bots.one_player import BotPolicy, GhostBallPolicy, Policy, RandomPolicy, SearchPolicy
 
-from .baselines import SB3Policy, native_env
-from .game_view import game_view_of
+from ..sb3.policy import SB3Policy
+from ..interface.game_view import game_view_of, native_env
 
 BASELINE_NAMES = ("random", "ghost", "lookahead")  # besides search<K>
 GAME_ONLY_NAMES = ("ghost-safety",)                 # game policies without a one-player twin
@@ -27,7 +28,7 @@ def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
     """A baseline by name: ``random``, ``ghost``, ``search`` (``search<K>``
     sets K, e.g. ``search64``), ``lookahead`` (``billiards_env.bots.lookahead``), or a
     path to a saved model / run directory. On a two-player game env against
-    an opponent the names are game policies' (``agents.game_policies``)."""
+    an opponent the names are the game bots' (``billiards_env.bots.make_bot``)."""
     view = game_view_of(env)
     if view is not None and is_policy_name(name):
         return GamePolicy(name, view.env, seed=seed)

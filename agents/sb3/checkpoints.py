@@ -35,7 +35,7 @@ _NAME = re.compile(r"^model_(\d+)_steps\.zip$")
 
 def _native_sb3(env):
     """The ``NativeVecEnv`` under SB3 wrappers (VecNormalize, features)."""
-    from .sb3_vec_env import NativeVecEnv
+    from .vec_env import NativeVecEnv
 
     for _ in range(10):
         if isinstance(env, NativeVecEnv):

@@ -1,13 +1,13 @@
 """Training with Ray RLlib's PPO (new API stack) on the native vector env.
 
-The second training backend next to stable-baselines3 (``agents.training``),
+The second training backend next to stable-baselines3 (``agents.sb3.training``),
 for runs that outgrow one machine. It reads the same ``TrainConfig`` (the
 ``rllib:`` block of the env id in ``configs/ppo.yaml``, next to ``ppo:``) and
 writes the same run directory: ``config.yaml``, ``command.txt``,
 ``checkpoints/`` (RLlib checkpoints named by env steps), ``progress.csv``
 (same columns), ``tb/`` (TensorBoard), ``learning_curve.png``,
 ``train_summary.json`` and the final evaluation through the project's harness
-(``eval.json``/``eval.png``, ``agents.rllib_policy.RLlibPolicy`` playing the
+(``eval.json``/``eval.png``, ``agents.rllib.policy.RLlibPolicy`` playing the
 seeded episodes).
 
 Each EnvRunner is a Ray actor stepping one native vector env of
@@ -19,7 +19,7 @@ next-step autoreset, the convention RLlib's EnvRunner expects. Each runner
 sets numba and torch to one thread per CPU it is given
 (``num_cpus_per_env_runner``) and samples lean (``algo_config``: a batched
 observation filter, a tuned garbage collector, no second action clip;
-``agents.rllib_sampling``).
+``agents.rllib.sampling``).
 
 The ``rllib:`` block: ``num_env_runners``, ``num_envs_per_env_runner``,
 ``num_cpus_per_env_runner`` (EnvRunners), ``num_learners``,
@@ -42,8 +42,8 @@ from pathlib import Path
 import gymnasium as gym
 import numpy as np
 
-from .config import TrainConfig, save_config
-from .rllib_policy import CHECKPOINT_PREFIX, checkpoints, load_run_config
+from ..config import TrainConfig, save_config
+from .policy import CHECKPOINT_PREFIX, checkpoints, load_run_config
 
 ENV_RUNNER_KEYS = ("num_env_runners", "num_envs_per_env_runner", "num_cpus_per_env_runner")
 LEARNER_KEYS = ("num_learners", "num_cpus_per_learner")
@@ -67,16 +67,16 @@ def make_vector_env(ctx) -> "gym.vector.VectorEnv":
     process: importing ``billiards_env`` there registers the ids. In a Ray
     actor (a remote EnvRunner) it also tunes that process's garbage
     collector unless ``ctx["worker_gc"]`` is False
-    (``rllib_sampling.tune_worker_gc``)."""
+    (``sampling.tune_worker_gc``)."""
     import numba
     import torch
 
     import billiards_env  # noqa: F401  (registers the env ids in this worker)
 
-    from .features import VectorShotFeatures
+    from ..interface.features import VectorShotFeatures
 
     if ctx.get("worker_gc", True) and _in_ray_actor():
-        from .rllib_sampling import tune_worker_gc
+        from .sampling import tune_worker_gc
         tune_worker_gc()  # in EnvRunner processes only, never in the driver
     threads = max(1, int(ctx.get("numba_threads", 1)))  # the CPUs this EnvRunner is given
     numba.set_num_threads(min(threads, numba.config.NUMBA_NUM_THREADS))
@@ -181,8 +181,8 @@ def _split_rllib_block(block: dict) -> tuple[dict, dict, dict, dict]:
 def algo_config(cfg: TrainConfig, lean: bool = True):
     """The ``PPOConfig`` (new API stack) of ``cfg``. ``lean`` (default):
     the observation filter updates once per vector step
-    (``rllib_sampling.MeanStdFilter``), EnvRunner processes tune
-    their garbage collector (``rllib_sampling.tune_worker_gc``) and actions go
+    (``sampling.MeanStdFilter``), EnvRunner processes tune
+    their garbage collector (``sampling.tune_worker_gc``) and actions go
     to the env unclipped (the env clips them to its Box [-1, 1], exactly
     RLlib's unsquash for that Box); False gives RLlib's own filter, collector
     and action pass (benchmark comparisons). The Learner gets the same
@@ -217,7 +217,7 @@ def algo_config(cfg: TrainConfig, lean: bool = True):
               .reporting(min_time_s_per_iteration=0, min_sample_timesteps_per_iteration=0))
     if cfg.normalize.obs:
         if lean:
-            from .rllib_sampling import MeanStdFilter as filter_class
+            from .sampling import MeanStdFilter as filter_class
         else:
             from ray.rllib.connectors.env_to_module import MeanStdFilter as filter_class
         clip = cfg.normalize.clip_obs
@@ -308,7 +308,7 @@ def train(cfg: TrainConfig, run_dir, command: str = "", address: str | None = No
     appended; the env steps since that checkpoint are sampled again).
     ``stop_after_iterations``: stop early (tests). ``lean`` (default):
     ``algo_config``'s lean sampling, and this process's garbage collector
-    tuned while it trains (``rllib_sampling.tuned_gc``); False: RLlib's own
+    tuned while it trains (``sampling.tuned_gc``); False: RLlib's own
     settings (benchmark comparisons). Returns the summary dict."""
     import numba
     import torch
@@ -327,7 +327,7 @@ def train(cfg: TrainConfig, run_dir, command: str = "", address: str | None = No
 
     if cfg.normalize.reward:
         print("note: normalize.reward applies to the sb3 backend only; the rllib backend trains on raw rewards")
-    from .rllib_sampling import tuned_gc
+    from .sampling import tuned_gc
 
     started_here = not ray.is_initialized()
     start_ray(address, num_cpus)
@@ -418,11 +418,11 @@ def _train(cfg: TrainConfig, run_dir: Path, last: Path | None, stop_after_iterat
 
 def train_and_evaluate(cfg: TrainConfig, run_dir, command: str = "", t_start: float | None = None,
                        address: str | None = None, resume: bool = False) -> dict:
-    """``agents.training.train_and_evaluate`` with this backend: train,
+    """``agents.sb3.training.train_and_evaluate`` with this backend: train,
     plot ``learning_curve.png``, evaluate the last checkpoint and the
     baselines through the harness (``final_evaluation``), write the summary."""
-    from .plotting import plot_runs
-    from .training import final_evaluation
+    from ..plotting import plot_runs
+    from ..sb3.training import final_evaluation
 
     t_start = time.perf_counter() if t_start is None else t_start
     run_dir = Path(run_dir)

@@ -24,7 +24,7 @@ action is ``MultiDiscrete([C, S, H])``:
 Nothing is simulated to build the menu: its aims are geometry, and which
 item pots, scratches or leaves a next shot is what the policy learns. The
 observation gets, per pocket, the ghost-ball features of
-``agents.features.shot_features`` and, per contact shot and kick, whether its
+``agents.interface.features.shot_features`` and, per contact shot and kick, whether its
 path is open and its length (``contact_features``).
 """
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Distributed evaluation on Ray: the evaluation harness's batches, and the
 search baseline's candidate shots, as Ray tasks.
 
-``evaluate_ray`` plays the same batches as ``agents.evaluation.evaluate``
+``evaluate_ray`` plays the same batches as ``agents.evaluation.harness.evaluate``
 (batch j: ``batch_size`` tables reset with ``seed + j``), each batch a Ray
 task, and combines them in batch order, so its results equal the local
 evaluation's for the same seed and batch size. The search baseline's cost
@@ -9,7 +9,7 @@ is its candidate shots (K per table, simulated in chunks): under Ray each
 chunk is a task (``RayChunkMap``), and the chunks' results are joined in
 order, so the chosen shots are the same as in one process.
 
-Work goes to whatever cluster ``agents.rllib_backend.start_ray`` joined (a
+Work goes to whatever cluster ``agents.rllib.backend.start_ray`` joined (a
 local instance by default). Each task uses one CPU and sets numba to one
 thread.
 """
@@ -19,7 +19,7 @@ import math
 import time
 from typing import Callable
 
-from .evaluation import EvalResult, batch_plan, combine_batches, eval_kwargs, play_batch
+from ..evaluation.harness import EvalResult, batch_plan, combine_batches, eval_kwargs, play_batch
 
 _remote_cache: dict = {}
 
@@ -61,7 +61,7 @@ def search_policy_fn(spec: str, seed: int, search_k: int, tables: int) -> Callab
     per cluster CPU for ``tables`` tables."""
     from billiards_env.bots.one_player import BotPolicy, SearchPolicy
 
-    from .baselines import native_env
+    from ..interface.game_view import native_env
 
     k = int(spec[6:]) if spec[6:] else search_k
     chunk = max(1, math.ceil(tables * k / (2 * cluster_cpus())))
@@ -72,7 +72,7 @@ def search_policy_fn(spec: str, seed: int, search_k: int, tables: int) -> Callab
 def evaluate_ray(policy_fn: Callable, env_id: str, n_episodes: int = 1000, seed: int = 0, noise: str = "none",
                  batch_size: int = 1000, max_steps: int = 10_000, env_kwargs: dict | None = None,
                  name: str | None = None, local_batches: bool = False) -> EvalResult:
-    """``agents.evaluation.evaluate`` with every batch a Ray task
+    """``agents.evaluation.harness.evaluate`` with every batch a Ray task
     (``local_batches``: play the batches here, in order; for policies that
     spread their own work, such as the search baseline's candidates)."""
     import ray
@@ -90,7 +90,7 @@ def evaluate_ray(policy_fn: Callable, env_id: str, n_episodes: int = 1000, seed:
 
 def evaluate_spec(spec: str, policy_fn: Callable, env_id: str, n_episodes: int, seed: int, noise: str,
                   batch_size: int, name: str, search_k: int = 256, env_kwargs: dict | None = None) -> EvalResult:
-    """One entry of ``agents.evaluation.evaluate_policies(run=evaluate_spec)``
+    """One entry of ``agents.evaluation.harness.evaluate_policies(run=evaluate_spec)``
     on Ray: the search baseline plays its batches here with its candidates spread
     over the cluster; every other policy has its batches spread."""
     if spec.startswith("search"):

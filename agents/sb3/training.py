@@ -4,7 +4,7 @@
 per step for all ``n_envs`` tables), optional VecNormalize, the model, and
 trains with a progress bar, TensorBoard logging (when installed), a CSV log
 of episode statistics (for the learning curve), periodic checkpoints
-(``agents.checkpoints``: model, normaliser statistics as plain arrays, step
+(``agents.sb3.checkpoints``: model, normaliser statistics as plain arrays, step
 counter, random state) and the final model saved as ``<run>/model.zip`` with
 ``<run>/vecnormalize.pkl`` and ``<run>/config.yaml``. ``train(cfg, run_dir,
 resume=True)`` continues a stopped or killed run from its newest checkpoint.
@@ -24,8 +24,8 @@ import numpy as np
 from stable_baselines3.common.callbacks import BaseCallback
 
 from .checkpoints import last_logged_steps, latest_checkpoint, load_checkpoint, save_checkpoint
-from .config import TrainConfig, load_run_config, save_config
-from .sb3_vec_env import make_sb3_vec_env
+from ..config import TrainConfig, load_run_config, save_config
+from .vec_env import make_sb3_vec_env
 
 
 def _has_tensorboard() -> bool:
@@ -149,7 +149,7 @@ class EpisodeLogger(BaseCallback):
 
 
 class HeldOutEvaluation(BaseCallback):
-    """Evaluates the policy on the held seeds (``agents.evaluation.evaluate``,
+    """Evaluates the policy on the held seeds (``agents.evaluation.harness.evaluate``,
     ``episodes`` tables of seed ``seed``, no noise) every ``every`` env steps,
     at rollout boundaries, and once at the end. The clock of the training time
     (``train_s``) stops while it evaluates. Rows (steps, train_s, success,
@@ -176,12 +176,12 @@ class HeldOutEvaluation(BaseCallback):
         self._stop = False
 
     def _evaluate(self, policy) -> object:
-        from .evaluation import evaluate
+        from ..evaluation.harness import evaluate
         return evaluate(policy, self.cfg.env_id, self.episodes, self.seed, "none",
                         env_kwargs=self.cfg.env_kwargs, name=self.cfg.algo)
 
     def _on_training_start(self) -> None:
-        from .policies import make_policy
+        from ..evaluation.policies import make_policy
         if self.target is None:
             self.target = self._evaluate(lambda env: make_policy("ghost", env)).success_rate
         self._f = open(self.run_dir / "evaluations.csv", "w", newline="")
@@ -191,7 +191,7 @@ class HeldOutEvaluation(BaseCallback):
         self._run()
 
     def _run(self) -> None:
-        from .baselines import SB3Policy
+        from .policy import SB3Policy
         t = time.perf_counter()
         train_s = t - self._t0 - self._eval_s
         cfg = self.cfg
@@ -241,7 +241,7 @@ def _find_vecnorm(env):
 def build_env(cfg: TrainConfig, seed: int):
     from stable_baselines3.common.vec_env import VecNormalize
 
-    from .features import ShotFeatures
+    from ..interface.features import ShotFeatures
 
     env = make_sb3_vec_env(cfg.env_id, cfg.n_envs, seed=seed, **cfg.env_kwargs)
     if cfg.features or cfg.aim_scale != 1.0 or cfg.action_mode != "direct":
@@ -282,7 +282,7 @@ def train(cfg: TrainConfig, run_dir, command: str = "", resume: bool = False, re
     Returns a summary dict (wall time, throughput, final training success).
 
     ``resume``: continue the run in ``run_dir`` from its newest checkpoint
-    (``agents.checkpoints``) up to ``cfg.train.total_timesteps``; the summary's
+    (``agents.sb3.checkpoints``) up to ``cfg.train.total_timesteps``; the summary's
     ``resumed`` entry gives the checkpoint's step, the steps the stopped run
     had logged past it (``steps_redone``) and the earlier training time.
     With ``train.eval_every`` > 0 (or a ``report`` callable, see
@@ -354,8 +354,8 @@ def final_evaluation(cfg: TrainConfig, run_dir) -> list:
     ``eval_episodes`` seeded episodes per noise setting, on the env of
     ``cfg.env_kwargs`` (the one the model was trained on); prints a Markdown
     table and writes ``eval.json`` / ``eval.png`` into ``run_dir``."""
-    from .evaluation import evaluate, format_table, load_trained, save_results
-    from .policies import make_policy
+    from ..evaluation.harness import evaluate, format_table, load_trained, save_results
+    from ..evaluation.policies import make_policy
 
     run_dir = Path(run_dir)
     trained = load_trained(run_dir)  # either backend's run
@@ -381,7 +381,7 @@ def train_and_evaluate(cfg: TrainConfig | None, run_dir, command: str = "", t_st
     ``t_start`` (default: now), is written to ``train_summary.json``.
     ``resume``: continue the run in ``run_dir`` (``cfg`` None: its own
     ``config.yaml``)."""
-    from .plotting import plot_runs
+    from ..plotting import plot_runs
 
     t_start = time.perf_counter() if t_start is None else t_start
     run_dir = Path(run_dir)

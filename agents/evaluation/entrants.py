@@ -28,7 +28,7 @@ class GameModelPolicy:
     of the env's own 8 action components plays on the raw observation."""
 
     def __init__(self, path, name: str | None = None):
-        from .baselines import SB3Policy
+        from ..sb3.policy import SB3Policy
         self.model = SB3Policy.load(path)
         self.viewed = self.model.model.action_space.shape != (8,)
         self.name = name or f"model:{path}"
@@ -36,7 +36,7 @@ class GameModelPolicy:
 
     def _policy(self, core):
         if self._bound is None or self._bound[0] is not core:
-            from .game_view import GameView
+            from ..interface.game_view import GameView
             self._bound = (core, self.model.bind(GameView(core)) if self.viewed else self.model)
         return self._bound[1]
 

@@ -40,20 +40,6 @@ def _autoreset_mode(env) -> AutoresetMode:
     return mode
 
 
-def env_chain(env, depth: int = 10):
-    """``env`` and the envs under it, outermost first, through SB3 adapters
-    and wrappers (``venv``) and Gymnasium wrappers (``unwrapped``, ``env``)."""
-    for _ in range(depth):
-        yield env
-        for attr in ("venv", "unwrapped", "env"):
-            inner = getattr(env, attr, None)
-            if inner is not None and inner is not env:
-                env = inner
-                break
-        else:
-            return
-
-
 def split_infos(infos: dict, n: int) -> list[dict]:
     """Gymnasium vector infos (a dict of arrays, each with a ``_key`` mask,
     possibly nested) -> a list of ``n`` per-env dicts."""

@@ -1,39 +1,21 @@
-"""Baseline policies behind one small interface.
+"""A trained stable-baselines3 model as a policy of the evaluation harness.
 
-A policy has ``act(obs) -> actions [N, 4]`` (batched over the tables of a
-vector env). Geometric policies hold a reference to the native vector env
-(``env``) and read its ``.state``, ``.table``, ``.params``, ``.effects``,
-``legal_target()`` and ``shots_to_actions()``; they choose ``Shots`` (aim
-angle, cue-ball speed, side a, height b) and map them into the env's action
-space with the env's own inverse mapping, so they work with either aim mode.
+``SB3Policy`` has the harness's interface, ``act(obs) -> actions [N, 4]``
+(batched over the tables of a vector env): deterministic, observations
+normalised with the run's VecNormalize statistics, with the agent-side
+features and action transform of its config (``agents.interface``).
+``SB3Policy.load`` reads a run directory or a ``.zip`` (a checkpoint too).
 
 The baseline bots (random, ghost-ball, search, lookahead) live in the
-library, ``billiards_env.bots``; ``agents.policies.make_policy`` builds them
-by name.
-- ``SB3Policy``: a trained stable-baselines3 model (with its VecNormalize
-  observation statistics), deterministic.
+library, ``billiards_env.bots``; ``agents.evaluation.policies.make_policy``
+builds them and saved models by name.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .features import agent_features, transform_actions
-from .game_view import game_view_of
-from .sb3_vec_env import env_chain
-
-
-def native_env(env):
-    """The native billiards vector env under an SB3 adapter / wrappers (a
-    game env's ``GameView``)."""
-    view = game_view_of(env)
-    if view is not None:
-        return view
-    for env in env_chain(env):
-        if hasattr(env, "legal_target") and hasattr(env, "shots_to_actions"):
-            return env
-    if hasattr(env, "legal_target"):
-        return env
-    raise TypeError("this policy needs the native billiards vector env (with .state, legal_target(), shots_to_actions())")
+from ..interface.features import agent_features, transform_actions
+from ..interface.game_view import native_env
 
 
 class SB3Policy:

@@ -17,7 +17,7 @@ from typing import Callable
 
 import numpy as np
 
-from .sb3_vec_env import NativeVecEnv, make_sb3_vec_env
+from ..sb3.vec_env import NativeVecEnv, make_sb3_vec_env
 
 from billiards_env.studies.stats import Z95, wilson_interval  # noqa: E402,F401 (re-exported)
 
@@ -179,9 +179,9 @@ def evaluate(policy_fn: Callable, env_id: str, n_episodes: int = 1000, seed: int
 
 def load_trained(path, name: str | None = None):
     """A trained policy from a run directory or model file of either backend:
-    stable-baselines3 (``model.zip``) or RLlib (``agents.rllib_policy``)."""
-    from .baselines import SB3Policy
-    from .rllib_policy import RLlibPolicy, is_rllib_run
+    stable-baselines3 (``model.zip``) or RLlib (``agents.rllib.policy``)."""
+    from ..sb3.policy import SB3Policy
+    from ..rllib.policy import RLlibPolicy, is_rllib_run
 
     if is_rllib_run(path):
         return RLlibPolicy.load(path, name=name)
@@ -233,7 +233,7 @@ def evaluate_policies(specs: list[str], env_id: str, n_episodes: int = 1000, see
     every noise setting of ``noises`` (default ``["none"]``) on the same
     seeded episodes, printing one line per result. ``names``: display names
     per spec (optional). ``run``: how one entry is evaluated (``evaluate_spec``
-    here; ``agents.ray_eval.evaluate_spec`` on Ray, with the same results).
+    here; ``agents.rllib.evaluation.evaluate_spec`` on Ray, with the same results).
     ``opponent``: on a two-player game, whom every policy plays (default:
     a trained policy's training opponent, ``ghost`` for the baselines)."""
     game_opponent(env_id, {}, opponent)  # a misplaced opponent fails before anything runs
@@ -277,7 +277,7 @@ def save_results(results: list[EvalResult], json_path, png_path=None, title: str
 
 
 def bar_chart(results: list[EvalResult], png_path, title: str = "") -> None:
-    from .plotting import pyplot, save_figure
+    from ..plotting import pyplot, save_figure
 
     plt = pyplot()
 

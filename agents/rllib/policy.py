@@ -1,4 +1,4 @@
-"""A policy trained by the RLlib backend (``agents.rllib_backend``), in the
+"""A policy trained by the RLlib backend (``agents.rllib.backend``), in the
 evaluation harness's interface, and the run directory's checkpoints.
 
 ``RLlibPolicy.load(run_dir)`` reads the last checkpoint's RLModule and the
@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .config import TrainConfig
+from ..config import TrainConfig
 
 CHECKPOINT_PREFIX = "steps_"  # checkpoints/steps_<env steps>/
 
@@ -44,7 +44,7 @@ class RLlibPolicy:
         self.module, self.obs_filter, self.cfg, self.name, self.env = module, obs_filter, cfg, name, env
 
     def bind(self, env) -> "RLlibPolicy":
-        from .baselines import native_env
+        from ..interface.game_view import native_env
 
         return RLlibPolicy(self.module, self.obs_filter, self.cfg, self.name, native_env(env))
 
@@ -56,7 +56,7 @@ class RLlibPolicy:
     def act(self, obs: np.ndarray) -> np.ndarray:
         import torch
 
-        from .features import shot_features, transform_actions
+        from ..interface.features import shot_features, transform_actions
 
         cfg = self.cfg
         if cfg.features:

@@ -1,6 +1,6 @@
 """The one-player agent machinery on the two-player games.
 
-The agent wrappers of ``agents.features`` (the ghost-ball features, the
+The agent wrappers of ``agents.interface.features`` (the ghost-ball features, the
 choice menu, residual actions) read a one-player native env: its
 ``state``, ``shot_context()``, ``legal_target()``, ``aim_origin()`` and
 ``shots_to_actions`` (4 action components). ``GameView`` shows a game env
@@ -21,7 +21,7 @@ rather than learns; the policy still chooses every shot:
 - **the called pocket** (8-ball, on the 8): the chosen menu item's pocket
   (``action_mode: choice``), else that of the easiest pot.
 
-``agents.policies.GamePolicy`` plays a named game policy as the agent on
+``agents.evaluation.policies.GamePolicy`` plays a named game policy as the agent on
 such an env (the baselines of an evaluation or of a held-seed curve).
 """
 from __future__ import annotations
@@ -38,8 +38,6 @@ from billiards_env.envs.games.core import ACTION_DIM, N_POCKETS
 from billiards_env.rules import records as R
 from billiards_env.bots.ghost import GhostBot, PotGeometry
 from billiards_env.envs.games.play import bot_actions
-
-from .sb3_vec_env import env_chain
 
 AGENT_ACTION_DIM = 4  # the policy's part of a game action: aim, draw, side, height (a0..a3)
 
@@ -128,6 +126,20 @@ class GameView:
         return out
 
 
+def env_chain(env, depth: int = 10):
+    """``env`` and the envs under it, outermost first, through SB3 adapters
+    and wrappers (``venv``) and Gymnasium wrappers (``unwrapped``, ``env``)."""
+    for _ in range(depth):
+        yield env
+        for attr in ("venv", "unwrapped", "env"):
+            inner = getattr(env, attr, None)
+            if inner is not None and inner is not env:
+                env = inner
+                break
+        else:
+            return
+
+
 _VIEWS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
 
 
@@ -149,6 +161,20 @@ def game_view_of(env) -> GameView | None:
         if is_game(e):
             return agent_native(e)
     return None
+
+
+def native_env(env):
+    """The native billiards vector env under an SB3 adapter / wrappers (a
+    game env's ``GameView``)."""
+    view = game_view_of(env)
+    if view is not None:
+        return view
+    for env in env_chain(env):
+        if hasattr(env, "legal_target") and hasattr(env, "shots_to_actions"):
+            return env
+    if hasattr(env, "legal_target"):
+        return env
+    raise TypeError("this policy needs the native billiards vector env (with .state, legal_target(), shots_to_actions())")
 
 
 def policy_space() -> spaces.Box:

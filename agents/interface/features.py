@@ -4,7 +4,7 @@ The env observation is raw ball positions; turning them into a precise aim
 (the pocket acceptance at 1 m is about +-1.5 deg of object-ball direction)
 is a hard function for an MLP to learn in a few minutes. With
 ``features: true`` the agent appends, for each of the 6 pockets, the
-ghost-ball construction's numbers (``agents.geometry``):
+ghost-ball construction's numbers (``billiards_env.bots.geometry``):
 
 - the ghost-ball aim relative to the env's aim origin, in (scaled) action units,
 - cut angle / (pi/2), cue->ghost and object->pocket distances / diagonal,
@@ -23,7 +23,7 @@ starts at the baseline and learns what the geometry leaves out (throw,
 speed, spin against scratches). The correction is applied in shot space
 (``Shots``) and mapped to the env's action once.
 
-``action_mode: choice`` (``agents.choice``): the policy picks an item of a
+``action_mode: choice`` (``agents.interface.choice``): the policy picks an item of a
 shot menu (a pocket's ghost-ball shot or a safe contact shot), a speed
 level and a tip height; the wrappers here give it the menu's action space
 and append the menu's contact features.
@@ -41,7 +41,7 @@ from billiards_env.physics.strike import Shots, speed_to_draw
 
 from . import choice, game_view
 from billiards_env.bots import geometry as G
-from .config import check_action_mode
+from ..config import check_action_mode
 
 N_FEAT_PER_POCKET = 6
 
