@@ -13,6 +13,7 @@ settings, mean reward and balls per episode.
 """
 from __future__ import annotations
 
+import dataclasses
 import json
 import time
 from pathlib import Path
@@ -22,6 +23,21 @@ from .config import CONFIG_DIR, load_config, load_run_config
 TASKS = ("Billiards-PotOne-v0", "Billiards-RunOut-v0", "Billiards-NineBall-v0", "Billiards-NineBall2P-v0",
          "Billiards-EightBall-v0")  # the games: against the ghost-ball game policy (configs/ppo_games.yaml)
 ALGOS = ("ppo", "sac")
+
+
+@dataclasses.dataclass(frozen=True)
+class Budget:
+    """What each row of the table is trained and measured with: ``steps``
+    (env steps; None: the config's ``total_timesteps``), ``episodes`` held
+    tables of the final evaluation, ``curve_points`` held-seed evaluations
+    of ``curve_episodes`` tables during training, and ``extra`` dotted
+    config overrides."""
+
+    steps: int | None = None
+    episodes: int = 1000
+    curve_points: int = 10
+    curve_episodes: int = 1000
+    extra: tuple = ()
 # The configs beside configs/<algo>.yaml whose rows the published table holds (``--all`` trains them too).
 TABLE_CONFIGS = ("ppo_direct.yaml", "ppo_nineball.yaml", "ppo_games.yaml")
 EVAL_SEED = 12345
@@ -46,10 +62,10 @@ def configured(algo: str, env_id: str, config=None) -> bool:
     return env_id in doc and (doc[env_id] or {}).get("algo", algo) == algo
 
 
-def run_one(env_id: str, algo: str, out_dir: Path, steps: int | None, episodes: int, curve_points: int,
-            curve_episodes: int, extra: tuple = (), command: str = "", config=None) -> dict:
+def run_one(env_id: str, algo: str, out_dir: Path, b: Budget, command: str = "", config=None) -> dict:
     from .sb3.training import train
 
+    steps, episodes, curve_points, curve_episodes, extra = b.steps, b.episodes, b.curve_points, b.curve_episodes, b.extra
     path = config_file(algo, config)
     cfg0 = load_config(path, env_id, list(extra), algo=algo)
     budget = int(steps or cfg0.train.total_timesteps)
@@ -124,9 +140,8 @@ def table_configs() -> list:
     return [None] + [CONFIG_DIR / name for name in TABLE_CONFIGS]
 
 
-def run_benchmark(out_dir, tasks=TASKS, algos=ALGOS, steps: int | None = None, episodes: int = 1000,
-                  curve_points: int = 10, curve_episodes: int = 1000, extra: tuple = (),
-                  command: str = "", config=None, configs: list | None = None) -> list[dict]:
+def run_benchmark(out_dir, tasks=TASKS, algos=ALGOS, budget: Budget = Budget(), command: str = "", config=None,
+                  configs: list | None = None) -> list[dict]:
     """Train and evaluate every configured (task, algo) of ``tasks`` x
     ``algos`` (from ``config``, default ``configs/<algo>.yaml``; or from each
     of ``configs``, e.g. ``table_configs()``); the rows replace those of the
@@ -135,8 +150,7 @@ def run_benchmark(out_dir, tasks=TASKS, algos=ALGOS, steps: int | None = None, e
     if configs is not None:
         rows = []
         for c in configs:
-            rows = run_benchmark(out_dir, tasks, algos, steps, episodes, curve_points, curve_episodes, extra,
-                                 command, c)
+            rows = run_benchmark(out_dir, tasks, algos, budget, command, c)
         return rows
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -149,8 +163,7 @@ def run_benchmark(out_dir, tasks=TASKS, algos=ALGOS, steps: int | None = None, e
                 print(f"skip {algo} on {env_id}: no {algo} block in {config_file(algo, config)}", flush=True)
                 continue
             t = time.perf_counter()
-            row = run_one(env_id, algo, out_dir, steps, episodes, curve_points, curve_episodes, extra, command,
-                          config)
+            row = run_one(env_id, algo, out_dir, budget, command, config)
             rows = store_row(out_dir, row)
             print(f"{algo} {env_id}: {time.perf_counter() - t:.0f} s", flush=True)
     return rows

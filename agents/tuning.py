@@ -17,6 +17,7 @@ study name only runs the missing ones.
 """
 from __future__ import annotations
 
+import dataclasses
 import json
 from pathlib import Path
 
@@ -120,15 +121,32 @@ def objective_fn(env_id: str, algo: str, run_dir: Path, steps: int, n_evals: int
     return objective
 
 
+@dataclasses.dataclass(frozen=True)
+class Trials:
+    """How each trial of a study runs: ``steps`` env steps, ``n_evals``
+    held-seed evaluations of ``eval_episodes`` tables (the pruner's
+    intermediate values), the sampler's ``seed`` and ``startup_trials``
+    (random trials before TPE), and ``fixed`` dotted overrides every trial keeps."""
+
+    steps: int = 200_000
+    n_evals: int = 5
+    eval_episodes: int = 1000
+    seed: int = 0
+    fixed: tuple = ()
+    startup_trials: int = 5
+
+
 def tune(env_id: str, algo: str, n_trials: int, run_dir, storage: str | None = None, study_name: str | None = None,
-         steps: int = 200_000, n_evals: int = 5, eval_episodes: int = 1000, seed: int = 0, fixed: tuple = (),
-         startup_trials: int = 5, config=None) -> dict:
-    """Run the study until it has ``n_trials`` finished trials, each starting
-    from the env's block in ``config`` (default ``configs/<algo>.yaml``);
-    write ``study_summary.json``, ``best_overrides.yaml`` and
-    ``importance.png`` (when at least two trials completed) into ``run_dir``."""
+         trials: Trials = Trials(), config=None) -> dict:
+    """Run the study until it has ``n_trials`` finished trials (each as
+    ``trials`` says), each starting from the env's block in ``config``
+    (default ``configs/<algo>.yaml``); write ``study_summary.json``,
+    ``best_overrides.yaml`` and ``importance.png`` (when at least two trials
+    completed) into ``run_dir``."""
     import optuna
 
+    steps, n_evals, eval_episodes, seed, fixed, startup_trials = (trials.steps, trials.n_evals, trials.eval_episodes,
+                                                                  trials.seed, trials.fixed, trials.startup_trials)
     run_dir = Path(run_dir)
     run_dir.mkdir(parents=True, exist_ok=True)
     storage = storage or f"sqlite:///{(run_dir / 'study.db').resolve()}"

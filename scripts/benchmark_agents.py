@@ -36,7 +36,7 @@ QUICK = ("n_envs=16", "policy.net_arch=[16]", "ppo.n_steps=16", "ppo.batch_size=
 
 
 def main(argv=None) -> int:
-    from agents.benchmark import (ALGOS, TABLE_CONFIGS, TASKS, markdown_table, plot_curves, row_from_run,
+    from agents.benchmark import (ALGOS, TABLE_CONFIGS, TASKS, Budget, markdown_table, plot_curves, row_from_run,
                                   run_benchmark, store_row, table_configs)
 
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -73,8 +73,9 @@ def main(argv=None) -> int:
     else:
         if a.all and a.config:
             ap.error("--all runs every config of the table; leave out --config")
-        rows = run_benchmark(out, a.task or TASKS, a.algo or ALGOS, a.steps, a.episodes, a.curve_points,
-                             a.curve_episodes, extra, command, a.config, table_configs() if a.all else None)
+        budget = Budget(a.steps, a.episodes, a.curve_points, a.curve_episodes, tuple(extra))
+        rows = run_benchmark(out, a.task or TASKS, a.algo or ALGOS, budget, command, a.config,
+                             table_configs() if a.all else None)
     plot_curves(rows, out / "learning_curves.png")
     table = f"{BEGIN}\n{markdown_table(rows, out)}\n{END}"
     doc = out / "benchmark.md" if a.quick else Path(a.doc)

@@ -49,13 +49,13 @@ def main(argv=None) -> int:
         a.set = ["n_envs=64", "policy.net_arch=[16]", "ppo.n_steps=8", "ppo.batch_size=256"] + a.set \
             if a.algo == "ppo" else ["n_envs=64", "policy.net_arch=[16]", "sac.learning_starts=256"] + a.set
 
-    from agents.tuning import tune
+    from agents.tuning import Trials, tune
 
     short = a.env.replace("Billiards-", "").replace("-v0", "").lower()
     run_dir = Path(a.run_dir) if a.run_dir else ROOT / "runs" / f"tune_{a.algo}_{short}"
     t0 = time.perf_counter()
-    summary = tune(a.env, a.algo, a.trials, run_dir, a.storage, a.study_name, a.steps, a.evals, a.eval_episodes,
-                   a.seed, tuple(a.set), a.startup_trials, a.config)
+    trials = Trials(a.steps, a.evals, a.eval_episodes, a.seed, tuple(a.set), a.startup_trials)
+    summary = tune(a.env, a.algo, a.trials, run_dir, a.storage, a.study_name, trials, a.config)
     print(json.dumps(summary, indent=2, default=float))
     print(f"{summary['finished_trials']} finished trials ({summary['pruned']} pruned) in {run_dir}; "
           f"this run: {time.perf_counter() - t0:.0f} s")

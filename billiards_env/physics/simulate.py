@@ -119,12 +119,13 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
         raise ValueError("state arrays must be pos and vel [E, B, 2], omega [E, B, 3] and pocket [E, B], got "
                          f"{s.pos.shape}, {s.vel.shape}, {s.omega.shape} and {s.pocket.shape}")
     E, B = s.pos.shape[:2]
-    run = _Run(kernel_geometry(table, effects.pockets), params.as_array(), make_kernel(solver, effects, models, diagnostics),
-               solver, dt, bool(record), int(max_events), bool(diagnostics))
+    geo, p, kernel = kernel_geometry(table, effects.pockets), params.as_array(), make_kernel(solver, effects, models,
+                                                                                             diagnostics)
+    if not record and E * B * (B + 12) * 8 <= MAX_SCRATCH_BYTES:  # the common case: one call (chunk_rows' count)
+        return _simulate_chunk(s, geo, p, kernel, solver, dt, False, int(max_events), bool(diagnostics))
+    run = (geo, p, kernel, solver, dt, bool(record), int(max_events), bool(diagnostics))
     rows = chunk_rows(B, record)
-    if E <= rows:
-        return _simulate_chunk(s, run)
-    parts = [_simulate_chunk(s.take(slice(e0, min(E, e0 + rows))), run) for e0 in range(0, E, rows)]
+    parts = [_simulate_chunk(s.take(slice(e0, min(E, e0 + rows))), *run) for e0 in range(0, E, rows)]
     return _concatenate(parts)
 
 
@@ -132,20 +133,6 @@ def chunk_rows(n_balls: int, record: bool) -> int:
     """Tables per kernel call: the scratch of a chunk stays under ``MAX_SCRATCH_BYTES``."""
     per_table = 8 * (n_balls * n_balls + 12 * n_balls) + (RECORD_CAPACITY * 152 if record else 0)
     return max(1, MAX_SCRATCH_BYTES // per_table)
-
-
-@dataclasses.dataclass(frozen=True)
-class _Run:
-    """What every chunk of one ``simulate`` call shares."""
-
-    geo: Geometry
-    p: np.ndarray
-    kernel: object
-    solver: str
-    dt: float | None
-    record: bool
-    max_events: int
-    diagnostics: bool
 
 
 def _concatenate(parts: list) -> SimResult:
@@ -159,11 +146,10 @@ def _concatenate(parts: list) -> SimResult:
                      cat([r.truncated for r in parts]), cat([r.cushion_hits_after_contact for r in parts]), events, diag)
 
 
-def _simulate_chunk(s: BallState, run: _Run) -> SimResult:
+def _simulate_chunk(s: BallState, geo: Geometry, p: np.ndarray, kernel, solver: str, dt, record: bool,
+                    max_events: int, diagnostics: bool) -> SimResult:
     """One kernel call over the tables of ``s`` (contiguous float64 / int64 arrays, modified in place)."""
     E, B = s.pos.shape[:2]
-    geo, p, kernel, record, max_events, diagnostics, solver, dt = (run.geo, run.p, run.kernel, run.record,
-                                                                   run.max_events, run.diagnostics, run.solver, run.dt)
     balls = Balls(s.pos, s.vel, s.omega, np.zeros((E, B), dtype=np.int64), s.pocket)
     out = Outputs(time=np.zeros(E), nev=np.zeros(E, dtype=np.int64), first=np.full(E, -1, dtype=np.int64),
                   cush=np.zeros((E, B), dtype=np.int64), cush_after=np.zeros((E, B), dtype=np.int64),

@@ -26,10 +26,10 @@ def test_quick_study_runs_and_resumes(tmp_path):
     assert first["finished_trials"] == 2 and first["finished_before_this_run"] == 0
     assert (tmp_path / "study" / "study.db").exists()
     # the same study resumed in-process (no second interpreter start-up), one trial more
-    from agents.tuning import tune
-    second = tune("Billiards-PotOne-v0", "ppo", 3, tmp_path / "study", steps=2048, n_evals=2, eval_episodes=50,
-                  fixed=("n_envs=64", "policy.net_arch=[16]", "ppo.n_steps=8", "ppo.batch_size=256"),
-                  startup_trials=2)
+    from agents.tuning import Trials, tune
+    fixed = ("n_envs=64", "policy.net_arch=[16]", "ppo.n_steps=8", "ppo.batch_size=256")
+    second = tune("Billiards-PotOne-v0", "ppo", 3, tmp_path / "study",
+                  trials=Trials(steps=2048, n_evals=2, eval_episodes=50, fixed=fixed, startup_trials=2))
     assert second["finished_before_this_run"] == 2 and second["finished_trials"] == 3
     study = optuna.load_study(study_name=second["study"], storage=second["storage"])
     assert len(study.trials) == 3
@@ -39,9 +39,9 @@ def test_quick_study_runs_and_resumes(tmp_path):
     best = second["best"]
     assert (tmp_path / "study" / "best_overrides.yaml").read_text().count("- ") == len(best["overrides"])
     # a study over another config's block: its trials keep that block's env options
-    direct = tune("Billiards-PotOne-v0", "ppo", 1, tmp_path / "direct", steps=2048, n_evals=2, eval_episodes=50,
-                  fixed=("n_envs=64", "policy.net_arch=[16]", "ppo.n_steps=8", "ppo.batch_size=256"),
-                  startup_trials=1, config=ROOT / "configs" / "ppo_direct.yaml")
+    direct = tune("Billiards-PotOne-v0", "ppo", 1, tmp_path / "direct",
+                  trials=Trials(steps=2048, n_evals=2, eval_episodes=50, fixed=fixed, startup_trials=1),
+                  config=ROOT / "configs" / "ppo_direct.yaml")
     assert direct["finished_trials"] == 1
     import yaml
     trial_cfg = yaml.safe_load((tmp_path / "direct" / "trials" / "0000" / "config.yaml").read_text())

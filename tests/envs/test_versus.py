@@ -172,10 +172,10 @@ def test_menu_agent_trains_and_evaluates(env_id, tmp_path):
 def test_benchmark_rows_of_a_game(tmp_path):
     """The benchmark trains and tabulates a game like a one-player task; with every config of the table
     (``--all``) the game's PPO row comes from configs/ppo_games.yaml, its SAC row from configs/sac.yaml."""
-    from agents.benchmark import markdown_table, run_benchmark, table_configs
+    from agents.benchmark import Budget, markdown_table, run_benchmark, table_configs
     quick = ("n_envs=16", "policy.net_arch=[16]", "ppo.n_steps=8", "ppo.batch_size=64", "ppo.n_epochs=1",
              "sac.learning_starts=64", "sac.batch_size=64", "sac.gradient_steps=1", "sac.buffer_size=4096")
-    kw = dict(steps=256, episodes=16, curve_points=2, curve_episodes=16, extra=quick)
+    kw = dict(budget=Budget(steps=256, episodes=16, curve_points=2, curve_episodes=16, extra=quick))
     rows = run_benchmark(tmp_path, ["Billiards-EightBall-v0"], ["ppo", "sac"], **kw)
     assert [(r["env_id"], r["algo"]) for r in rows] == [("Billiards-EightBall-v0", "sac")]  # no PPO block in ppo.yaml
     r = rows[0]
