@@ -33,6 +33,7 @@ import numpy as np
 from gymnasium import spaces
 
 from billiards_env.envs.core import ShotContext
+from billiards_env.envs.unwrap import env_chain
 from billiards_env.envs.games import GameCore
 from billiards_env.envs.games.core import ACTION_DIM, N_POCKETS
 from billiards_env.rules import records as R
@@ -124,20 +125,6 @@ class GameView:
         if len(brk):
             out[brk] = bot_actions(self.core, self.placer, brk)
         return out
-
-
-def env_chain(env, depth: int = 10):
-    """``env`` and the envs under it, outermost first, through SB3 adapters
-    and wrappers (``venv``) and Gymnasium wrappers (``unwrapped``, ``env``)."""
-    for _ in range(depth):
-        yield env
-        for attr in ("venv", "unwrapped", "env"):
-            inner = getattr(env, attr, None)
-            if inner is not None and inner is not env:
-                env = inner
-                break
-        else:
-            return
 
 
 _VIEWS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()

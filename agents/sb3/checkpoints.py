@@ -35,12 +35,13 @@ _NAME = re.compile(r"^model_(\d+)_steps\.zip$")
 
 def _native_sb3(env):
     """The ``NativeVecEnv`` under SB3 wrappers (VecNormalize, features)."""
+    from billiards_env.envs.unwrap import env_chain
+
     from .vec_env import NativeVecEnv
 
-    for _ in range(10):
-        if isinstance(env, NativeVecEnv):
-            return env
-        env = getattr(env, "venv", None)
+    for e in env_chain(env):
+        if isinstance(e, NativeVecEnv):
+            return e
     raise TypeError("no NativeVecEnv under this env")
 
 

@@ -24,12 +24,12 @@ from typing import Protocol
 
 import numpy as np
 
+from ..envs.unwrap import env_chain
 from ..physics import BallState, simulate, strike_velocity
 from ..physics.strike import Shots, draw_to_speed
 from . import geometry as G
 from .plan import ShotPlan
 
-MAX_WRAPPERS = 16  # wrapper layers ``task_env`` looks through
 
 
 class Policy(Protocol):
@@ -40,15 +40,10 @@ class Policy(Protocol):
 
 def task_env(env):
     """The native one-player vector env (or core) under wrappers: the first
-    of ``env``, its ``.env`` / ``.venv`` / ``.unwrapped`` chain that has
-    ``view()`` and ``actions_of()``."""
-    for _ in range(MAX_WRAPPERS):
-        if hasattr(env, "view") and hasattr(env, "actions_of"):
-            return env
-        nxt = next((getattr(env, k) for k in ("env", "venv", "unwrapped") if getattr(env, k, env) is not env), None)
-        if nxt is None:
-            break
-        env = nxt
+    env of ``envs.unwrap.env_chain(env)`` that has ``view()`` and ``actions_of()``."""
+    for e in env_chain(env):
+        if hasattr(e, "view") and hasattr(e, "actions_of"):
+            return e
     raise TypeError("a bot needs a billiards env that hands views (view() and actions_of())")
 
 
