@@ -35,8 +35,9 @@ from ..physics import BallState
 from ..physics.noise import NoiseConfig
 from ..physics.strike import Shots
 from . import geometry as G
-from .one_player import SearchPolicy, _at_rest
+from .one_player import SearchPolicy
 from .plan import ShotPlan
+from .preview import rest_state
 
 # a score this small still beats "no candidate works"; it orders the fallbacks
 # by the search's closeness to the ghost-ball shot
@@ -148,4 +149,4 @@ class LookaheadPolicy:
         return Shots(phi[ar, best], speed[ar, best], a[ar, best], b[ar, best])
 
     def act(self, view) -> ShotPlan:
-        return ShotPlan.of(self.shots(view, _at_rest(view), np.asarray(view.target, dtype=np.int64)))
+        return ShotPlan.of(self.shots(view, rest_state(view), np.asarray(view.target, dtype=np.int64)))

@@ -29,7 +29,7 @@ from ..physics import BallState, simulate, strike_velocity
 from ..physics.strike import Shots, draw_to_speed
 from . import geometry as G
 from .plan import ShotPlan
-
+from .preview import rest_state
 
 
 class Policy(Protocol):
@@ -58,12 +58,6 @@ class BotPolicy:
 
     def act(self, obs=None) -> np.ndarray:
         return self.env.actions_of(self.bot.act(self.env.view()))
-
-
-def _at_rest(view) -> BallState:
-    """The view's tables as a ``BallState`` at rest (copies)."""
-    n, B = view.pos.shape[:2]
-    return BallState(view.pos.copy(), np.zeros((n, B, 2)), np.zeros((n, B, 3)), view.pocket.copy())
 
 
 class RandomPolicy:
@@ -209,4 +203,4 @@ class SearchPolicy:
         return Shots(phi[ar, best], speed[ar, best], a[ar, best], b[ar, best])
 
     def act(self, view) -> ShotPlan:
-        return ShotPlan.of(self.shots(view, _at_rest(view), np.asarray(view.target, dtype=np.int64)))
+        return ShotPlan.of(self.shots(view, rest_state(view), np.asarray(view.target, dtype=np.int64)))

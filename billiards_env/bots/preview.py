@@ -71,7 +71,9 @@ def _noise_of(view, spec, rows):
     return NoiseConfig.from_any(spec), None
 
 
-def _rest_state(view, rows) -> BallState:
+def rest_state(view, rows=None) -> BallState:
+    """The tables of view rows ``rows`` (default: all) as a ``BallState`` at rest (copies)."""
+    rows = np.arange(view.n) if rows is None else rows
     k, B = len(rows), view.n_balls
     return BallState(view.pos[rows].copy(), np.zeros((k, B, 2)), np.zeros((k, B, 3)), view.pocket[rows].copy())
 
@@ -102,7 +104,7 @@ def preview(view, plan, rows=None, noise=None, rng=None, start: BallState | None
     k = len(rows)
     if plan.n != k:
         raise ValueError(f"preview: the plan has {plan.n} rows, rows selects {k} tables")
-    start = _rest_state(view, rows)
+    start = rest_state(view, rows)
     place = ~np.isnan(plan.placement[:, 0])
     start.pos[place, 0] = plan.placement[place]
     start.pocket[:, 0] = -1
@@ -119,7 +121,7 @@ def _task_preview(view, plan, rows, noise_rng, start) -> TaskPreview:
     from ..envs.tasks.base import ShotOutcome
     if start is None:
         rows = np.arange(view.n) if rows is None else np.asarray(rows, dtype=np.int64)
-        start = _rest_state(view, rows)
+        start = rest_state(view, rows)
     if plan.n != start.n_envs:
         raise ValueError(f"preview: the plan has {plan.n} rows for {start.n_envs} tables")
     res = play_shots(view, start, plan.shots, *noise_rng, rows)
