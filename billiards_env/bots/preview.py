@@ -73,9 +73,10 @@ def _noise_of(view, spec, rows):
 
 def rest_state(view, rows=None) -> BallState:
     """The tables of view rows ``rows`` (default: all) as a ``BallState`` at rest (copies)."""
-    rows = np.arange(view.n) if rows is None else rows
+    rows = np.arange(view.n) if rows is None else np.asarray(rows, dtype=np.int64)
     k, B = len(rows), view.n_balls
-    return BallState(view.pos[rows].copy(), np.zeros((k, B, 2)), np.zeros((k, B, 3)), view.pocket[rows].copy())
+    # indexing with an integer array copies (and the copies are writeable): no second copy
+    return BallState(view.pos[rows], np.zeros((k, B, 2)), np.zeros((k, B, 3)), view.pocket[rows])
 
 
 def play_shots(view, start: BallState, shots, noise=None, rng=None, rows=None):

@@ -61,7 +61,10 @@ class TableMarks:
 
 
 def _frozen(a) -> np.ndarray:
-    a = np.array(a)
+    """``a`` made read-only: an array that owns its data (a fancy-indexed
+    row selection, as the envs hand over) is frozen in place, anything
+    else (a view into someone's array) is copied first."""
+    a = a if isinstance(a, np.ndarray) and a.flags.owndata else np.array(a)
     a.flags.writeable = False
     return a
 

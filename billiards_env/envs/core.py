@@ -222,7 +222,7 @@ class BilliardsCore:
         """The read-only ``TaskView`` of tables ``idx`` (default: all) that a bot acts on."""
         idx = self._every_table() if idx is None else np.asarray(idx, dtype=np.int64)
         s = self.state
-        return TaskView.build(task=self.cfg.task, rows=idx, pos=s.pos[idx], pocket=s.pocket[idx],
+        return TaskView.build(task=self.cfg.task, rows=idx.copy(), pos=s.pos[idx], pocket=s.pocket[idx],
                               target=self.legal_target()[idx], shots=self.shots[idx], table=self.table,
                               params=self.params, effects=self.effects, models=self.models, noise=self.cfg.noise,
                               min_draw=self.cfg.min_draw, rules=self.task, _observe=lambda: self.observe()[idx])

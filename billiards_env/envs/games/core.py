@@ -322,7 +322,7 @@ class GameCore(BilliardsCore):
         idx = np.asarray(idx, dtype=np.int64)
         s, g, c = self.state, self.game, self.constraints()
         return GameView.build(
-            game=self.config.game, rows=idx, pos=s.pos[idx], pocket=s.pocket[idx], to_move=c.shooter[idx],
+            game=self.config.game, rows=idx.copy(), pos=s.pos[idx], pocket=s.pocket[idx], to_move=c.shooter[idx],
             ball_in_hand=c.ball_in_hand[idx], targets=c.targets[idx], push_out_allowed=c.push_out_allowed[idx],
             may_pass=c.may_pass[idx], call_needed=c.call_needed[idx], is_break=c.is_break[idx],
             groups=g.group[idx], fouls=g.fouls[idx], shots=g.shots[idx], table=self.table, params=self.params,
@@ -340,8 +340,10 @@ class GameCore(BilliardsCore):
         if isinstance(plan, np.ndarray):
             return self.validate_actions(plan, len(idx))
         plan.check(len(idx), self.params)
-        a = self.actions_for(plan.shots, idx, plan.placement, plan.declare, plan.pocket).astype(np.float32)
-        return self.validate_actions(a, len(idx))
+        # checked once (plan.check); the mapping's output is finite and clipped, so it is not checked again.
+        # Rounded through float32, the action space's dtype, as a policy's actions are.
+        a = self.actions_for(plan.shots, idx, plan.placement, plan.declare, plan.pocket)
+        return a.astype(np.float32).astype(np.float64)
 
     def actions_for(self, shots, idx, placement=None, declare=None, pocket=None) -> np.ndarray:
         """Actions [n, 8] on tables ``idx`` that play ``shots`` (absolute aim)
