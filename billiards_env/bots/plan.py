@@ -69,6 +69,17 @@ class ShotPlan:
                 raise ValueError(f"ShotPlan.{f} must have shape ({n},), got {np.shape(getattr(self, f))}")
         if np.shape(self.placement) != (n, 2):
             raise ValueError(f"ShotPlan.placement must have shape ({n}, 2), got {np.shape(self.placement)}")
+        # one pass over the rows; the messages below are only built when something is wrong
+        ok = (np.isfinite(self.phi) & (self.speed >= 0) & (self.speed <= params.max_speed)
+              & (np.hypot(self.a, self.b) < params.miscue_limit) & (self.pocket >= -1) & (self.pocket <= 5))
+        if not ok.all():
+            self._explain(params)
+        p = self.placement
+        if not np.isfinite(p).all() and not (np.isfinite(p) | np.isnan(p[:, :1])).all():
+            raise ValueError("ShotPlan.placement rows must be finite (or NaN in both coordinates)")
+
+    def _explain(self, params) -> None:
+        """Raise the ValueError that names the first problem ``check`` found."""
         for f in ("phi", "speed", "a", "b"):
             v = getattr(self, f)
             if not np.all(np.isfinite(v)):
@@ -84,6 +95,4 @@ class ShotPlan:
                              f"miscue disc (radius {params.miscue_limit} R)")
         if ((self.pocket < -1) | (self.pocket > 5)).any():
             raise ValueError(f"ShotPlan.pocket must be -1 (none) or a pocket index 0..5, got {self.pocket}")
-        p = self.placement[~np.isnan(self.placement[:, 0])]
-        if not np.all(np.isfinite(p)):
-            raise ValueError("ShotPlan.placement rows must be finite (or NaN in both coordinates)")
+
