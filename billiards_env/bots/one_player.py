@@ -13,23 +13,24 @@ RLlib adapters call: it asks the env for its view first.
 - ``GhostBallPolicy``: ghost-ball aim at the easiest pocket (``bots.geometry``)
   and a speed from the distances.
 - ``SearchPolicy``: K candidate shots per table (ghost-ball aims for every
-  pocket, jittered, at various speeds and spins) simulated in one batched
-  ``billiards_env.physics.simulate`` call on K copies of each table; plays
-  the best. An upper reference (it uses the simulator as a perfect model).
+  pocket, jittered, at various speeds and spins) played on K copies of
+  each table through the bots' preview path (``preview.play_shots``, one
+  batched simulator call per chunk); plays the best. An upper reference (it uses the simulator as a perfect model).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Protocol
 
 import numpy as np
 
 from ..envs.unwrap import env_chain
-from ..physics import BallState, simulate, strike_velocity
+from ..physics import BallState
 from ..physics.strike import Shots, draw_to_speed
 from . import geometry as G
 from .plan import ShotPlan
-from .preview import rest_state
+from .preview import play_shots, rest_state
 
 
 class Policy(Protocol):
@@ -94,11 +95,13 @@ class GhostBallPolicy:
                                              margin=self.margin, dist_weight=self.dist_weight, inset=self.inset))
 
 
-def candidate_success(struck: BallState, target: np.ndarray, table, params, effects=None, models=None) -> np.ndarray:
-    """Success of each struck table (one candidate shot each): first contact
-    with its ``target`` ball, that ball pocketed, the cue ball not."""
-    res = simulate(struck, table, params, effects=effects, models=models, validate=False)
-    before = struck.pocket >= 0
+def candidate_success(view, start: BallState, shots: Shots, target: np.ndarray) -> np.ndarray:
+    """Success of each candidate shot (one per table of ``start``), played
+    through the bots' one strike-and-simulate path (``preview.play_shots``,
+    no noise): first contact with its ``target`` ball, that ball pocketed,
+    the cue ball not."""
+    res = play_shots(view, start, shots)
+    before = start.pocket >= 0
     after = res.state.pocket >= 0
     newly = after & ~before
     legal_first = res.first_contact == target
@@ -178,19 +181,20 @@ class SearchPolicy:
 
     def evaluate(self, view, state: BallState, target: np.ndarray, shots) -> np.ndarray:
         """Success [E, K] of each candidate (``shots``: aims, speeds, sides,
-        heights [E, K]), simulated on K copies of each table."""
-        env = view
-        phi, speed, a, b = shots
-        E, K = phi.shape
+        heights [E, K]) on K copies of each table, in chunks of ``chunk``
+        candidates (each one ``candidate_success`` call; ``map_chunks`` may
+        run them elsewhere, so the chunks carry the view without its
+        observation callback)."""
+        E, K = shots[0].shape
         rep = np.repeat(np.arange(E), K)
         big = state.take(rep)
-        struck = strike_velocity(big, phi.ravel(), speed.ravel(), a.ravel(), b.ravel(), env.params)
-        effects, models = env.effects, env.models
+        flat = [np.ravel(v) for v in shots]
+        lean = dataclasses.replace(view, _observe=None)
         args = []
         for s0 in range(0, E * K, self.chunk):
             sl = slice(s0, min(E * K, s0 + self.chunk))
-            sub = BallState(struck.pos[sl], struck.vel[sl], struck.omega[sl], struck.pocket[sl])
-            args.append((sub, target[rep[sl]], env.table, env.params, effects, models))
+            sub = BallState(big.pos[sl], big.vel[sl], big.omega[sl], big.pocket[sl])
+            args.append((lean, sub, Shots(*(v[sl] for v in flat)), target[rep[sl]]))
         return np.concatenate(self.map_chunks(candidate_success, args)).reshape(E, K)
 
     def shots(self, view, state: BallState, target: np.ndarray):
