@@ -22,33 +22,33 @@ class GameModelPolicy:
     playing deterministically; it returns the env's actions [n, 8]. A model
     trained against an opponent with the agent wrappers
     (``configs/ppo_games.yaml``) was always player 0 and chose its shots
-    through ``game_view.GameView``: it plays through a view of the env's
-    core and sees every table as player 0 saw it (the player-to-move entry
-    set to 0; the group and foul entries are the shooter's already). A model
-    of the env's own 8 action components plays on the raw observation."""
+    through ``game_view.GameView``: it plays through that adapter over the
+    bot view it is handed (its ``observation()`` and action ``codec``) and
+    sees every table as player 0 saw it (the player-to-move entry set to 0;
+    the group and foul entries are the shooter's already). A model of the
+    env's own 8 action components plays on the raw observation."""
 
     def __init__(self, path, name: str | None = None):
         from ..sb3.policy import SB3Policy
         self.model = SB3Policy.load(path)
         self.viewed = self.model.model.action_space.shape != (8,)
         self.name = name or f"model:{path}"
-        self._bound = None  # (core, policy bound to the core's view)
-
-    def _policy(self, core):
-        if self._bound is None or self._bound[0] is not core:
-            from ..interface.game_view import GameView
-            self._bound = (core, self.model.bind(GameView(core)) if self.viewed else self.model)
-        return self._bound[1]
+        self.placer = None  # the ghost bot behind the adapter's placements and breaks
 
     def act(self, view) -> np.ndarray:
-        core = view._core  # the one-player agent machinery (features, menu) reads the core: see GameView
-        o = core.observe()
+        o = view.observation()
+        policy = self.model
         if self.viewed:
-            o[:, 4 * core.n_balls + 1] = 0.0  # the player to move: the model always played as player 0
-        a = np.asarray(self._policy(core).act(o), dtype=np.float32)
+            from billiards_env.bots.ghost import GhostBot
+
+            from ..interface.game_view import GameView
+            o[:, 4 * view.n_balls + 1] = 0.0  # the player to move: the model always played as player 0
+            self.placer = self.placer or GhostBot(seed=0)
+            policy = self.model.bind(GameView.of_view(view, self.placer))
+        a = np.asarray(policy.act(o), dtype=np.float32)
         if a.shape[1] != 8:
             raise ValueError(f"{self.name}: the model gives {a.shape[1]} action components, a game needs 8")
-        return a[np.asarray(view.rows)]
+        return a
 
 
 def bot_factory(spec, seed: int = 0):

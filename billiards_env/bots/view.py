@@ -24,8 +24,11 @@ bot needs is on the view:
   factor of ``variable`` noise; 1 otherwise);
 - helpers: ``legal_placement`` (the ball-in-hand test), ``preview`` (try
   candidate shots in the simulator and judge them by the rules: see
-  ``bots.preview``), ``take`` (a view of some rows) and ``observation`` (the
-  env's float32 observation rows, for learned bots).
+  ``bots.preview``), ``take`` (a view of some rows);
+- for learned bots that act in the env's own action space: ``observation()``
+  (the env's float32 observation rows) and ``codec`` (the env's action
+  convention, ``envs.games.codec.ActionCodec``: ``encode`` shots, the aim
+  origin, ``placement_to_actions``); such a bot may return actions [n, 8].
 
 All arrays are read-only; copy one to change it.
 """
@@ -94,9 +97,8 @@ class GameView:
     min_draw: float               # m: the shortest cue draw the env plays (its slowest shot)
     rules: object                 # the ruleset (``rules.get_rules(game)``): ``preview`` judges with it
     state: R.GameState            # the rows' game states (``preview`` judges from them)
+    codec: object = None          # the env's action convention (``envs.games.codec.ActionCodec``), for learned bots
     _observe: object = None       # () -> float32 observation rows, or None
-    _core: object = None          # the env's core: only for the repository's learned-agent adapters (agents/),
-                                  # which predate this API; a bot must not use it
 
     @classmethod
     def build(cls, **fields) -> "GameView":
@@ -134,8 +136,7 @@ class GameView:
 
     def nominal_target(self) -> np.ndarray:
         """[n] the lowest-numbered legal target (-1 none)."""
-        t = self.targets
-        return np.where(t.any(axis=1), np.argmax(t, axis=1), -1).astype(np.int64)
+        return R.nominal_target(self.targets)
 
     # --- helpers --------------------------------------------------------------
     def legal_placement(self, xy, rows=None) -> tuple[np.ndarray, np.ndarray]:
@@ -169,6 +170,7 @@ class GameView:
             if isinstance(v, np.ndarray):
                 sub[k] = _frozen(v[rows])
         sub["state"] = self.state.take(rows)
+        sub["codec"] = None if self.codec is None else self.codec.take(rows)
         obs = self._observe
         sub["_observe"] = None if obs is None else (lambda: obs()[rows])
         return GameView(**sub)

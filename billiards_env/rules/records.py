@@ -191,6 +191,9 @@ class Constraints:
     def nominal_target(self) -> np.ndarray:
         """The lowest-numbered legal target of each table (-1 none): what
         relative aim and the geometric policies aim at."""
-        t = self.targets
-        any_ = t.any(axis=1)
-        return np.where(any_, np.argmax(t, axis=1), -1).astype(np.int64)
+        return nominal_target(self.targets)
+
+
+def nominal_target(targets: np.ndarray) -> np.ndarray:
+    """The lowest-numbered legal target [n] of legal-target masks [n, B] (-1 none)."""
+    return np.where(targets.any(axis=1), np.argmax(targets, axis=1), -1).astype(np.int64)

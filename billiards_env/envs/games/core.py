@@ -38,17 +38,15 @@ import numpy as np
 
 from ...bots.view import GameView
 from ...physics import BallState, Effects, Models, PhysicsParams, Table, strike_velocity
-from ...physics.strike import speed_to_draw
 from ...rules import GameState, ShotInput, get_rules
 from ...rules import records as R
 from ..config import NoiseConfig, _number
 from ..core import BilliardsCore, ShotContext, _context, _observe
 from ..streams import TableStreams
+from .codec import ACTION_DIM, N_POCKETS, ActionCodec, placement_to_actions
 from ...rules.placement import FOOT_SPOT, HEAD_STRING, place_cue
 from .setup import rack, respot
 
-ACTION_DIM = 8
-N_POCKETS = 6
 EXTRA_OBS = 13  # observation entries after the one-player layout (see ``observation_doc``)
 GAMES = ("nine_ball", "eight_ball")
 NOISE_LEVELS = ("none", "tournament", "high", "variable")
@@ -226,9 +224,7 @@ class GameCore(BilliardsCore):
 
     def placement_to_actions(self, xy: np.ndarray) -> np.ndarray:
         """Cue-ball positions [n, 2] (m) -> action components a4, a5 [n, 2]."""
-        R_, t = self.params.R, self.table
-        span = np.array([t.width - 2 * R_, t.length - 2 * R_])
-        return np.clip(2.0 * (np.asarray(xy) - R_) / span - 1.0, -1.0, 1.0)
+        return placement_to_actions(xy, self.table, self.params)
 
     def placement_of(self, a: np.ndarray) -> np.ndarray:
         R_, t = self.params.R, self.table
@@ -321,66 +317,42 @@ class GameCore(BilliardsCore):
         """The read-only ``GameView`` of tables ``idx`` that a bot acts on."""
         idx = np.asarray(idx, dtype=np.int64)
         s, g, c = self.state, self.game, self.constraints()
-        return GameView.build(
+        view = GameView.build(
             game=self.config.game, rows=idx.copy(), pos=s.pos[idx], pocket=s.pocket[idx], to_move=c.shooter[idx],
             ball_in_hand=c.ball_in_hand[idx], targets=c.targets[idx], push_out_allowed=c.push_out_allowed[idx],
             may_pass=c.may_pass[idx], call_needed=c.call_needed[idx], is_break=c.is_break[idx],
             groups=g.group[idx], fouls=g.fouls[idx], shots=g.shots[idx], table=self.table, params=self.params,
             effects=self.effects, models=self.models, noise=self.cfg.noise, noise_scale=self.noise_scale[idx],
-            min_draw=self.cfg.min_draw, rules=self.rules, state=g.take(idx), _observe=lambda: self.observe()[idx],
-            _core=self)
+            min_draw=self.cfg.min_draw, rules=self.rules, state=g.take(idx), _observe=lambda: self.observe()[idx])
+        return dataclasses.replace(view, codec=self._codec(idx, view.pos, view.targets, view.is_break, view.in_hand,
+                                                            view.legal_placement))
 
-    def actions_of(self, plan, idx) -> np.ndarray:
-        """The actions [n, 8] (float64, validated) that play a bot's
-        ``ShotPlan`` on tables ``idx``: placements made legal first, the aim
-        taken relative to the origin seen from the placed cue ball. A bot
-        may also return the env's own actions [n, 8] (a learned policy):
-        they are validated and played as they are."""
+    def codec(self, idx) -> ActionCodec:
+        """The ``ActionCodec`` (the action convention) of tables ``idx``."""
         idx = np.asarray(idx, dtype=np.int64)
+        c = self.constraints()
+        return self._codec(idx, self.state.pos[idx], c.targets[idx], c.is_break[idx],
+                           c.ball_in_hand[idx] != R.IN_HAND_NONE, lambda xy, r: self.legal_placement(xy, idx[r]))
+
+    def _codec(self, idx, pos, targets, is_break, in_hand, place) -> ActionCodec:
+        t = self.table
+        tgt = R.nominal_target(targets)
+        aim = np.where(is_break[:, None], np.array([t.width / 2, FOOT_SPOT * t.length]),
+                       pos[np.arange(len(idx)), np.maximum(tgt, 0)])
+        return ActionCodec(self.shot_context().aim_origin[idx], aim, in_hand, place, t, self.params, self.cfg.min_draw)
+
+    def actions_of(self, plan, idx, codec: ActionCodec | None = None) -> np.ndarray:
+        """The actions [n, 8] (float64, validated) that play a bot's
+        ``ShotPlan`` on tables ``idx`` (``ActionCodec.encode_plan``:
+        placements made legal first, the aim taken relative to the origin
+        seen from the placed cue ball). A bot may also return the env's own
+        actions [n, 8] (a learned policy): they are validated and played as
+        they are. ``codec``: the tables' codec, if the caller has it (a view's)."""
         if isinstance(plan, np.ndarray):
             return self.validate_actions(plan, len(idx))
-        plan.check(len(idx), self.params)
-        # checked once (plan.check); the mapping's output is finite and clipped, so it is not checked again.
-        # Rounded through float32, the action space's dtype, as a policy's actions are.
-        a = self.actions_for(plan.shots, idx, plan.placement, plan.declare, plan.pocket)
-        return a.astype(np.float32).astype(np.float64)
+        return (codec or self.codec(idx)).encode_plan(plan)
 
     def actions_for(self, shots, idx, placement=None, declare=None, pocket=None) -> np.ndarray:
-        """Actions [n, 8] on tables ``idx`` that play ``shots`` (absolute aim)
-        with the cue ball at ``placement`` [n, 2] (rows of tables without ball
-        in hand are ignored; NaN rows: where it lies; an illegal spot is
-        moved to the nearest legal one first, so the aim stays absolute),
-        ``declare`` [n] (push-out or pass) and the called ``pocket`` [n]."""
-        idx = np.asarray(idx, dtype=np.int64)
-        n = len(idx)
-        out = np.zeros((n, ACTION_DIM))
-        origin = self.shot_context().aim_origin[idx].copy()
-        if placement is not None:
-            placement = np.array(placement, dtype=np.float64)
-            has = ~np.isnan(placement[:, 0]) & (self.constraints().ball_in_hand[idx] != R.IN_HAND_NONE)
-            if has.any():
-                placement[has], _ = self.legal_placement(placement[has], idx[has])
-            out[:, 4:6] = self.placement_to_actions(np.where(has[:, None], placement, 0.5))
-            if has.any():
-                origin[has] = self._origin_from(placement[has], idx[has])
-        phi, speed, a, b = (np.broadcast_to(np.asarray(v, dtype=np.float64), (n,)) for v in shots)
-        rel = ((phi - origin) / math.pi + 1.0) % 2.0 - 1.0
-        lo, hi, lim = self.cfg.min_draw, self.params.max_draw, self.params.miscue_limit
-        out[:, 0] = rel
-        out[:, 1] = 2.0 * (speed_to_draw(speed, self.params) - lo) / (hi - lo) - 1.0
-        out[:, 2], out[:, 3] = a / lim, b / lim
-        if declare is not None:
-            out[:, 6] = np.where(declare, 1.0, -1.0)
-        else:
-            out[:, 6] = -1.0
-        if pocket is not None:
-            out[:, 7] = -1.0 + (2.0 * np.asarray(pocket) + 1.0) / N_POCKETS
-        return np.clip(out, -1.0, 1.0)
-
-    def _origin_from(self, cue: np.ndarray, idx: np.ndarray) -> np.ndarray:
-        """The aim origin of tables ``idx`` with the cue ball at ``cue`` [n, 2]."""
-        c, t = self.constraints(), self.table
-        tgt = c.nominal_target()[idx]
-        aim = np.where(c.is_break[idx, None], np.array([t.width / 2, FOOT_SPOT * t.length]),
-                       self.state.pos[idx, np.maximum(tgt, 0)])
-        return np.arctan2(aim[:, 1] - cue[:, 1], aim[:, 0] - cue[:, 0])
+        """Actions [n, 8] on tables ``idx`` that play ``shots`` (absolute aim):
+        ``ActionCodec.encode`` of the tables."""
+        return self.codec(idx).encode(shots, placement, declare, pocket)

@@ -17,7 +17,8 @@ import numpy as np
 def bot_actions(core, bot, idx) -> np.ndarray:
     """The actions [n, 8] of ``bot`` on tables ``idx`` (its player is to move on each)."""
     idx = np.asarray(idx, dtype=np.int64)
-    return core.actions_of(bot.act(core.view(idx)), idx)
+    view = core.view(idx)
+    return core.actions_of(bot.act(view), idx, view.codec)
 
 
 def play_round(core, bots, idx, clock: dict | None = None) -> dict:
