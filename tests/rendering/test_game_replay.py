@@ -325,3 +325,26 @@ def test_browser_saved_page_reopens_offline(browser, game_page, scripted, tmp_pa
     from PIL import Image
     img = np.asarray(Image.open(io.BytesIO(browser.get_screenshot_as_png())).convert("RGB"))
     assert len(np.unique(img.reshape(-1, 3)[::97], axis=0)) > 10, "blank page"
+
+
+def test_browser_phone_frame_times(browser, game_page):
+    """Plays a game's break at 1x for 2.5 s on a phone held upright (390 x
+    844, 3 device pixels per CSS px) and prints the requestAnimationFrame
+    intervals and the draw cost per frame (median, 95th percentile)."""
+    import time
+
+    try:
+        browser.execute_cdp_cmd("Emulation.setDeviceMetricsOverride",
+                                {"width": 390, "height": 844, "deviceScaleFactor": 3, "mobile": True})
+        _open(browser, game_page)
+        browser.execute_script("const b = window.billiardsReplay; b.seek(0, 0); b.frameTimes.length = 0;"
+                               "b.drawTimes.length = 0; b.play(1)")
+        time.sleep(2.5)
+        ft, dt = browser.execute_script("const b = window.billiardsReplay; b.pause(); return [b.frameTimes, b.drawTimes]")
+    finally:
+        browser.execute_cdp_cmd("Emulation.clearDeviceMetricsOverride", {})
+    ft, dt = np.array(ft[1:]), np.array(dt)
+    print(f"\nviewer, a game's break at 1x on a 390x844 phone: {len(ft)} frames; rAF interval median "
+          f"{np.median(ft):.2f} ms, p95 {np.percentile(ft, 95):.2f} ms; draw median {np.median(dt):.3f} ms, "
+          f"p95 {np.percentile(dt, 95):.3f} ms")
+    assert len(ft) >= 30, "the viewer did not animate"
