@@ -262,8 +262,10 @@ def test_browser_link_opens_at_that_moment(browser, tmp_path):
         err = np.abs(np.array([g[:2] for g in got])[on] - cut.state.pos[0][on]).max()
         assert err < BROWSER_TOL, f"after {n} events: {err:.3g} m"
     # a seek writes the moment into the address; a bad link is said, not ignored
+    from selenium.webdriver.support.ui import WebDriverWait
+
     browser.execute_script("window.billiardsReplay.seek(0, 0.25)")
-    assert browser.current_url.endswith("#shot=1&t=0.25")
+    WebDriverWait(browser, 5).until(lambda d: d.current_url.endswith("#shot=1&t=0.25"))
     _open(browser, path, "#shot=9&t=1")
     assert "not one of shots 1 to 2" in browser.find_element("id", "notice").text
 
