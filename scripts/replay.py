@@ -5,13 +5,19 @@ HTML viewer page, a GIF or MP4 animation, or replay JSON.
     python scripts/replay.py --replay episode-0000.json --out episode.html
     python scripts/replay.py --env Billiards-NineBall-v0 --policy search64 --seed 3 \
         --out nine.html --out nine.json --out nine.gif
+    python scripts/replay.py --env Billiards-NineBall2P-v0 --policy search64 --opponent ghost --seed 3 \
+        --out game.html
     python scripts/replay.py --scene break --out break.html
 
 The output kind follows each ``--out`` suffix: ``.html`` (self-contained
 viewer), ``.json`` (replay), ``.gif`` / ``.mp4`` (raster renderer; MP4 needs
 imageio-ffmpeg). ``--policy``: ``ghost``, ``random``, ``search<K>`` (e.g.
 ``search64``) or a saved model (agents.evaluation.policies.make_policy); the episode
-is the first one of a one-table vector env reset with ``--seed``.
+is the first one of a one-table vector env reset with ``--seed``. For a
+two-player game id (any registered id whose env is a game env: 9-ball,
+8-ball, ...) it is one whole game, every shot of both players from the break:
+``--policy`` plays player 1 (the env's agent) and ``--opponent`` player 2
+(each a bot name, ``module:factory`` or a saved model).
 ``--scene``: ``cut-draw`` (a cut shot with draw) or ``break`` (a 9-ball
 break at 8 m/s).
 """
@@ -61,6 +67,52 @@ def scene(name: str):
     return Replay.from_sim(res, start, table, params, meta={"title": title, "scene": name})
 
 
+def game_of(env_id: str) -> str | None:
+    """The game (``nine_ball``, ...) of a registered two-player id, found by
+    its entry point (a ``GameEnv``), else None."""
+    import gymnasium as gym
+
+    import billiards_env  # noqa: F401  (registers the ids)
+    from billiards_env.envs.games.single import GameEnv
+
+    try:
+        entry = gym.spec(env_id).entry_point
+    except gym.error.Error:
+        return None
+    if isinstance(entry, str):
+        from gymnasium.envs.registration import load_env_creator
+        entry = load_env_creator(entry)
+    return entry.game if isinstance(entry, type) and issubclass(entry, GameEnv) else None
+
+
+def game(env_id: str, policy: str, opponent: str, seed: int, noise: str | None = None,
+         max_shots: int | None = None):
+    """One whole game of ``env_id`` (a two-player id) seeded with ``seed``:
+    ``policy`` (player 1, the env's agent) against ``opponent``, as a Replay."""
+    import gymnasium as gym
+
+    from agents.evaluation.entrants import bot_factory
+    from billiards_env.rendering import GameRecorder
+
+    kw = {"noise": noise} if noise else {}
+    if max_shots:
+        kw["max_shots"] = max_shots
+    env = gym.make(env_id, render_mode="rgb_array", opponent=bot_factory(opponent, seed + 1), **kw)
+    core = env.unwrapped.core
+    players = (policy, opponent)
+    rec = GameRecorder(core, [0], players=players,
+                       meta={"env": env_id, "policy": policy, "opponent": opponent, "seed": seed,
+                             "noise": noise or "none"})
+    bot = bot_factory(policy, seed)
+    env.reset(seed=seed)
+    done = False
+    while not done:
+        _, _, term, trunc, _ = env.step(core.actions_of(bot.act(core.view([0])), [0])[0])
+        done = term or trunc
+    env.close()
+    return rec.games(0)[-1]  # a game the opponent ended before the agent's first shot is not the one played
+
+
 def episode(env_id: str, policy: str, seed: int, noise: str | None = None, max_shots: int | None = None):
     """The first episode of ``policy`` on a one-table vector env reset with ``seed``, as a Replay."""
     import gymnasium as gym
@@ -95,6 +147,7 @@ def main(argv=None) -> int:
     src.add_argument("--env", help="env id, e.g. Billiards-NineBall-v0 (with --policy and --seed)")
     src.add_argument("--scene", choices=["cut-draw", "break"], help="a demo shot")
     ap.add_argument("--policy", default="ghost", help="ghost | random | search<K> | model path (default ghost)")
+    ap.add_argument("--opponent", default="ghost", help="two-player games: player 2's bot (default ghost)")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--noise", default=None, help="shot noise of the env: none (default) | tournament")
     ap.add_argument("--max-shots", type=int, default=None, help="stop the episode after this many shots")
@@ -120,6 +173,8 @@ def main(argv=None) -> int:
         rep = Replay.load(a.replay)
     elif a.scene:
         rep = scene(a.scene)
+    elif game_of(a.env):
+        rep = game(a.env, a.policy, a.opponent, a.seed, a.noise, a.max_shots)
     else:
         rep = episode(a.env, a.policy, a.seed, a.noise, a.max_shots)
     for o in outs:

@@ -16,15 +16,16 @@ from PIL import Image, ImageDraw, ImageFont
 
 from ..rules import END_NAMES, FOUL_NAMES
 from ..rules import records as R
+from .game_words import GROUP_WORDS, IN_HAND_WORDS
 from .draw import BORDER, PPM, Animation, positions_at, render_table, world_to_pixel, write_animation
 
 PANEL_LINES = 4
 LINE_PX = 14             # pixel height of a status line
 TARGET_RING = (255, 255, 0)
 HEAD_STRING_COLOR = (200, 200, 200)
-GROUP_NAMES = {R.GROUP_OPEN: "open", R.GROUP_SOLIDS: "solids", R.GROUP_STRIPES: "stripes"}
-IN_HAND_NAMES = {R.IN_HAND_NONE: "", R.IN_HAND_ANYWHERE: "ball in hand",
-                 R.IN_HAND_KITCHEN: "ball in hand behind the head string"}
+GROUP_NAMES = GROUP_WORDS
+IN_HAND_NAMES = {code: "" if code == R.IN_HAND_NONE else "ball in hand" + ("" if w == "anywhere" else " " + w)
+                 for code, w in IN_HAND_WORDS.items()}
 
 
 def ruling_text(info: dict | None, k: int = 0) -> str:

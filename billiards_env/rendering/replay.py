@@ -243,6 +243,23 @@ class Replay:
         self._tracks.append(None)
         return shot
 
+    def add_still(self, pos, pocket, info: dict | None = None) -> dict:
+        """Append a turn in which no ball moved (a pass: the shot handed
+        back): every ball at rest where it lies (``pos`` [B, 2], ``pocket``
+        [B], -1 on the table), no events, duration 0; returns the entry."""
+        pos, pocket = np.asarray(pos, dtype=np.float64), np.asarray(pocket)
+        if self.data["n_balls"] is None:
+            self.data["n_balls"] = len(pos)
+        if len(pos) != self.n_balls:
+            raise ValueError(f"the table has {len(pos)} balls, the replay {self.n_balls}")
+        start = [[C.POCKETED if pocket[i] >= 0 else C.STATIONARY, float(pos[i, 0]), float(pos[i, 1])]
+                 for i in range(len(pos))]
+        shot = {"info": _jsonable(dict(info or {})), "duration": 0.0, "truncated": False, "start": start,
+                "events": []}
+        self.data["shots"].append(shot)
+        self._tracks.append(None)
+        return shot
+
     # --- access -----------------------------------------------------------
     @property
     def n_balls(self) -> int:

@@ -28,6 +28,7 @@ import numpy as np
 from ..bots import make_bot
 from ..envs.games import GameConfig, GameCore
 from ..envs.games.play import play_out
+from ..rendering.game_replay import GameRecorder
 from .stats import wilson_interval
 
 ELO = 400.0 / math.log(10.0)  # Elo points per unit of log-strength
@@ -45,6 +46,7 @@ class PairingResult:
     winner: np.ndarray    # [2n] 0: a won, 1: b won, -1: draw
     a_broke: np.ndarray   # [2n] bool
     shots: np.ndarray     # [2n] shots in the game
+    replays: list = dataclasses.field(default_factory=list)  # whole games as Replays (``save_replays``)
 
     @property
     def score_a(self) -> float:
@@ -66,20 +68,30 @@ class PairingResult:
 
 
 def play_pairing(a, b, game: str = "nine_ball", n_racks: int = 100, seed: int = 0,
-                 noise: str = "tournament", max_shots: int = 200, bot_factory=make_bot,
+                 noise: str = "tournament", max_shots: int = 200, bot_factory=make_bot, save_replays: int = 0,
                  **config) -> PairingResult:
     """``n_racks`` racks, each played twice (a breaks, then b breaks) between
-    bots ``a`` and ``b`` (specs for ``bot_factory(spec, seed)``)."""
+    bots ``a`` and ``b`` (specs for ``bot_factory(spec, seed)``).
+    ``save_replays``: record this many whole games (rack 1 with a breaking,
+    rack 1 with b breaking, rack 2, ...) as ``Replay``s in ``replays``."""
     cfg = GameConfig(game=game, noise=noise, max_shots=max_shots, **config)
     E = 2 * n_racks
-    core = GameCore(cfg, E)
+    core = GameCore(cfg, E, record=save_replays > 0)
     seeds = np.tile(seed * 1_000_003 + np.arange(n_racks), 2)
     core.streams.seed(np.arange(E), seeds)
     breaker = np.repeat([0, 1], n_racks)  # player 0 is a
     core.reset_tables(np.arange(E), breaker)
     bots = [bot_factory(a, seed), bot_factory(b, seed + 1)]
+    names = (_name(a, bots[0]), _name(b, bots[1]))
+    tables = np.stack([np.arange(n_racks), n_racks + np.arange(n_racks)], axis=1).ravel()[:max(save_replays, 0)]
+    recorder = GameRecorder(core, tables, players=names, meta={"noise": noise}) if len(tables) else None
     play_out(core, bots, np.arange(E))
-    return PairingResult(_name(a, bots[0]), _name(b, bots[1]), game, noise, core.game.winner.copy(), breaker == 0, core.game.shots.copy())
+    replays = []
+    for k in tables:
+        rep = recorder.games(int(k))[0]
+        rep.data["meta"].update(rack=int(k % n_racks), seed=int(seeds[k]), breaker=names[int(breaker[k])])
+        replays.append(rep)
+    return PairingResult(*names, game, noise, core.game.winner.copy(), breaker == 0, core.game.shots.copy(), replays)
 
 
 def _name(spec, bot) -> str:

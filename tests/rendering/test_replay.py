@@ -3,9 +3,9 @@ to the simulator's, env recording, the command-line script, and the HTML
 viewer in a real (headless Chromium) browser.
 
 The browser tests need Chromium, its driver and selenium (``apt-get install
--y chromium chromium-driver``; ``pip install selenium``). Without them they
-are skipped, except under CI (environment variable ``CI`` set), where a
-missing browser fails.
+-y chromium chromium-driver``; ``pip install selenium``; conftest.py). Without
+them they are skipped, except under CI (environment variable ``CI`` set),
+where a missing browser fails.
 """
 from __future__ import annotations
 
@@ -13,11 +13,8 @@ import importlib.util
 import io
 import json
 import math
-import os
-import shutil
 import subprocess
 import sys
-import tempfile
 from pathlib import Path
 
 import gymnasium as gym
@@ -290,53 +287,6 @@ def test_raster_draws_legible_numbers():
 
 
 # ------------------------------------------------------------- browser --
-def _missing(msg: str):
-    if os.environ.get("CI"):
-        pytest.fail(msg + " (required under CI)")
-    pytest.skip(msg)
-
-
-def _find_browser(chromium: str | None = None, driver: str | None = None) -> tuple[str, str]:
-    """Paths of Chromium and chromedriver; skips (fails under CI) when either, or selenium, is missing."""
-    if importlib.util.find_spec("selenium") is None:
-        _missing("selenium is not installed: pip install selenium (part of the 'test' extra)")
-    chromium = chromium or shutil.which("chromium") or "/usr/bin/chromium"
-    driver = driver or shutil.which("chromedriver") or "/usr/bin/chromedriver"
-    if not (os.path.exists(chromium) and os.path.exists(driver)):
-        _missing("Chromium not found: install it with apt-get install -y chromium chromium-driver")
-    return chromium, driver
-
-
-def test_missing_browser_skips_locally_and_fails_under_ci(monkeypatch, tmp_path):
-    gone = str(tmp_path / "no-such-browser")
-    monkeypatch.delenv("CI", raising=False)
-    with pytest.raises(pytest.skip.Exception, match="apt-get install -y chromium chromium-driver"):
-        _find_browser(gone, gone)
-    monkeypatch.setenv("CI", "true")
-    with pytest.raises(pytest.fail.Exception, match="required under CI"):
-        _find_browser(gone, gone)
-
-
-@pytest.fixture(scope="module")
-def browser():
-    chromium, driver_bin = _find_browser()
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
-
-    opts = webdriver.ChromeOptions()
-    opts.binary_location = chromium
-    for flag in ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                 "--window-size=1400,900", "--force-device-scale-factor=1"):
-        opts.add_argument(flag)
-    profile = tempfile.mkdtemp(prefix="replay-chromium-")
-    opts.add_argument(f"--user-data-dir={profile}")
-    drv = webdriver.Chrome(service=Service(driver_bin), options=opts)
-    yield drv
-    drv.quit()
-    shutil.rmtree(profile, ignore_errors=True)
-
-
 @pytest.fixture(scope="module")
 def break_html(brk, tmp_path_factory):
     return save_replay_html(brk[4], tmp_path_factory.mktemp("html") / "break.html", title="break")

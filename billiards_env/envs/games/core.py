@@ -143,6 +143,9 @@ class GameCore(BilliardsCore):
         self._context: ShotContext | None = None
         self._constraints = None
         self.timers = {"simulate": 0.0, "rules": 0.0}  # seconds spent, cumulative (``games_bench``)
+        # Observers of every step (e.g. rendering.GameRecorder): ``before_step(core, idx, actions)`` and
+        # ``after_step(core, idx, out)``; they read the core and change nothing.
+        self.listeners: list = []
 
     # --- what the shooter faces -------------------------------------------------
     def constraints(self) -> R.Constraints:
@@ -253,6 +256,8 @@ class GameCore(BilliardsCore):
         return the record, the reward of the player who played and the info."""
         idx = np.asarray(idx, dtype=np.int64)
         n, B = len(idx), self.n_balls
+        for listener in self.listeners:
+            listener.before_step(self, idx, actions)
         clipped = (np.abs(actions) > 1.0).any(axis=1)
         a = np.clip(actions, -1.0, 1.0)
         c = self.constraints()
@@ -310,7 +315,10 @@ class GameCore(BilliardsCore):
                     respotted=rec.respot, pocketed=shot.pocketed, first_contact=first, called_pocket=called,
                     placement=placed, placement_moved=moved, action_clipped=clipped, n_events=n_events,
                     sim_time=sim_time, shot=game.shots.copy())
-        return dict(record=rec, reward=reward, terminated=game.over.copy(), truncated=truncated, info=info)
+        out = dict(record=rec, reward=reward, terminated=game.over.copy(), truncated=truncated, info=info)
+        for listener in self.listeners:
+            listener.after_step(self, idx, out)
+        return out
 
     # --- bots ------------------------------------------------------------------------
     def view(self, idx) -> GameView:

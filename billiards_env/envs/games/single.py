@@ -28,16 +28,25 @@ class GameEnv(gym.Env):
     game cut at ``max_shots`` shots is a draw, truncated). **Info**: the
     agent's shot record (see ``GameVectorEnv``), ``opponent_shots`` (how
     many the opponent played since) and ``winner``.
+
+    **Rendering**: ``render_mode="rgb_array"`` keeps each shot's event log
+    (``rendering.RecordReplay`` records whole games from it) and
+    ``render()`` draws the table with the game's status panel
+    (``rendering.game.render_game``).
     """ + OBSERVATION_DOC
 
-    metadata = {"render_modes": []}
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 4}
     game = "nine_ball"
     AGENT = AGENT
 
-    def __init__(self, opponent="ghost", config=None, opponent_seed: int = 0, **overrides: Any):
+    def __init__(self, opponent="ghost", config=None, opponent_seed: int = 0, render_mode: str | None = None,
+                 **overrides: Any):
         check_opponent(opponent)
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(f"render_mode must be one of {self.metadata['render_modes']} or None, got {render_mode!r}")
+        self.render_mode = render_mode
         self.config = make_config(config, overrides, self.game)
-        self.core = GameCore(self.config, 1)
+        self.core = GameCore(self.config, 1, record=render_mode is not None)
         self.observation_space = observation_space(self.core)
         self.action_space = action_space()
         self._opponent_spec, self._opponent_seed = opponent, opponent_seed
@@ -78,6 +87,15 @@ class GameEnv(gym.Env):
         info["winner"] = int(self.core.game.winner[0])
         self._done = terminated or truncated
         return self.core.observe()[0], reward, terminated, truncated, info
+
+    def render(self):
+        if self.render_mode is None:
+            gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array' to gymnasium.make")
+            return None
+        if self.core.state is None:
+            raise RuntimeError("call reset() before render()")
+        from ...rendering.game import render_game
+        return render_game(self.core, 0)
 
 
 class NineBall2PEnv(GameEnv):

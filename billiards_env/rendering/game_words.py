@@ -1,0 +1,116 @@
+"""A two-player game's state and rulings in words, for people: the status
+panel of ``game.render_game``, the game replays (``game_replay``) and the
+viewer page. The rules keep small integer codes (``rules.records``); this
+module is where they become words, so no page shows a raw code."""
+from __future__ import annotations
+
+import numpy as np
+
+from ..rules import END_NAMES, FOUL_NAMES
+from ..rules import records as R
+
+IN_HAND_WORDS = {R.IN_HAND_NONE: "none", R.IN_HAND_ANYWHERE: "anywhere",
+                 R.IN_HAND_KITCHEN: "behind the head string"}
+GROUP_WORDS = {R.GROUP_OPEN: "open", R.GROUP_SOLIDS: "solids", R.GROUP_STRIPES: "stripes"}
+GAME_WORDS = {"nine_ball": "9-ball", "eight_ball": "8-ball"}
+
+
+def _word(table: dict, code, what: str) -> str:
+    """The word of ``code`` in ``table``; a code the table lacks is named as such, never dropped."""
+    code = int(code)
+    return table.get(code, f"{what} code {code}")
+
+
+def in_hand_words(code) -> str:
+    return _word(IN_HAND_WORDS, code, "ball-in-hand")
+
+
+def group_words(code) -> str:
+    return _word(GROUP_WORDS, code, "group")
+
+
+def foul_words(code) -> str:
+    return _word(FOUL_NAMES, code, "foul")
+
+
+def end_words(code) -> str:
+    return _word(END_NAMES, code, "end")
+
+
+def game_words(name: str) -> str:
+    return GAME_WORDS.get(name, name.replace("_", "-"))
+
+
+def pocket_names(pockets) -> list[str]:
+    """Names of a table's pockets [P, 3] (x, y, r) by where they lie: the
+    head (y = 0, the breaking end) or foot end, left (x < width / 2) or
+    right, corner or side."""
+    p = np.asarray(pockets, dtype=np.float64)
+    lo, hi = p[:, 1].min(), p[:, 1].max()
+    mid_x = (p[:, 0].min() + p[:, 0].max()) / 2
+    out = []
+    for x, y, _ in p:
+        side = "left" if x < mid_x else "right"
+        if np.isclose(y, lo):
+            out.append(f"head {side} corner")
+        elif np.isclose(y, hi):
+            out.append(f"foot {side} corner")
+        else:
+            out.append(f"{side} side")
+    return out
+
+
+def balls_words(balls) -> str:
+    """'the 3', 'the 3 and the 7', 'the 1, the 2 and the 9'."""
+    b = ["the cue ball" if int(x) == 0 else f"the {int(x)}" for x in balls]
+    if len(b) <= 1:
+        return "".join(b)
+    return ", ".join(b[:-1]) + " and " + b[-1]
+
+
+def player_labels(n: int = 2) -> list[str]:
+    """How the rulings name the players: 'Player 1', 'Player 2'."""
+    return [f"Player {i + 1}" for i in range(n)]
+
+
+def ruling_words(shot: dict, names: list[str]) -> str:
+    """One or two sentences on a recorded shot of a game (the ``game`` entry
+    of a replay's shot: ``shooter``, ``before``/``after`` states, the
+    record fields and ``pocketed``, ``respotted``, ``declared``, ``called_pocket``)."""
+    s = int(shot["shooter"])
+    who, other = names[s], names[1 - s]
+    before, after = shot["before"], shot["after"]
+    if shot.get("passed"):
+        return f"{who} passes the shot back: {other} shoots."
+    lead = f"{who} breaks" if before.get("break") else (f"{who} pushes out" if shot.get("push_out") else
+                                                        f"{who} shoots")
+    called = f" (called: {shot['called_pocket']})" if shot.get("called_pocket") else ""
+    pots = f", pots {balls_words(shot['pocketed'])}" if shot["pocketed"] else ", pots nothing"
+    text = lead + called + pots
+    if shot.get("game_over"):
+        w = int(shot["winner"])
+        text += f": {shot['end']}. {names[w]} wins." if w >= 0 else f": {shot['end']}."
+    elif not shot["legal"]:
+        text += f": foul ({shot['foul']})"
+        f = int(after["fouls"][s])
+        text += f", {who}'s {_ordinal(f)} foul in a row. " if f > 1 else ". "
+        hand = after["ball_in_hand"]
+        text += f"{names[after['to_move']]} to shoot" + (f", ball in hand {hand}." if hand != "none" else ".")
+    elif shot.get("push_out"):
+        text += f". {other} may play from here or pass the shot back."
+    elif not shot["turn_over"]:
+        text += f": legal. {who} stays at the table."
+    else:
+        text += f": legal. {other} to shoot."
+    if shot.get("respotted"):
+        text += f" {balls_words(shot['respotted']).capitalize()} {'is' if len(shot['respotted']) == 1 else 'are'} respotted."
+    groups_before, groups_after = before.get("groups"), after.get("groups")
+    if groups_after and groups_before != groups_after and groups_after[s] != "open":
+        text += f" {who} takes {groups_after[s]}, {other} {groups_after[1 - s]}."
+    if shot.get("truncated") and not shot.get("game_over"):
+        text += f" The game is cut at {after['shots']} shots: a draw."
+    return text.strip()
+
+
+def _ordinal(n: int) -> str:
+    return {1: "first", 2: "second", 3: "third"}.get(n, f"{n}th")
