@@ -4,6 +4,7 @@
     python scripts/match.py --game nine_ball --policies random ghost ghost-safety --racks 100
     python scripts/match.py --policies my_bots:planner ghost search64 --racks 50   # a bot of your own
     python scripts/match.py --game eight_ball --noise high --racks 50 --out results/matches
+    python scripts/match.py --game ten_ball --policies ghost ghost-safety search64 --racks 100
     python scripts/match.py --summary    # every game and noise level of results/matches in one table
 
 Every pairing plays ``--racks`` racks twice (each side breaks once on each
@@ -26,13 +27,14 @@ sys.path.insert(0, str(ROOT))
 sys.path.insert(1, str(Path.cwd()))  # module:factory bots in the current directory
 
 from agents.evaluation.entrants import bot_factory  # noqa: E402
+from billiards_env.envs.games import GAMES  # noqa: E402
 from billiards_env.studies import match_report  # noqa: E402
 from billiards_env.studies.matches import tournament  # noqa: E402
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--game", choices=["nine_ball", "eight_ball"], default="nine_ball")
+    ap.add_argument("--game", choices=list(GAMES), default="nine_ball")
     ap.add_argument("--policies", nargs="+", default=["random", "ghost"],
                     help="entrants: random, ghost, ghost-safety, search<K>, module:factory, or paths of saved models")
     ap.add_argument("--racks", type=int, default=100, help="racks per pairing (each played twice)")

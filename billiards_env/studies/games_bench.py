@@ -86,7 +86,7 @@ def vector_steps_per_second(game: str = "nine_ball", n_tables: int = 1024, n_ste
     env = GameVectorEnv(n_tables, game=game, noise=noise)
     env.reset(seed=seed)
     rng = np.random.default_rng(seed)
-    acts = rng.uniform(-1, 1, (n_steps, n_tables, 8)).astype(np.float32)
+    acts = rng.uniform(-1, 1, (n_steps, n_tables, env.core.action_dim)).astype(np.float32)
     t0 = time.perf_counter()
     for k in range(n_steps):
         env.step(acts[k])

@@ -7,7 +7,7 @@ It reuses ``BilliardsCore``'s shot mapping (``actions_to_shots``,
 two-player part: the rack, ball in hand, the declarations, the rulings and
 the respots.
 
-**Action** (``Box(-1, 1, (8,), float32)``):
+**Action** (``Box(-1, 1, (8,), float32)``; 10-ball ``(9,)``):
 
 ===  ========================================================================
 a0   aim: phi = angle(cue -> nominal target) + pi * a0; the nominal target is
@@ -21,8 +21,11 @@ a5   cue-ball y with ball in hand: R + (a5 + 1) / 2 * (length - 2R); behind
      the nearest legal one and ``info["placement_moved"]`` is set
 a6   > 0: declare a push-out (9-ball, when allowed), or, right after the
      opponent's push-out, hand the shot back (``may_pass``: no shot is played)
-a7   the called pocket when a call is needed (8-ball, on the 8):
-     pocket floor((a7 + 1) / 2 * 6), in the order of ``Table.pockets``
+a7   the called pocket when a call is needed (8-ball, on the 8; 10-ball,
+     every shot but the break and a push-out): pocket
+     floor((a7 + 1) / 2 * 6), in the order of ``Table.pockets``
+a8   10-ball only, the called ball when a call is needed: ball
+     floor((a8 + 1) / 2 * 11) (1..10; 0, a8 < -9/11, calls a safety)
 ===  ========================================================================
 
 Components outside [-1, 1] are clipped (``info["action_clipped"]``);
@@ -50,15 +53,15 @@ from .setup import rack, respot
 ACTION_DIM = 8
 N_POCKETS = 6
 EXTRA_OBS = 13  # observation entries after the one-player layout (see ``observation_doc``)
-GAMES = ("nine_ball", "eight_ball")
+GAMES = ("nine_ball", "eight_ball", "ten_ball")
 NOISE_LEVELS = ("none", "tournament", "high", "variable")
 VARIABLE_NOISE_MAX = 5.0  # "variable" noise: the tournament deviations times a factor uniform in [0, 5] per game
 
 
 @dataclasses.dataclass(frozen=True)
 class GameConfig:
-    """A two-player game instance: ``game`` (``nine_ball`` or
-    ``eight_ball``), the table (``table_size_ft``), ``physics`` preset,
+    """A two-player game instance: ``game`` (``nine_ball``, ``eight_ball``
+    or ``ten_ball``), the table (``table_size_ft``), ``physics`` preset,
     ``solver`` (and ``dt``), ``min_draw`` (m, the draw at a1 = -1),
     ``max_shots`` (a game not over after this many shots is truncated, a
     draw), ``noise`` (``none``, ``tournament``, ``high`` = 5x tournament,
@@ -132,6 +135,7 @@ class GameCore(BilliardsCore):
         self.params = PhysicsParams.preset(cfg.physics)
         self.effects, self.models, self.record = cfg.effects, cfg.models, record
         self.n_balls = self.rules.n_balls + 1
+        self.action_dim = ACTION_DIM + int(self.rules.calls_ball)  # a8: the called ball (10-ball)
         self.obs_dim = 4 * self.n_balls + 1 + EXTRA_OBS
         self.diag = math.hypot(self.table.width, self.table.length)
         self.state: BallState | None = None
@@ -217,8 +221,8 @@ class GameCore(BilliardsCore):
     # --- actions ------------------------------------------------------------------
     def validate_actions(self, actions, n: int) -> np.ndarray:
         a = np.asarray(actions, dtype=np.float64)
-        if a.shape != (n, ACTION_DIM):
-            raise ValueError(f"actions must have shape ({n}, {ACTION_DIM}), got {a.shape}")
+        if a.shape != (n, self.action_dim):
+            raise ValueError(f"actions must have shape ({n}, {self.action_dim}), got {a.shape}")
         if not np.all(np.isfinite(a)):
             bad = np.argwhere(~np.isfinite(a))[0]
             raise ValueError(f"action contains NaN or infinite values (first at index {tuple(bad)})")
@@ -250,9 +254,14 @@ class GameCore(BilliardsCore):
     def called_pocket(self, a: np.ndarray) -> np.ndarray:
         return np.minimum(np.floor((a[:, 7] + 1.0) / 2.0 * N_POCKETS), N_POCKETS - 1).astype(np.int64)
 
+    def called_ball(self, a: np.ndarray) -> np.ndarray:
+        """a8 -> the called ball (0: a called safety; 10-ball)."""
+        k = self.n_balls  # calls: 0 (safety) and the object balls 1 .. n_balls - 1
+        return np.minimum(np.floor((a[:, 8] + 1.0) / 2.0 * k), k - 1).astype(np.int64)
+
     # --- one shot -------------------------------------------------------------------
     def step(self, actions: np.ndarray, idx) -> dict:
-        """Play validated actions [n, 8] on tables ``idx`` (each table's
+        """Play validated actions [n, action_dim] on tables ``idx`` (each table's
         shooter's): place the cue ball, shoot (or pass), judge, respot;
         return the record, the reward of the player who played and the info."""
         idx = np.asarray(idx, dtype=np.int64)
@@ -265,6 +274,8 @@ class GameCore(BilliardsCore):
         passed = may_pass & decl
         push = c.push_out_allowed[idx] & decl
         called = np.where(c.call_needed[idx], self.called_pocket(a), -1)
+        ball = (np.where(c.call_needed[idx], self.called_ball(a), R.CALL_NONE) if self.rules.calls_ball
+                else np.full(n, R.CALL_NONE, dtype=np.int64))
         moved = np.zeros(n, dtype=bool)
         h = np.nonzero((hand != R.IN_HAND_NONE) & ~passed)[0]
         if len(h):
@@ -300,7 +311,7 @@ class GameCore(BilliardsCore):
                     self.last_start[k] = start.take([shoot[j]])
                     self.last_events[k] = res.events[j]
         t0 = time.perf_counter()
-        shot = ShotInput(start.pocket, pocket_after, first, rails, object_rails, push, called, passed)
+        shot = ShotInput(start.pocket, pocket_after, first, rails, object_rails, push, called, passed, ball)
         rec, game = self.rules.judge(self.game.take(idx), shot)
         self.timers["rules"] += time.perf_counter() - t0
         respot(pos_after, pocket_after, rec.respot, self.table, self.params.R, self.pockets)
@@ -311,7 +322,8 @@ class GameCore(BilliardsCore):
         reward = np.where(rec.winner < 0, 0.0, np.where(rec.winner == rec.shooter, 1.0, -1.0))
         info = dict(legal=rec.legal, foul=rec.foul, turn_over=rec.turn_over, game_over=rec.game_over,
                     winner=rec.winner, end=rec.end, push_out=rec.push_out, passed=rec.passed, shooter=rec.shooter,
-                    respotted=rec.respot, pocketed=shot.pocketed, first_contact=first, called_pocket=called,
+                    respotted=rec.respot, option=rec.option, pocketed=shot.pocketed, first_contact=first,
+                    called_pocket=called, called_ball=ball,
                     placement=placed, placement_moved=moved, action_clipped=clipped, n_events=n_events,
                     sim_time=sim_time, shot=game.shots.copy())
         return dict(record=rec, reward=reward, terminated=game.over.copy(), truncated=truncated, info=info)
@@ -331,29 +343,31 @@ class GameCore(BilliardsCore):
             _core=self)
 
     def actions_of(self, plan, idx) -> np.ndarray:
-        """The actions [n, 8] (float64, validated) that play a bot's
+        """The actions [n, action_dim] (float64, validated) that play a bot's
         ``ShotPlan`` on tables ``idx``: placements made legal first, the aim
         taken relative to the origin seen from the placed cue ball. A bot
-        may also return the env's own actions [n, 8] (a learned policy):
+        may also return the env's own actions [n, action_dim] (a learned policy):
         they are validated and played as they are."""
         idx = np.asarray(idx, dtype=np.int64)
         if isinstance(plan, np.ndarray):
             return self.validate_actions(plan, len(idx))
-        plan.check(len(idx), self.params)
+        plan.check(len(idx), self.params, self.n_balls)
         # checked once (plan.check); the mapping's output is finite and clipped, so it is not checked again.
         # Rounded through float32, the action space's dtype, as a policy's actions are.
-        a = self.actions_for(plan.shots, idx, plan.placement, plan.declare, plan.pocket)
+        a = self.actions_for(plan.shots, idx, plan.placement, plan.declare, plan.pocket, plan.ball)
         return a.astype(np.float32).astype(np.float64)
 
-    def actions_for(self, shots, idx, placement=None, declare=None, pocket=None) -> np.ndarray:
-        """Actions [n, 8] on tables ``idx`` that play ``shots`` (absolute aim)
+    def actions_for(self, shots, idx, placement=None, declare=None, pocket=None, ball=None) -> np.ndarray:
+        """Actions [n, action_dim] on tables ``idx`` that play ``shots`` (absolute aim)
         with the cue ball at ``placement`` [n, 2] (rows of tables without ball
         in hand are ignored; NaN rows: where it lies; an illegal spot is
         moved to the nearest legal one first, so the aim stays absolute),
-        ``declare`` [n] (push-out or pass) and the called ``pocket`` [n]."""
+        ``declare`` [n] (push-out or pass), the called ``pocket`` [n] and,
+        in 10-ball, the called ``ball`` [n] (0 a safety; -1 or None: the
+        nominal target, the lowest legal one)."""
         idx = np.asarray(idx, dtype=np.int64)
         n = len(idx)
-        out = np.zeros((n, ACTION_DIM))
+        out = np.zeros((n, self.action_dim))
         origin = self.shot_context().aim_origin[idx].copy()
         if placement is not None:
             placement = np.array(placement, dtype=np.float64)
@@ -375,6 +389,10 @@ class GameCore(BilliardsCore):
             out[:, 6] = -1.0
         if pocket is not None:
             out[:, 7] = -1.0 + (2.0 * np.asarray(pocket) + 1.0) / N_POCKETS
+        if self.rules.calls_ball:
+            nominal = np.maximum(self.constraints().nominal_target()[idx], 0)
+            ball = nominal if ball is None else np.where(np.asarray(ball) < 0, nominal, ball)
+            out[:, 8] = -1.0 + (2.0 * ball + 1.0) / self.n_balls
         return np.clip(out, -1.0, 1.0)
 
     def _origin_from(self, cue: np.ndarray, idx: np.ndarray) -> np.ndarray:
