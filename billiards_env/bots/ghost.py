@@ -17,7 +17,8 @@ noise (``eight_ball_shot``); in 8-ball every other pot or full hit is first
 previewed (no noise) and replaced by a searched legal shot if it would lose
 the game. In 10-ball it calls every shot: a pot calls its ball and pocket,
 a full hit its target into the pocket straight ahead of it, a searched
-shot (a safety) a safety.
+shot (a safety) a safety; a pot on the 10 is chosen in the simulator as
+the 8 is.
 
 It acts on a ``GameView`` and returns a ``ShotPlan`` (``bots.view``,
 ``bots.plan``); every look ahead goes through ``GameView.preview``.
@@ -52,6 +53,7 @@ EIGHT_DRAWS = 4                     # executions of each variant on the 8 (one n
 KICK_K = 8                          # candidates of the legal-shot search when no legal target is in sight
 SOFT_SPEED = 0.8                    # m/s: the shot on the 8 when the planned one would lose
 BREAK_SPEED = 8.0                   # m/s: the break's nominal speed (as the one-player NineBall's)
+TEN = 10                            # 10-ball: the ball that wins
 
 
 def pocket_ahead(aims: np.ndarray, ball_pos: np.ndarray, d: np.ndarray) -> np.ndarray:
@@ -210,6 +212,10 @@ class GhostBot:
         phi, speed = np.zeros(n), np.zeros(n)
         a, b = np.zeros(n), np.zeros(n)
         brk = view.is_break
+        calls = getattr(view.rules, "calls_ball", False)
+        on_call = np.zeros(n, dtype=bool) if calls else view.call_needed  # 8-ball: the shot is on the 8
+        # the shots the game hangs on, played as the 8 is: the 8, and in 10-ball a pot of the 10
+        decisive = on_call | (view.call_needed & view.targets[:, TEN]) if calls else on_call
         if brk.any():
             r = np.nonzero(brk)[0]
             apex = np.tile([t.width / 2, FOOT_SPOT * t.length], (len(r), 1))
@@ -241,7 +247,7 @@ class GhostBot:
                                    np.ascontiguousarray(tg[none]), p.R, tgt, seen)
             d = pos[none, np.maximum(tgt, 0)] - pos[none, 0]
             phi[none], speed[none] = np.arctan2(d[:, 1], d[:, 0]), FALLBACK_SPEED  # full on the nearest in sight
-            on8 = view.call_needed[none]
+            on8 = on_call[none]
             if on8.any():  # a full hit on the 8: soft, calling the pocket straight ahead of it
                 k = none[on8]
                 u = d[on8] / np.linalg.norm(d[on8], axis=1, keepdims=True)
@@ -255,7 +261,7 @@ class GhostBot:
                 sh, _ = self.safeties(view, search, pos[search], None if self.safety else KICK_K)
                 phi[search], speed[search], b[search] = sh.phi, sh.speed, sh.b
         speed = np.clip(speed, 0.05, p.max_speed)
-        pot_rows = has & ~view.call_needed[rows]
+        pot_rows = has & ~decisive[rows]
         shots = Shots.of_arrays(phi, speed, a, b)
         self.refine(view, rows[pot_rows], pos, pots["ball"][pot_rows], shots, pocket[rows[pot_rows]])
         phi, speed, a, b = shots
@@ -277,7 +283,7 @@ class GhostBot:
         mode[lose] = "search"
         cost = np.full(n, np.inf)
         cost[rows] = pots["cost"]
-        eight = np.nonzero(view.call_needed & play & np.isfinite(cost))[0]
+        eight = np.nonzero(decisive & play & np.isfinite(cost))[0]
         mode[eight] = "eight"
         self.last_mode = mode  # what each table's shot is (diagnostics)
         if len(eight):  # the game hangs on this shot: pick its speed and draw in the previews
