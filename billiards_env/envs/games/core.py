@@ -19,8 +19,9 @@ a5   cue-ball y with ball in hand: R + (a5 + 1) / 2 * (length - 2R); behind
      the head string only when the constraints say so. An illegal spot
      (overlapping a ball or a pocket, or beyond the head string) is moved to
      the nearest legal one and ``info["placement_moved"]`` is set
-a6   > 0: declare a push-out (9-ball, when allowed), or, right after the
-     opponent's push-out, hand the shot back (``may_pass``: no shot is played)
+a6   > 0: declare a push-out (9-ball, 10-ball, when allowed), or, right
+     after the opponent's push-out (10-ball: or illegal pot), hand the shot
+     back (``may_pass``: no shot is played)
 a7   the called pocket when a call is needed (8-ball, on the 8; 10-ball,
      every shot but the break and a push-out): pocket
      floor((a7 + 1) / 2 * 6), in the order of ``Table.pockets``
