@@ -30,7 +30,7 @@ def test_pettingzoo_api(game):
     api_test(aec_class(game)(max_shots=40), num_cycles=300, verbose_progress=False)
 
 
-@pytest.mark.parametrize("env_id,game", zip(IDS, GAMES))
+@pytest.mark.parametrize("env_id,game", list(zip(IDS, GAMES)))
 def test_single_agent_check_env(env_id, game):
     from gymnasium.utils.env_checker import check_env
     env = gym.make(env_id, max_shots=40)
