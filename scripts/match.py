@@ -4,6 +4,7 @@
     python scripts/match.py --game nine_ball --policies random ghost ghost-safety --racks 100
     python scripts/match.py --policies my_bots:planner ghost search64 --racks 50   # a bot of your own
     python scripts/match.py --game eight_ball --noise high --racks 50 --out results/matches
+    python scripts/match.py --game ten_ball --policies ghost ghost-safety search64 --racks 100
     python scripts/match.py --summary    # every game and noise level of results/matches in one table
     python scripts/match.py --policies ghost search64 --racks 20 --save-replays 4   # + 4 whole games per pairing
 

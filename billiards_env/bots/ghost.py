@@ -15,7 +15,10 @@ straight line to any of their legal targets (else any legal one). On the 8
 it chooses the speed and draw of its pot in the simulator under the env's
 noise (``eight_ball_shot``); in 8-ball every other pot or full hit is first
 previewed (no noise) and replaced by a searched legal shot if it would lose
-the game.
+the game. In 10-ball it calls every shot: a pot calls its ball and pocket,
+a full hit its target into the pocket straight ahead of it, a searched
+shot (a safety) a safety; a pot on the 10 is chosen in the simulator as
+the 8 is.
 
 It acts on a ``GameView`` and returns a ``ShotPlan`` (``bots.view``,
 ``bots.plan``); every look ahead goes through ``GameView.preview``.
@@ -50,6 +53,18 @@ EIGHT_DRAWS = 4                     # executions of each variant on the 8 (one n
 KICK_K = 8                          # candidates of the legal-shot search when no legal target is in sight
 SOFT_SPEED = 0.8                    # m/s: the shot on the 8 when the planned one would lose
 BREAK_SPEED = 8.0                   # m/s: the break's nominal speed (as the one-player NineBall's)
+TEN = 10                            # 10-ball: the ball that wins
+
+
+def pocket_ahead(aims: np.ndarray, ball_pos: np.ndarray, d: np.ndarray) -> np.ndarray:
+    """Per row: the pocket (of ``aims`` [P, 2]) closest to the line through
+    ``ball_pos`` [n, 2] along ``d`` [n, 2] (the cue ball's direction to it),
+    among the pockets ahead of the ball: where a full hit sends it."""
+    u = d / np.maximum(np.linalg.norm(d, axis=1, keepdims=True), 1e-12)
+    to_p = aims[None] - ball_pos[:, None]
+    along = np.einsum("npi,ni->np", to_p, u)
+    off = np.linalg.norm(to_p - along[..., None] * u[:, None], axis=-1)
+    return np.argmin(np.where(along > 0, off, np.inf), axis=1)
 
 
 class PotGeometry:
@@ -137,8 +152,9 @@ class GhostBot:
         return (phi, np.where(ok, np.minimum(speed * sf[k], view.params.max_speed), SOFT_SPEED),
                 np.where(ok, hb[k], 0.0))
 
-    def refine(self, view, rows, pos, balls, shots: Shots) -> None:
-        """Improve the planned pots of view rows ``rows`` in place (``SearchBot``); none here."""
+    def refine(self, view, rows, pos, balls, shots: Shots, pockets=None) -> None:
+        """Improve the planned pots of view rows ``rows`` (of ``balls`` into
+        ``pockets``, the planned pockets) in place (``SearchBot``); none here."""
 
     def judge(self, view, rows, pos: np.ndarray, shots: Shots, pocket: np.ndarray, rep=None):
         """Preview ``shots`` (no noise) on view rows ``rows`` with the cue
@@ -196,6 +212,10 @@ class GhostBot:
         phi, speed = np.zeros(n), np.zeros(n)
         a, b = np.zeros(n), np.zeros(n)
         brk = view.is_break
+        calls = getattr(view.rules, "calls_ball", False)
+        on_call = np.zeros(n, dtype=bool) if calls else view.call_needed  # 8-ball: the shot is on the 8
+        # the shots the game hangs on, played as the 8 is: the 8, and in 10-ball a pot of the 10
+        decisive = on_call | (view.call_needed & view.targets[:, TEN]) if calls else on_call
         if brk.any():
             r = np.nonzero(brk)[0]
             apex = np.tile([t.width / 2, FOOT_SPOT * t.length], (len(r), 1))
@@ -227,7 +247,7 @@ class GhostBot:
                                    np.ascontiguousarray(tg[none]), p.R, tgt, seen)
             d = pos[none, np.maximum(tgt, 0)] - pos[none, 0]
             phi[none], speed[none] = np.arctan2(d[:, 1], d[:, 0]), FALLBACK_SPEED  # full on the nearest in sight
-            on8 = view.call_needed[none]
+            on8 = on_call[none]
             if on8.any():  # a full hit on the 8: soft, calling the pocket straight ahead of it
                 k = none[on8]
                 u = d[on8] / np.linalg.norm(d[on8], axis=1, keepdims=True)
@@ -241,9 +261,9 @@ class GhostBot:
                 sh, _ = self.safeties(view, search, pos[search], None if self.safety else KICK_K)
                 phi[search], speed[search], b[search] = sh.phi, sh.speed, sh.b
         speed = np.clip(speed, 0.05, p.max_speed)
-        pot_rows = has & ~view.call_needed[rows]
+        pot_rows = has & ~decisive[rows]
         shots = Shots.of_arrays(phi, speed, a, b)
-        self.refine(view, rows[pot_rows], pos, pots["ball"][pot_rows], shots)
+        self.refine(view, rows[pot_rows], pos, pots["ball"][pot_rows], shots, pocket[rows[pot_rows]])
         phi, speed, a, b = shots
         lose = np.zeros(0, dtype=np.int64)
         if view.game == "eight_ball":  # a pot that would sink the 8 (early or on a scratch) loses the game:
@@ -263,10 +283,28 @@ class GhostBot:
         mode[lose] = "search"
         cost = np.full(n, np.inf)
         cost[rows] = pots["cost"]
-        eight = np.nonzero(view.call_needed & play & np.isfinite(cost))[0]
+        eight = np.nonzero(decisive & play & np.isfinite(cost))[0]
         mode[eight] = "eight"
         self.last_mode = mode  # what each table's shot is (diagnostics)
         if len(eight):  # the game hangs on this shot: pick its speed and draw in the previews
             phi[eight], speed[eight], b[eight] = self.eight_ball_shot(
                 view, eight, pos[eight], Shots(phi[eight], speed[eight], a[eight], b[eight]), pocket[eight])
-        return ShotPlan.of(Shots(phi, speed, a, b), placement, declare, pocket)
+        ball = self.calls(view, geo, rows, has, pots, none, search, pos, pocket)
+        return ShotPlan.of(Shots(phi, speed, a, b), placement, declare, pocket, ball)
+
+    def calls(self, view, geo: PotGeometry, rows, has, pots, none, search, pos, pocket) -> np.ndarray | None:
+        """10-ball's called balls [n] (``pocket`` [n] is updated in place): a
+        pot calls its ball into its pocket; a full hit (rows ``none``) its
+        target into the pocket straight ahead of the target; a searched shot
+        (rows ``search``, judged in the previews without a call) a safety.
+        None in the games without ball calls."""
+        if not getattr(view.rules, "calls_ball", False):
+            return None
+        ball = np.full(view.n, -1, dtype=np.int64)  # -1: the nominal target (the break and passes ignore it)
+        ball[rows[has]] = pots["ball"][has]
+        if len(none):
+            tgt = np.maximum(view.nominal_target()[none], 0)
+            ball[none] = tgt
+            pocket[none] = pocket_ahead(geo.aims, pos[none, tgt], pos[none, tgt] - pos[none, 0])
+        ball[search] = R.CALL_SAFETY
+        return ball

@@ -15,7 +15,11 @@ Every field is an array over the view's rows (n):
                right after the opponent's push-out, pass the shot back
                (``may_pass``: no shot is played)
 ``pocket``     the called pocket (index into ``Table.pockets``; -1: none), used
-               where the view says a call is needed (8-ball, on the 8)
+               where the view says a call is needed (8-ball, on the 8;
+               10-ball, every shot but the break and a push-out)
+``ball``       10-ball: the called ball (1..10; 0 calls a safety; -1, the
+               default: the nominal target, the lowest legal one), used
+               where the view says a call is needed; ignored elsewhere
 =============  ===========================================================
 """
 from __future__ import annotations
@@ -36,18 +40,24 @@ class ShotPlan:
     placement: np.ndarray
     declare: np.ndarray
     pocket: np.ndarray
+    ball: np.ndarray | None = None  # filled with -1 (none) when not given
+
+    def __post_init__(self):
+        if self.ball is None:
+            self.ball = np.full(np.shape(self.phi)[:1] or (1,), -1, dtype=np.int64)
 
     @classmethod
-    def of(cls, shots: Shots, placement=None, declare=None, pocket=None) -> "ShotPlan":
+    def of(cls, shots: Shots, placement=None, declare=None, pocket=None, ball=None) -> "ShotPlan":
         """A plan from ``Shots`` (arrays or scalars broadcast to the batch)
-        and optional placements, declarations and called pockets."""
-        given = [len(np.atleast_1d(v)) for v in (placement, declare, pocket) if v is not None]
+        and optional placements, declarations, called pockets and called balls."""
+        given = [len(np.atleast_1d(v)) for v in (placement, declare, pocket, ball) if v is not None]
         n = max([np.size(v) for v in (shots.phi, shots.speed, shots.a, shots.b)] + given)
         vec = [np.broadcast_to(np.asarray(v, dtype=np.float64), (n,)).copy() for v in shots]
         place = np.full((n, 2), np.nan) if placement is None else np.asarray(placement, dtype=np.float64)
         decl = np.zeros(n, dtype=bool) if declare is None else np.asarray(declare, dtype=bool)
         pk = np.full(n, -1, dtype=np.int64) if pocket is None else np.asarray(pocket, dtype=np.int64)
-        return cls(*vec, place, decl, pk)
+        bl = np.full(n, -1, dtype=np.int64) if ball is None else np.asarray(ball, dtype=np.int64)
+        return cls(*vec, place, decl, pk, bl)
 
     @property
     def n(self) -> int:
@@ -60,11 +70,12 @@ class ShotPlan:
     def take(self, rows) -> "ShotPlan":
         return ShotPlan(*(getattr(self, f.name)[rows] for f in dataclasses.fields(self)))
 
-    def check(self, n: int, params) -> None:
+    def check(self, n: int, params, n_balls: int | None = None) -> None:
         """Raise a ValueError naming the first problem: a field of the wrong
         shape, a NaN or infinite shot, a speed out of range, offsets outside
-        the miscue disc, a bad pocket index."""
-        for f in ("phi", "speed", "a", "b", "declare", "pocket"):
+        the miscue disc, a bad pocket index, a called ball outside -1 ..
+        ``n_balls - 1`` (when given)."""
+        for f in ("phi", "speed", "a", "b", "declare", "pocket", "ball"):
             if np.shape(getattr(self, f)) != (n,):
                 raise ValueError(f"ShotPlan.{f} must have shape ({n},), got {np.shape(getattr(self, f))}")
         if np.shape(self.placement) != (n, 2):
@@ -74,6 +85,9 @@ class ShotPlan:
               & (np.hypot(self.a, self.b) < params.miscue_limit) & (self.pocket >= -1) & (self.pocket <= 5))
         if not ok.all():
             self._explain(params)
+        if n_balls is not None and ((self.ball < -1) | (self.ball >= n_balls)).any():
+            raise ValueError(f"ShotPlan.ball must be -1 (none), 0 (a safety) or a ball 1..{n_balls - 1}, "
+                             f"got {self.ball}")
         p = self.placement
         if not np.isfinite(p).all() and not (np.isfinite(p) | np.isnan(p[:, :1])).all():
             raise ValueError("ShotPlan.placement rows must be finite (or NaN in both coordinates)")
@@ -95,4 +109,3 @@ class ShotPlan:
                              f"miscue disc (radius {params.miscue_limit} R)")
         if ((self.pocket < -1) | (self.pocket > 5)).any():
             raise ValueError(f"ShotPlan.pocket must be -1 (none) or a pocket index 0..5, got {self.pocket}")
-

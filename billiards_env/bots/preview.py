@@ -8,8 +8,8 @@ every copy to rest in one ``physics.simulate`` call (which runs large
 batches in chunks, so memory stays bounded however many candidates a bot
 tries), and judges each
 shot with the game's rules from the row's game state, the plan's called
-pocket included. Push-outs and passes are not previewed (a plan's
-``declare`` is ignored).
+pocket (and, in 10-ball, called ball) included. Push-outs and passes are
+not previewed (a plan's ``declare`` is ignored).
 
 Noise: ``None`` strikes exactly as planned; ``"env"`` applies the env's own
 noise (``view.noise`` times ``view.noise_scale``); a ``NoiseConfig`` (or a
@@ -113,7 +113,11 @@ def preview(view, plan, rows=None, noise=None, rng=None, start: BallState | None
     pos, pocket, first = res.state.pos, res.state.pocket, res.first_contact
     rails, object_rails = res.cushion_hits_after_contact, res.cushion_hits
     called = np.where(view.call_needed[rows], plan.pocket, -1)
-    shot = ShotInput(start.pocket, pocket, first, rails, object_rails, called_pocket=called)
+    ball = None
+    if getattr(view.rules, "calls_ball", False):  # 10-ball: the called ball (-1: the nominal target)
+        ball = np.where(plan.ball < 0, np.maximum(view.nominal_target()[rows], 0), plan.ball)
+        ball = np.where(view.call_needed[rows], ball, -1)
+    shot = ShotInput(start.pocket, pocket, first, rails, object_rails, called_pocket=called, called_ball=ball)
     rec, after = view.rules.judge(view.state.take(rows), shot)
     return Preview(rec, pos, pocket, first, view.rules.constraints(after, pocket))
 

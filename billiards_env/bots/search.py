@@ -6,7 +6,8 @@ candidate shots per table on the planned ball (the one-player
 aims, speeds and spins) previewed in one batched call and judged by the
 rules; it plays the best (a win, else a legal shot that keeps the table with
 the easiest next pot, else the ghost-ball plan), preferring candidates close
-to the nominal shots.
+to the nominal shots. In 10-ball every candidate calls the planned ball
+into the planned pocket.
 """
 from __future__ import annotations
 
@@ -25,7 +26,7 @@ class SearchBot(GhostBot):
         self.search: SearchPolicy | None = None
         self.name = f"search{k}"
 
-    def refine(self, view, rows, pos, balls, shots: Shots) -> None:
+    def refine(self, view, rows, pos, balls, shots: Shots, pockets=None) -> None:
         if not len(rows):
             return
         if self.search is None:  # one candidate generator per bot (its own random stream)
@@ -36,8 +37,11 @@ class SearchBot(GhostBot):
         st.pocket[:, 0] = -1
         cph, csp, ca, cb, close = self.search.candidates(view, st, balls)
         rep = np.repeat(rows, K)
+        called = np.full(view.n, -1)
+        if pockets is not None and getattr(view.rules, "calls_ball", False):  # 10-ball: the planned ball and pocket
+            called[rows] = pockets                                              # are called on every candidate
         rec = self.judge(view, np.arange(view.n), pos, Shots(cph.ravel(), csp.ravel(), ca.ravel(), cb.ravel()),
-                         np.full(view.n, -1), rep)
+                         called, rep)
         win, loss = rec.winner == rec.shooter, rec.winner == 1 - rec.shooter
         pv = self.last_judged
         keeps = rec.legal & ~rec.turn_over & ~rec.game_over

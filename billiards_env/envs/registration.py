@@ -19,6 +19,8 @@ GAME_IDS = {
                                 "billiards_env.envs.games.vector:nine_ball_vector"),
     "Billiards-EightBall-v0": ("billiards_env.envs.games.single:EightBallEnv",
                                "billiards_env.envs.games.vector:eight_ball_vector"),
+    "Billiards-TenBall-v0": ("billiards_env.envs.games.single:TenBallEnv",
+                             "billiards_env.envs.games.vector:ten_ball_vector"),
 }
 
 

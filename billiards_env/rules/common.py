@@ -7,9 +7,11 @@ import dataclasses
 import numpy as np
 
 from .records import (FOUL_BAD_BREAK, FOUL_NO_CONTACT, FOUL_NO_RAIL, FOUL_NONE, FOUL_SCRATCH, FOUL_WRONG_BALL,
-                      Constraints, GameState, ShotInput, ShotRecord)
+                      PHASE_AFTER_BREAK, PHASE_BREAK, PHASE_OPTION, PHASE_PLAY, PHASE_PUSHED, Constraints, GameState, ShotInput,
+                      ShotRecord)
 
 BREAK_RAIL_BALLS = 4  # a legal break pockets a ball or drives at least this many object balls to a rail
+THREE_FOULS = 3       # a player's third consecutive foul loses the game (9-ball, 10-ball)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -57,6 +59,48 @@ def foul_code(f: Facts, first_ok: np.ndarray, is_break: np.ndarray, exempt: np.n
     return code
 
 
+@dataclasses.dataclass(frozen=True, eq=False)
+class RotationShot:
+    """What 9-ball and 10-ball judge alike on one shot per table [E]: the
+    ``facts``, ``is_break``, ``passed`` (the shot was handed back where the
+    phase allows it: ``pass_phases``), ``played`` (not passed), ``pushed``
+    (a push-out declared on the shot after the break), the ``foul`` (the
+    lowest-numbered ball is the only legal first contact; a push-out is
+    free of the contact and rail rules), ``legal`` and ``three`` (the
+    shooter's third consecutive foul)."""
+
+    facts: Facts
+    is_break: np.ndarray
+    passed: np.ndarray
+    played: np.ndarray
+    pushed: np.ndarray
+    foul: np.ndarray
+    legal: np.ndarray
+    three: np.ndarray
+
+    @classmethod
+    def of(cls, game: GameState, shot: ShotInput, pass_phases=(PHASE_PUSHED,)) -> "RotationShot":
+        f = Facts.of(shot)
+        is_break = game.phase == PHASE_BREAK
+        passed = np.asarray(shot.passed, dtype=bool) & np.isin(game.phase, pass_phases)
+        played = ~passed
+        pushed = np.asarray(shot.push_out, dtype=bool) & (game.phase == PHASE_AFTER_BREAK) & played
+        lowest = lowest_on_table(shot.pocket_before)
+        foul = np.where(played, foul_code(f, f.first == lowest, is_break, pushed), FOUL_NONE)
+        three = (foul > 0) & (game.fouls[np.arange(game.n), game.shooter] + 1 >= THREE_FOULS)
+        return cls(f, is_break, passed, played, pushed, foul, foul == FOUL_NONE, three)
+
+    def next_phase(self, option: np.ndarray | None = None) -> np.ndarray:
+        """The phase after the shot: the shot after the break only after a
+        legal break (WPA 9-ball 2.4: a push-out only "if no foul is
+        committed on the break shot"), pushed after a legal push-out, the
+        incoming player's option where ``option`` [E] (10-ball), else open play."""
+        phase = np.where(self.pushed & self.legal, PHASE_PUSHED, PHASE_PLAY)
+        if option is not None:
+            phase = np.where(option, PHASE_OPTION, phase)
+        return np.where(self.is_break, np.where(self.legal, PHASE_AFTER_BREAK, PHASE_PLAY), phase).astype(np.int64)
+
+
 class Rules:
     """A game's rules: ``n_balls`` object balls, ``judge`` (state and shot ->
     record and the next state, pure) and ``constraints`` (state and pockets
@@ -64,6 +108,7 @@ class Rules:
 
     name: str = ""
     n_balls: int = 0
+    calls_ball: bool = False  # the shooter calls a ball as well as a pocket (``ShotInput.called_ball``; 10-ball)
 
     def judge(self, game: GameState, shot: ShotInput) -> tuple[ShotRecord, GameState]:
         raise NotImplementedError

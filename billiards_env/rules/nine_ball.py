@@ -5,22 +5,20 @@ contact. The break (cue ball in hand behind the head string) must hit the 1
 first and pocket a ball or drive at least four object balls to a rail. A
 shot pocketing a ball legally keeps the shooter at the table; the 9
 pocketed on a legal shot wins, the break included; a 9 pocketed on a foul
-or a push-out is respotted. The shot right after the break may be declared
-a push-out (no contact or rail needed); the opponent then shoots or passes
-the shot back. Every foul gives the opponent ball in hand anywhere; a
+or a push-out is respotted. The shot right after a legal break (no foul on
+it: WPA 2.4) may be declared a push-out (no contact or rail needed); the
+opponent then shoots or passes the shot back. Every foul gives the opponent ball in hand anywhere; a
 player's third consecutive foul loses the game.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from .common import Facts, Rules, foul_code, lowest_on_table, next_state
-from .records import (END_NINE, END_NONE, END_THREE_FOULS, FOUL_NONE, IN_HAND_ANYWHERE, IN_HAND_NONE,
-                      PHASE_AFTER_BREAK, PHASE_BREAK, PHASE_PLAY, PHASE_PUSHED, Constraints, GameState, ShotInput,
-                      ShotRecord)
+from .common import RotationShot, Rules, lowest_on_table, next_state
+from .records import (END_NINE, END_NONE, END_THREE_FOULS, IN_HAND_ANYWHERE, IN_HAND_NONE, PHASE_AFTER_BREAK,
+                      PHASE_BREAK, PHASE_PUSHED, Constraints, GameState, ShotInput, ShotRecord)
 
 NINE = 9
-THREE_FOULS = 3
 
 
 class NineBallRules(Rules):
@@ -29,31 +27,21 @@ class NineBallRules(Rules):
 
     def judge(self, game: GameState, shot: ShotInput) -> tuple[ShotRecord, GameState]:
         self.check(game, shot)
-        f = Facts.of(shot)
-        E = game.n
-        ar = np.arange(E)
-        is_break = game.phase == PHASE_BREAK
-        passed = np.asarray(shot.passed, dtype=bool) & (game.phase == PHASE_PUSHED)
-        played = ~passed
-        pushed = np.asarray(shot.push_out, dtype=bool) & (game.phase == PHASE_AFTER_BREAK) & played
-        lowest = lowest_on_table(shot.pocket_before)
-        foul = np.where(played, foul_code(f, f.first == lowest, is_break, pushed), FOUL_NONE)
-        legal = foul == FOUL_NONE
+        r = RotationShot.of(game, shot)
+        f, legal, pushed, played, three = r.facts, r.legal, r.pushed, r.played, r.three
         nine = f.pocketed[:, NINE] & played
         win = legal & nine & ~pushed
-        three = (foul > 0) & (game.fouls[ar, game.shooter] + 1 >= THREE_FOULS)
         over = win | three
         winner = np.where(win, game.shooter, np.where(three, 1 - game.shooter, -1))
         end = np.where(win, END_NINE, np.where(three, END_THREE_FOULS, END_NONE))
         keeps = played & legal & ~pushed & f.object_pocketed
         respot = np.zeros_like(f.pocketed)
         respot[:, NINE] = nine & ~over
-        rec = ShotRecord(legal=legal, foul=foul, turn_over=~keeps & ~over, game_over=over, winner=winner, end=end,
-                         push_out=pushed, passed=passed, respot=respot, shooter=game.shooter.copy())
-        g = next_state(game, rec, foul, played)
-        g.phase = np.where(is_break, PHASE_AFTER_BREAK,
-                           np.where(pushed & legal, PHASE_PUSHED, PHASE_PLAY)).astype(np.int64)
-        g.ball_in_hand = np.where(foul > 0, IN_HAND_ANYWHERE, IN_HAND_NONE).astype(np.int64)
+        rec = ShotRecord(legal=legal, foul=r.foul, turn_over=~keeps & ~over, game_over=over, winner=winner, end=end,
+                         push_out=pushed, passed=r.passed, respot=respot, shooter=game.shooter.copy())
+        g = next_state(game, rec, r.foul, played)
+        g.phase = r.next_phase()
+        g.ball_in_hand = np.where(r.foul > 0, IN_HAND_ANYWHERE, IN_HAND_NONE).astype(np.int64)
         return rec, g
 
     def constraints(self, game: GameState, pocket: np.ndarray) -> Constraints:

@@ -4,7 +4,8 @@
   ball in hand, consecutive fouls, 8-ball groups, over / winner).
 - ``ShotInput``: one shot of each table as the simulator saw it (pockets
   before and after, first contact, rail contacts after it) plus the
-  shooter's declarations (push-out, called pocket, passing the shot back).
+  shooter's declarations (push-out, called pocket, called ball, passing the
+  shot back).
 - ``ShotRecord``: the ruling on that shot (legal or the foul and its
   reason, turn over, game over, winner, balls to respot).
 - ``Constraints``: what the next shooter may and must do (ball in hand,
@@ -37,9 +38,14 @@ END_EIGHT = 3            # the 8 pocketed legally in the called pocket: the shoo
 END_EIGHT_EARLY = 4      # the 8 pocketed before the shooter's group was cleared: the shooter loses
 END_EIGHT_FOUL = 5       # the 8 pocketed on a foul: the shooter loses
 END_EIGHT_POCKET = 6     # the 8 pocketed in another pocket than the one called: the shooter loses
+END_TEN = 7              # 10-ball: the 10 called and pocketed in the called pocket on a legal shot: the shooter wins
 END_NAMES = {END_NONE: "none", END_NINE: "9 pocketed", END_THREE_FOULS: "three consecutive fouls",
              END_EIGHT: "8 pocketed", END_EIGHT_EARLY: "8 pocketed early", END_EIGHT_FOUL: "8 pocketed on a foul",
-             END_EIGHT_POCKET: "8 in an uncalled pocket"}
+             END_EIGHT_POCKET: "8 in an uncalled pocket", END_TEN: "10 pocketed as called"}
+
+# --- called ball (ShotInput.called_ball, 10-ball) ----------------------------------
+CALL_NONE = -1           # no ball called (the break, a push-out, a game without ball calls)
+CALL_SAFETY = 0          # a called safety: no ball is called, every ball the shot pockets is pocketed illegally
 
 # --- ball in hand (GameState.ball_in_hand, Constraints.ball_in_hand) ----------
 IN_HAND_NONE = 0         # the cue ball is played from where it lies
@@ -49,8 +55,10 @@ IN_HAND_KITCHEN = 2      # behind the head string (the break, and after a scratc
 # --- phases (GameState.phase) ---------------------------------------------------
 PHASE_BREAK = 0          # the next shot is the opening break
 PHASE_AFTER_BREAK = 1    # the first shot after the break (9-ball: push-out allowed)
-PHASE_PUSHED = 2         # 9-ball: a push-out was played; the next player may pass the shot back
+PHASE_PUSHED = 2         # 9-ball, 10-ball: a push-out was played; the next player may pass the shot back
 PHASE_PLAY = 3           # any other shot
+PHASE_OPTION = 4         # 10-ball: the last shot pocketed a ball illegally (not the called ball in the called
+                         # pocket) without a foul; the next player may shoot or pass the shot back
 
 # --- 8-ball groups (GameState.group) ------------------------------------------------
 GROUP_OPEN = 0
@@ -112,8 +120,10 @@ class ShotInput:
     touched, so all of theirs count), ``object_rails`` [E, B] every ball's
     cushion hits during the shot (the break's four-ball count), and the
     declarations: ``push_out`` (bool), ``called_pocket`` (int, -1 none),
-    ``passed`` (bool: after a push-out, the player handed the shot back and
-    no shot was played). From a ``physics.SimResult``: ``state.pocket``,
+    ``passed`` (bool: after a push-out, or in 10-ball after an illegally
+    pocketed ball, the player handed the shot back and no shot was played)
+    and ``called_ball`` (10-ball: the ball called, CALL_SAFETY for a called
+    safety, CALL_NONE none). From a ``physics.SimResult``: ``state.pocket``,
     ``first_contact``, ``cushion_hits_after_contact`` (``rails``) and
     ``cushion_hits`` (``object_rails``)."""
 
@@ -125,6 +135,7 @@ class ShotInput:
     push_out: np.ndarray | None = None
     called_pocket: np.ndarray | None = None
     passed: np.ndarray | None = None
+    called_ball: np.ndarray | None = None
 
     def __post_init__(self):
         E, B = np.shape(self.pocket_before)
@@ -134,7 +145,8 @@ class ShotInput:
         if np.shape(self.first_contact) != (E,):
             raise ValueError(f"ShotInput.first_contact must have shape ({E},), got {np.shape(self.first_contact)}")
         fill = dict(object_rails=np.asarray(self.rails), push_out=np.zeros(E, dtype=bool),
-                    called_pocket=np.full(E, -1, dtype=np.int64), passed=np.zeros(E, dtype=bool))
+                    called_pocket=np.full(E, -1, dtype=np.int64), passed=np.zeros(E, dtype=bool),
+                    called_ball=np.full(E, CALL_NONE, dtype=np.int64))
         for k, v in fill.items():
             if getattr(self, k) is None:
                 object.__setattr__(self, k, v)
@@ -155,8 +167,10 @@ class ShotRecord:
     (FOUL_*), ``turn_over`` (the other player shoots next), ``game_over``,
     ``winner`` (-1 none), ``end`` (END_*), ``push_out`` (this shot was a
     push-out), ``passed`` (no shot: the shot was handed back),
-    ``respot`` [E, B] balls the table must put back on the foot spot, and
-    ``shooter`` (who played it)."""
+    ``respot`` [E, B] balls the table must put back on the foot spot,
+    ``shooter`` (who played it) and ``option`` (10-ball: the shot pocketed a
+    ball illegally without a foul, so the next player may shoot or pass the
+    shot back; all False in the other games)."""
 
     legal: np.ndarray
     foul: np.ndarray
@@ -168,6 +182,11 @@ class ShotRecord:
     passed: np.ndarray
     respot: np.ndarray
     shooter: np.ndarray
+    option: np.ndarray | None = None
+
+    def __post_init__(self):
+        if self.option is None:
+            object.__setattr__(self, "option", np.zeros(len(self.legal), dtype=bool))
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

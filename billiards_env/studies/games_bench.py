@@ -2,7 +2,7 @@
 policies on a batch of tables, and steps per second of the self-play vector
 env, with the time split between the simulator, the rules and the policies.
 
-    python -m billiards_env.studies.games_bench --tables 1024 --games 3072
+    python -m billiards_env.studies.games_bench --tables 1024 --n-games 3072 --games nine_ball ten_ball
     (or ``python scripts/benchmark.py --only games``)
 
 ``games_per_second``: every table plays game after game (a finished table
@@ -24,7 +24,7 @@ import time
 import numpy as np
 
 from ..bots import make_bot
-from ..envs.games import GameConfig, GameCore
+from ..envs.games import GAMES, GameConfig, GameCore
 from ..envs.games.play import play_round
 from ..envs.games.vector import GameVectorEnv
 
@@ -86,7 +86,7 @@ def vector_steps_per_second(game: str = "nine_ball", n_tables: int = 1024, n_ste
     env = GameVectorEnv(n_tables, game=game, noise=noise)
     env.reset(seed=seed)
     rng = np.random.default_rng(seed)
-    acts = rng.uniform(-1, 1, (n_steps, n_tables, 8)).astype(np.float32)
+    acts = rng.uniform(-1, 1, (n_steps, n_tables, env.core.action_dim)).astype(np.float32)
     t0 = time.perf_counter()
     for k in range(n_steps):
         env.step(acts[k])
@@ -131,7 +131,7 @@ def markdown(results: list[dict]) -> str:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--games", nargs="+", default=["nine_ball"], choices=["nine_ball", "eight_ball"])
+    ap.add_argument("--games", nargs="+", default=["nine_ball"], choices=list(GAMES))
     ap.add_argument("--tables", type=int, default=1024)
     ap.add_argument("--n-games", type=int, default=3072)
     ap.add_argument("--steps", type=int, default=30)

@@ -28,7 +28,7 @@ def _played_core(game: str, rounds: int) -> GameCore:
     return core
 
 
-@pytest.mark.parametrize("game", ["nine_ball", "eight_ball"])
+@pytest.mark.parametrize("game", ["nine_ball", "eight_ball", "ten_ball"])
 @pytest.mark.parametrize("rounds", [0, 3])
 def test_encoded_plans_decode_to_the_same_shots(game, rounds):
     core = _played_core(game, rounds)
@@ -42,7 +42,7 @@ def test_encoded_plans_decode_to_the_same_shots(game, rounds):
     want = np.column_stack([rng.uniform(0, core.table.width, N), rng.uniform(0, core.table.length, N)])
     plan = ShotPlan.of(shots, placement=want)
     a = view.codec.encode(plan.shots, plan.placement)
-    assert a.shape == (N, 8) and np.all(np.abs(a) <= 1.0)
+    assert a.shape == (N, core.action_dim) and np.all(np.abs(a) <= 1.0)
     # the same actions through the env's decoding
     hand = view.in_hand
     spots_plan, _ = view.legal_placement(want[hand], np.nonzero(hand)[0])

@@ -13,47 +13,50 @@ from billiards_env.rules.placement import HEAD_STRING
 from billiards_env.envs.games.vector import GameVectorEnv
 from billiards_env.rules import records as R
 
-GAMES = ["nine_ball", "eight_ball"]
-IDS = ["Billiards-NineBall2P-v0", "Billiards-EightBall-v0"]
+GAMES = ["nine_ball", "eight_ball", "ten_ball"]
+IDS = ["Billiards-NineBall2P-v0", "Billiards-EightBall-v0", "Billiards-TenBall-v0"]
+ACTION_DIMS = {"nine_ball": 8, "eight_ball": 8, "ten_ball": 9}  # 10-ball: a8 the called ball
+
+
+def aec_class(game):
+    from billiards_env.envs.games import aec
+    return {"nine_ball": aec.NineBallAECEnv, "eight_ball": aec.EightBallAECEnv, "ten_ball": aec.TenBallAECEnv}[game]
 
 
 @pytest.mark.parametrize("game", GAMES)
 def test_pettingzoo_api(game):
     pytest.importorskip("pettingzoo")
     from pettingzoo.test import api_test
-
-    from billiards_env.envs.games.aec import EightBallAECEnv, NineBallAECEnv
-    cls = NineBallAECEnv if game == "nine_ball" else EightBallAECEnv
-    api_test(cls(max_shots=40), num_cycles=300, verbose_progress=False)
+    api_test(aec_class(game)(max_shots=40), num_cycles=300, verbose_progress=False)
 
 
-@pytest.mark.parametrize("env_id", IDS)
-def test_single_agent_check_env(env_id):
+@pytest.mark.parametrize("env_id,game", list(zip(IDS, GAMES)))
+def test_single_agent_check_env(env_id, game):
     from gymnasium.utils.env_checker import check_env
     env = gym.make(env_id, max_shots=40)
     check_env(env.unwrapped, skip_render_check=True)
     obs, info = env.reset(seed=3)
-    assert env.observation_space.contains(obs) and env.action_space.shape == (8,)
+    d = ACTION_DIMS[game]
+    assert env.observation_space.contains(obs) and env.action_space.shape == (d,)
     v = gym.make_vec(env_id, num_envs=3, vectorization_mode="vector_entry_point")
-    assert isinstance(v, GameVectorEnv) and v.single_action_space.shape == (8,)
+    assert isinstance(v, GameVectorEnv) and v.single_action_space.shape == (d,)
 
 
 @pytest.mark.parametrize("game", GAMES)
 def test_vector_env_equals_single_games(game):
     """Table k of a vector env seeded s plays exactly like the AEC env seeded s + k under the same actions."""
     pytest.importorskip("pettingzoo")
-    from billiards_env.envs.games.aec import EightBallAECEnv, NineBallAECEnv
     N, seed = 4, 11
     vec = GameVectorEnv(N, game=game, noise="tournament")
     obs, info = vec.reset(seed=seed)
-    singles = [(NineBallAECEnv if game == "nine_ball" else EightBallAECEnv)(noise="tournament") for _ in range(N)]
+    singles = [aec_class(game)(noise="tournament") for _ in range(N)]
     for k, s in enumerate(singles):
         s.reset(seed=seed + k)
     rng = np.random.default_rng(0)
     alive = np.ones(N, dtype=bool)
     compared = 0
     for _ in range(12):
-        a = rng.uniform(-1, 1, (N, 8))
+        a = rng.uniform(-1, 1, (N, ACTION_DIMS[game]))
         for k, s in enumerate(singles):
             if alive[k]:
                 np.testing.assert_array_equal(obs[k], s.observe(s.agent_selection))
@@ -64,6 +67,7 @@ def test_vector_env_equals_single_games(game):
         for k, s in enumerate(singles):
             if alive[k]:
                 np.testing.assert_array_equal(obs[k], s.observe(s.possible_agents[0]))
+                assert info["called_ball"][k] == s.infos["player_0"]["called_ball"]
                 if term[k] or trunc[k]:
                     assert s.terminations[s.agent_selection] == term[k]
                     assert s.rewards["player_0"] == info["rewards"][k, 0]

@@ -112,9 +112,25 @@ def test_nine_break_four_balls_to_a_rail():
     g, p = position(NINE, phase=R.PHASE_BREAK, in_hand=R.IN_HAND_KITCHEN)
     rec, g2, c = judge(NINE, g, shot(p, 1, object_rails=[2, 3, 4]))
     assert rec.foul[0] == R.FOUL_BAD_BREAK and c.ball_in_hand[0] == R.IN_HAND_ANYWHERE and g2.shooter[0] == 1
-    assert c.push_out_allowed[0]  # the incoming player may push out
     rec, g2, c = judge(NINE, g, shot(p, 1, object_rails=[2, 3, 4, 5]))
     assert rec.legal[0] and rec.turn_over[0] and c.push_out_allowed[0] and c.ball_in_hand[0] == R.IN_HAND_NONE
+
+
+@pytest.mark.parametrize("first,potted,object_rails", [
+    (1, [], [2, 3, 4]),    # an illegal break
+    (1, [0, 5], [2]),      # a scratch on the break
+    (3, [5], [3]),         # the 1 not hit first
+])
+def test_nine_no_push_out_after_a_foul_on_the_break(first, potted, object_rails):
+    """WPA 2.4: a push-out only "if no foul is committed on the break shot";
+    the incoming player has ball in hand and plays an ordinary shot."""
+    g, p = position(NINE, phase=R.PHASE_BREAK, in_hand=R.IN_HAND_KITCHEN)
+    rec, g2, c = judge(NINE, g, shot(p, first, potted=potted, object_rails=object_rails))
+    assert not rec.legal[0] and g2.shooter[0] == 1 and c.ball_in_hand[0] == R.IN_HAND_ANYWHERE
+    assert not c.push_out_allowed[0] and g2.phase[0] == R.PHASE_PLAY
+    # a push-out declared anyway is judged as an ordinary shot: touching nothing is a foul
+    rec2, _, _ = judge(NINE, g2, shot(p, -1, push_out=True))
+    assert not rec2.push_out[0] and rec2.foul[0] == R.FOUL_NO_CONTACT
 
 
 def test_nine_push_out_then_pass_back():

@@ -1,4 +1,4 @@
-"""Two-player pool by the rules (9-ball, 8-ball) over the batched simulator:
+"""Two-player pool by the rules (9-ball, 8-ball, 10-ball) over the batched simulator:
 the batched game core, the self-play vector env, the single-agent env
 against a fixed opponent (one table, and batched: ``versus``) and the
 PettingZoo AEC env (docs/games.md)."""

@@ -35,7 +35,7 @@ class GameAECEnv(AECEnv):
         self.core = GameCore(self.config, 1)
         self.possible_agents = list(AGENTS)
         self.agents = list(AGENTS)
-        obs, act = observation_space(self.core), action_space()
+        obs, act = observation_space(self.core), action_space(self.core)
         self.observation_spaces = {a: obs for a in AGENTS}
         self.action_spaces = {a: act for a in AGENTS}
         self._seeded = False
@@ -70,10 +70,11 @@ class GameAECEnv(AECEnv):
         agent = self.agent_selection
         if self.terminations[agent] or self.truncations[agent]:
             return self._was_dead_step(action)
-        if np.shape(action) != (8,):
-            raise ValueError(f"action must have shape (8,), got {np.shape(action)}")
+        d = self.core.action_dim
+        if np.shape(action) != (d,):
+            raise ValueError(f"action must have shape ({d},), got {np.shape(action)}")
         self._cumulative_rewards[agent] = 0.0
-        out = self.core.step(self.core.validate_actions(np.reshape(action, (1, 8)), 1), [0])
+        out = self.core.step(self.core.validate_actions(np.reshape(action, (1, d)), 1), [0])
         info = info_row(out["info"], 0)
         self.rewards = {a: 0.0 for a in AGENTS}
         winner = int(out["record"].winner[0])
@@ -96,7 +97,7 @@ class GameAECEnv(AECEnv):
         return self.core.view([0])
 
     def bot_action(self, plan) -> np.ndarray:
-        """The action [8] that plays a bot's ``ShotPlan`` (one row) here."""
+        """The action [action_dim] that plays a bot's ``ShotPlan`` (one row) here."""
         return self.core.actions_of(plan, [0])[0].astype(np.float32)
 
     def render(self):
@@ -116,3 +117,9 @@ class EightBallAECEnv(GameAECEnv):
     __doc__ = "8-ball for two agents.\n\n    " + GameAECEnv.__doc__
     metadata = {**GameAECEnv.metadata, "name": "billiards_eight_ball_v0"}
     game = "eight_ball"
+
+
+class TenBallAECEnv(GameAECEnv):
+    __doc__ = "10-ball for two agents (a 9-component action: a8 the called ball).\n\n    " + GameAECEnv.__doc__
+    metadata = {**GameAECEnv.metadata, "name": "billiards_ten_ball_v0"}
+    game = "ten_ball"

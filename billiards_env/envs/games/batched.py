@@ -24,7 +24,7 @@ class GameTables(VectorEnv):
         self.render_mode = None
         self.core = GameCore(self.config, self.num_envs)
         self.single_observation_space = observation_space(self.core)
-        self.single_action_space = action_space()
+        self.single_action_space = action_space(self.core)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
         self._seeded = False

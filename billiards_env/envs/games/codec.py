@@ -5,8 +5,9 @@ A game action is 8 numbers in [-1, 1] (see ``envs.games.spaces``): the aim
 relative to the table's aim origin (a0, in units of pi), the cue's draw
 (a1, over the env's draw range), the tip's side and height offsets (a2, a3,
 over the miscue limit), the cue ball's placement with ball in hand (a4, a5,
-over the free span of the bed), a declaration (a6 > 0) and the called
-pocket (a7, six equal bins). The aim origin is the direction from the cue
+over the free span of the bed), a declaration (a6 > 0), the called
+pocket (a7, six equal bins) and, in 10-ball only, the called ball (a8,
+``n_balls`` equal bins; 0 a safety). The aim origin is the direction from the cue
 ball to the table's nominal target (the lowest legal ball; on the break, the
 foot spot), so it moves with a placed cue ball.
 
@@ -54,6 +55,9 @@ class ActionCodec:
     table: Table
     params: PhysicsParams
     min_draw: float
+    nominal: np.ndarray
+    ball_dim: int
+    n_balls: int
 
     @property
     def n(self) -> int:
@@ -68,14 +72,19 @@ class ActionCodec:
         """Cue-ball positions [k, 2] (m) -> action components a4, a5 [k, 2]."""
         return placement_to_actions(xy, self.table, self.params)
 
-    def encode(self, shots, placement=None, declare=None, pocket=None) -> np.ndarray:
-        """Actions [n, 8] (float64) that play ``shots`` (absolute aim) with the
+    @property
+    def action_dim(self) -> int:
+        return self.ball_dim or ACTION_DIM
+
+    def encode(self, shots, placement=None, declare=None, pocket=None, ball=None) -> np.ndarray:
+        """Actions [n, action_dim] (float64) that play ``shots`` (absolute aim) with the
         cue ball at ``placement`` [n, 2] (rows without ball in hand are
         ignored; NaN rows: where it lies; an illegal spot is moved to the
         nearest legal one first, so the aim stays absolute), ``declare`` [n]
-        (push-out or pass) and the called ``pocket`` [n]."""
+        (push-out or pass), the called ``pocket`` [n] and, in 10-ball, the
+        called ``ball`` [n] (0 a safety; -1 or None: the lowest legal ball)."""
         n = self.n
-        out = np.zeros((n, ACTION_DIM))
+        out = np.zeros((n, self.action_dim))
         origin = self.origin.copy()
         if placement is not None:
             placement = np.array(placement, dtype=np.float64)
@@ -95,17 +104,22 @@ class ActionCodec:
         out[:, 6] = -1.0 if declare is None else np.where(declare, 1.0, -1.0)
         if pocket is not None:
             out[:, 7] = -1.0 + (2.0 * np.asarray(pocket) + 1.0) / N_POCKETS
+        if self.ball_dim:
+            ball = self.nominal if ball is None else np.where(np.asarray(ball) < 0, self.nominal, ball)
+            out[:, 8] = -1.0 + (2.0 * ball + 1.0) / self.n_balls
         return np.clip(out, -1.0, 1.0)
 
     def encode_plan(self, plan) -> np.ndarray:
         """The actions [n, 8] of a bot's ``ShotPlan`` (checked first), rounded
         through float32, the action space's dtype, as a policy's actions are."""
-        plan.check(self.n, self.params)
-        return self.encode(plan.shots, plan.placement, plan.declare, plan.pocket).astype(np.float32).astype(np.float64)
+        plan.check(self.n, self.params, self.n_balls)
+        a = self.encode(plan.shots, plan.placement, plan.declare, plan.pocket, plan.ball)
+        return a.astype(np.float32).astype(np.float64)
 
     def take(self, rows) -> "ActionCodec":
         """The codec of some of the rows."""
         rows = np.asarray(rows, dtype=np.int64)
         place = self.place
         return dataclasses.replace(self, origin=self.origin[rows], aim_point=self.aim_point[rows],
-                                   in_hand=self.in_hand[rows], place=lambda xy, r: place(xy, rows[r]))
+                                   in_hand=self.in_hand[rows], nominal=self.nominal[rows],
+                                   place=lambda xy, r: place(xy, rows[r]))

@@ -7,7 +7,7 @@ It reuses ``BilliardsCore``'s shot mapping (``actions_to_shots``,
 two-player part: the rack, ball in hand, the declarations, the rulings and
 the respots.
 
-**Action** (``Box(-1, 1, (8,), float32)``):
+**Action** (``Box(-1, 1, (8,), float32)``; 10-ball ``(9,)``):
 
 ===  ========================================================================
 a0   aim: phi = angle(cue -> nominal target) + pi * a0; the nominal target is
@@ -19,10 +19,14 @@ a5   cue-ball y with ball in hand: R + (a5 + 1) / 2 * (length - 2R); behind
      the head string only when the constraints say so. An illegal spot
      (overlapping a ball or a pocket, or beyond the head string) is moved to
      the nearest legal one and ``info["placement_moved"]`` is set
-a6   > 0: declare a push-out (9-ball, when allowed), or, right after the
-     opponent's push-out, hand the shot back (``may_pass``: no shot is played)
-a7   the called pocket when a call is needed (8-ball, on the 8):
-     pocket floor((a7 + 1) / 2 * 6), in the order of ``Table.pockets``
+a6   > 0: declare a push-out (9-ball, 10-ball, when allowed), or, right
+     after the opponent's push-out (10-ball: or illegal pot), hand the shot
+     back (``may_pass``: no shot is played)
+a7   the called pocket when a call is needed (8-ball, on the 8; 10-ball,
+     every shot but the break and a push-out): pocket
+     floor((a7 + 1) / 2 * 6), in the order of ``Table.pockets``
+a8   10-ball only, the called ball when a call is needed: ball
+     floor((a8 + 1) / 2 * 11) (1..10; 0, a8 < -9/11, calls a safety)
 ===  ========================================================================
 
 Components outside [-1, 1] are clipped (``info["action_clipped"]``);
@@ -48,15 +52,15 @@ from ...rules.placement import FOOT_SPOT, HEAD_STRING, place_cue
 from .setup import rack, respot
 
 EXTRA_OBS = 13  # observation entries after the one-player layout (see ``observation_doc``)
-GAMES = ("nine_ball", "eight_ball")
+GAMES = ("nine_ball", "eight_ball", "ten_ball")
 NOISE_LEVELS = ("none", "tournament", "high", "variable")
 VARIABLE_NOISE_MAX = 5.0  # "variable" noise: the tournament deviations times a factor uniform in [0, 5] per game
 
 
 @dataclasses.dataclass(frozen=True)
 class GameConfig:
-    """A two-player game instance: ``game`` (``nine_ball`` or
-    ``eight_ball``), the table (``table_size_ft``), ``physics`` preset,
+    """A two-player game instance: ``game`` (``nine_ball``, ``eight_ball``
+    or ``ten_ball``), the table (``table_size_ft``), ``physics`` preset,
     ``solver`` (and ``dt``), ``min_draw`` (m, the draw at a1 = -1),
     ``max_shots`` (a game not over after this many shots is truncated, a
     draw), ``noise`` (``none``, ``tournament``, ``high`` = 5x tournament,
@@ -130,6 +134,7 @@ class GameCore(BilliardsCore):
         self.params = PhysicsParams.preset(cfg.physics)
         self.effects, self.models, self.record = cfg.effects, cfg.models, record
         self.n_balls = self.rules.n_balls + 1
+        self.action_dim = ACTION_DIM + int(self.rules.calls_ball)  # a8: the called ball (10-ball)
         self.obs_dim = 4 * self.n_balls + 1 + EXTRA_OBS
         self.diag = math.hypot(self.table.width, self.table.length)
         self.state: BallState | None = None
@@ -218,8 +223,8 @@ class GameCore(BilliardsCore):
     # --- actions ------------------------------------------------------------------
     def validate_actions(self, actions, n: int) -> np.ndarray:
         a = np.asarray(actions, dtype=np.float64)
-        if a.shape != (n, ACTION_DIM):
-            raise ValueError(f"actions must have shape ({n}, {ACTION_DIM}), got {a.shape}")
+        if a.shape != (n, self.action_dim):
+            raise ValueError(f"actions must have shape ({n}, {self.action_dim}), got {a.shape}")
         if not np.all(np.isfinite(a)):
             bad = np.argwhere(~np.isfinite(a))[0]
             raise ValueError(f"action contains NaN or infinite values (first at index {tuple(bad)})")
@@ -249,9 +254,14 @@ class GameCore(BilliardsCore):
     def called_pocket(self, a: np.ndarray) -> np.ndarray:
         return np.minimum(np.floor((a[:, 7] + 1.0) / 2.0 * N_POCKETS), N_POCKETS - 1).astype(np.int64)
 
+    def called_ball(self, a: np.ndarray) -> np.ndarray:
+        """a8 -> the called ball (0: a called safety; 10-ball)."""
+        k = self.n_balls  # calls: 0 (safety) and the object balls 1 .. n_balls - 1
+        return np.minimum(np.floor((a[:, 8] + 1.0) / 2.0 * k), k - 1).astype(np.int64)
+
     # --- one shot -------------------------------------------------------------------
     def step(self, actions: np.ndarray, idx) -> dict:
-        """Play validated actions [n, 8] on tables ``idx`` (each table's
+        """Play validated actions [n, action_dim] on tables ``idx`` (each table's
         shooter's): place the cue ball, shoot (or pass), judge, respot;
         return the record, the reward of the player who played and the info."""
         idx = np.asarray(idx, dtype=np.int64)
@@ -266,6 +276,8 @@ class GameCore(BilliardsCore):
         passed = may_pass & decl
         push = c.push_out_allowed[idx] & decl
         called = np.where(c.call_needed[idx], self.called_pocket(a), -1)
+        ball = (np.where(c.call_needed[idx], self.called_ball(a), R.CALL_NONE) if self.rules.calls_ball
+                else np.full(n, R.CALL_NONE, dtype=np.int64))
         moved = np.zeros(n, dtype=bool)
         h = np.nonzero((hand != R.IN_HAND_NONE) & ~passed)[0]
         if len(h):
@@ -301,7 +313,7 @@ class GameCore(BilliardsCore):
                     self.last_start[k] = start.take([shoot[j]])
                     self.last_events[k] = res.events[j]
         t0 = time.perf_counter()
-        shot = ShotInput(start.pocket, pocket_after, first, rails, object_rails, push, called, passed)
+        shot = ShotInput(start.pocket, pocket_after, first, rails, object_rails, push, called, passed, ball)
         rec, game = self.rules.judge(self.game.take(idx), shot)
         self.timers["rules"] += time.perf_counter() - t0
         respot(pos_after, pocket_after, rec.respot, self.table, self.params.R, self.pockets)
@@ -312,7 +324,8 @@ class GameCore(BilliardsCore):
         reward = np.where(rec.winner < 0, 0.0, np.where(rec.winner == rec.shooter, 1.0, -1.0))
         info = dict(legal=rec.legal, foul=rec.foul, turn_over=rec.turn_over, game_over=rec.game_over,
                     winner=rec.winner, end=rec.end, push_out=rec.push_out, passed=rec.passed, shooter=rec.shooter,
-                    respotted=rec.respot, pocketed=shot.pocketed, first_contact=first, called_pocket=called,
+                    respotted=rec.respot, option=rec.option, pocketed=shot.pocketed, first_contact=first,
+                    called_pocket=called, called_ball=ball,
                     placement=placed, placement_moved=moved, action_clipped=clipped, n_events=n_events,
                     sim_time=sim_time, shot=game.shots.copy())
         out = dict(record=rec, reward=reward, terminated=game.over.copy(), truncated=truncated, info=info)
@@ -347,20 +360,21 @@ class GameCore(BilliardsCore):
         tgt = R.nominal_target(targets)
         aim = np.where(is_break[:, None], np.array([t.width / 2, FOOT_SPOT * t.length]),
                        pos[np.arange(len(idx)), np.maximum(tgt, 0)])
-        return ActionCodec(self.shot_context().aim_origin[idx], aim, in_hand, place, t, self.params, self.cfg.min_draw)
+        return ActionCodec(self.shot_context().aim_origin[idx], aim, in_hand, place, t, self.params, self.cfg.min_draw,
+                           np.maximum(tgt, 0), self.action_dim if self.rules.calls_ball else 0, self.n_balls)
 
     def actions_of(self, plan, idx, codec: ActionCodec | None = None) -> np.ndarray:
-        """The actions [n, 8] (float64, validated) that play a bot's
+        """The actions [n, action_dim] (float64, validated) that play a bot's
         ``ShotPlan`` on tables ``idx`` (``ActionCodec.encode_plan``:
         placements made legal first, the aim taken relative to the origin
         seen from the placed cue ball). A bot may also return the env's own
-        actions [n, 8] (a learned policy): they are validated and played as
+        actions [n, action_dim] (a learned policy): they are validated and played as
         they are. ``codec``: the tables' codec, if the caller has it (a view's)."""
         if isinstance(plan, np.ndarray):
             return self.validate_actions(plan, len(idx))
         return (codec or self.codec(idx)).encode_plan(plan)
 
-    def actions_for(self, shots, idx, placement=None, declare=None, pocket=None) -> np.ndarray:
-        """Actions [n, 8] on tables ``idx`` that play ``shots`` (absolute aim):
-        ``ActionCodec.encode`` of the tables."""
-        return self.codec(idx).encode(shots, placement, declare, pocket)
+    def actions_for(self, shots, idx, placement=None, declare=None, pocket=None, ball=None) -> np.ndarray:
+        """Actions [n, action_dim] on tables ``idx`` that play ``shots``
+        (absolute aim): ``ActionCodec.encode`` of the tables."""
+        return self.codec(idx).encode(shots, placement, declare, pocket, ball)

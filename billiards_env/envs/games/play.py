@@ -15,7 +15,7 @@ import numpy as np
 
 
 def bot_actions(core, bot, idx) -> np.ndarray:
-    """The actions [n, 8] of ``bot`` on tables ``idx`` (its player is to move on each)."""
+    """The actions [n, action_dim] of ``bot`` on tables ``idx`` (its player is to move on each)."""
     idx = np.asarray(idx, dtype=np.int64)
     view = core.view(idx)
     return core.actions_of(bot.act(view), idx, view.codec)
@@ -28,7 +28,7 @@ def play_round(core, bots, idx, clock: dict | None = None) -> dict:
     ``"bots"``. Returns the step's output."""
     idx = np.asarray(idx, dtype=np.int64)
     to_move = core.constraints().shooter[idx]
-    actions = np.zeros((len(idx), 8))
+    actions = np.zeros((len(idx), core.action_dim))
     t0 = time.perf_counter()
     for p in (0, 1):
         m = np.nonzero(to_move == p)[0]

@@ -31,8 +31,30 @@ def eight_ball_rack(table, R: float, u: np.ndarray) -> np.ndarray:
     return pos
 
 
+TEN_BALL_CENTRE = 4  # the slot of the 10 in a four-row triangle: the middle of the third row (slots row by row)
+
+
+def ten_ball_rack(table, R: float, u: np.ndarray) -> np.ndarray:
+    """Positions [n, 11, 2] of 10-ball racks from uniforms ``u`` [n, 8]
+    (WPA Ten Ball: a triangle of four rows, the 1 at the apex on the foot
+    spot, the 10 in the centre, the other balls placed at random): a frozen
+    triangle, balls 2..9 shuffled by the ranks of ``u``; cue ball left at
+    the origin."""
+    n = len(u)
+    slots = _triangle(4, (table.width / 2, FOOT_SPOT * table.length), R, 0.0, slice(None))  # 10 slots
+    others = np.array([k for k in range(1, 10) if k != TEN_BALL_CENTRE])                    # slots of balls 2..9
+    pos = np.zeros((n, 11, 2))
+    pos[:, 1] = slots[0]
+    pos[:, 10] = slots[TEN_BALL_CENTRE]
+    pos[np.arange(n)[:, None], 2 + np.argsort(u, axis=1)] = slots[others][None]
+    return pos
+
+
 def rack(game: str, table, R: float, u: np.ndarray) -> np.ndarray:
-    """The rack of ``game`` from uniforms ``u`` [n, >= 14] (9-ball takes the first 7)."""
+    """The rack of ``game`` from uniforms ``u`` [n, >= 14] (9-ball takes the
+    first 7, 10-ball the first 8)."""
+    if game == "ten_ball":
+        return ten_ball_rack(table, R, u[:, :8])
     return nine_ball_rack(table, R, u[:, :7]) if game == "nine_ball" else eight_ball_rack(table, R, u[:, :14])
 
 

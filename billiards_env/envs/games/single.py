@@ -48,7 +48,7 @@ class GameEnv(gym.Env):
         self.config = make_config(config, overrides, self.game)
         self.core = GameCore(self.config, 1, record=render_mode is not None)
         self.observation_space = observation_space(self.core)
-        self.action_space = action_space()
+        self.action_space = action_space(self.core)
         self._opponent_spec, self._opponent_seed = opponent, opponent_seed
         self.opponent = None
         self._done = True
@@ -71,9 +71,10 @@ class GameEnv(gym.Env):
     def step(self, action):
         if self._done:
             raise RuntimeError("the game has ended (or never started): call reset() before step()")
-        if np.shape(action) != (8,):
-            raise ValueError(f"action must have shape (8,), got {np.shape(action)}")
-        out = self.core.step(self.core.validate_actions(np.reshape(action, (1, 8)), 1), [0])
+        d = self.core.action_dim
+        if np.shape(action) != (d,):
+            raise ValueError(f"action must have shape ({d},), got {np.shape(action)}")
+        out = self.core.step(self.core.validate_actions(np.reshape(action, (1, d)), 1), [0])
         info = info_row(out["info"], 0)
         reward = float(out["reward"][0])
         terminated, truncated = bool(out["terminated"][0]), bool(out["truncated"][0])
@@ -106,3 +107,9 @@ class NineBall2PEnv(GameEnv):
 class EightBallEnv(GameEnv):
     __doc__ = "Billiards-EightBall-v0: 8-ball against a fixed opponent.\n\n    " + GameEnv.__doc__
     game = "eight_ball"
+
+
+class TenBallEnv(GameEnv):
+    __doc__ = ("Billiards-TenBall-v0: 10-ball against a fixed opponent (a 9-component action: a8 the called "
+               "ball).\n\n    " + GameEnv.__doc__)
+    game = "ten_ball"

@@ -4,11 +4,11 @@ from __future__ import annotations
 import numpy as np
 from gymnasium import spaces
 
-from .core import ACTION_DIM, GameConfig
+from .core import GameConfig
 
 OBSERVATION_DOC = """
     **Observation** (``Box(0, 1, (4*B + 14,), float32)``, B = 10 balls in
-    9-ball, 16 in 8-ball; ball 0 the cue ball):
+    9-ball, 16 in 8-ball, 11 in 10-ball; ball 0 the cue ball):
 
     ==============  ===========================================================
     index           meaning
@@ -19,9 +19,11 @@ OBSERVATION_DOC = """
     4*B             shots played in this game / max_shots
     4*B + 1         the player to move (0 or 1)
     4*B + 2..4      ball in hand: none, anywhere, behind the head string
-    4*B + 5..8      push-out allowed, may pass (after a push-out), call
-                    needed (8-ball, on the 8), break shot
-    4*B + 9..11     the shooter's group: open (9-ball always), solids, stripes
+    4*B + 5..8      push-out allowed, may pass (after a push-out; 10-ball
+                    also after an illegal pot), call needed (8-ball, on
+                    the 8; 10-ball, every shot but the break), break shot
+    4*B + 9..11     the shooter's group: open (9-ball, 10-ball always),
+                    solids, stripes
     4*B + 12, 13    consecutive fouls of the shooter, of the opponent, / 3
     ==============  ===========================================================
 """
@@ -44,8 +46,9 @@ def observation_space(core) -> spaces.Box:
     return spaces.Box(0.0, 1.0, shape=(core.obs_dim,), dtype=np.float32)
 
 
-def action_space() -> spaces.Box:
-    return spaces.Box(-1.0, 1.0, shape=(ACTION_DIM,), dtype=np.float32)
+def action_space(core) -> spaces.Box:
+    """``Box(-1, 1, (core.action_dim,))``: 8 components, 9 in 10-ball (the called ball)."""
+    return spaces.Box(-1.0, 1.0, shape=(core.action_dim,), dtype=np.float32)
 
 
 def info_row(info: dict, k: int) -> dict:

@@ -32,8 +32,9 @@ class GameVectorEnv(GameTables):
 
     **Info**: the shot record (``legal``, ``foul``, ``turn_over``,
     ``game_over``, ``winner``, ``end``, ``push_out``, ``passed``,
-    ``shooter``, ``respotted``), ``pocketed``, ``first_contact``,
-    ``called_pocket``, ``placement`` (where the cue ball was played from)
+    ``shooter``, ``respotted``, ``option``: 10-ball, the shot pocketed a
+    ball illegally), ``pocketed``, ``first_contact``, ``called_pocket``,
+    ``called_ball`` (10-ball; -1 none, 0 a safety), ``placement`` (where the cue ball was played from)
     and ``placement_moved`` (a ball-in-hand spot was illegal and moved),
     ``action_clipped``, ``n_events``, ``sim_time``, ``shot``; the next
     shooter's constraints as ``ball_in_hand``, ``targets``,
@@ -72,7 +73,7 @@ class GameVectorEnv(GameTables):
                 reward[act], terminated[act], truncated[act] = out["reward"], out["terminated"], out["truncated"]
                 for k, v in out["info"].items():
                     full = np.zeros((N,) + np.shape(v)[1:], dtype=np.asarray(v).dtype)
-                    if k in ("winner", "first_contact", "called_pocket"):
+                    if k in ("winner", "first_contact", "called_pocket", "called_ball"):
                         full[:] = -1
                     full[act] = v
                     info[k] = full
@@ -110,3 +111,7 @@ def nine_ball_vector(num_envs: int = 1, **kwargs):
 
 def eight_ball_vector(num_envs: int = 1, **kwargs):
     return game_vector(num_envs, "eight_ball", **kwargs)
+
+
+def ten_ball_vector(num_envs: int = 1, **kwargs):
+    return game_vector(num_envs, "ten_ball", **kwargs)

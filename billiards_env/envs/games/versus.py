@@ -151,7 +151,8 @@ class GameVersusVectorEnv(GameTables):
             out = self.core.step(a[act], act)
             for k, v in out["info"].items():
                 v = np.asarray(v)
-                full = np.full((N,) + v.shape[1:], -1 if k in ("winner", "first_contact", "called_pocket") else 0,
+                full = np.full((N,) + v.shape[1:],
+                               -1 if k in ("winner", "first_contact", "called_pocket", "called_ball") else 0,
                                dtype=v.dtype)
                 full[act] = v
                 info[k] = full

@@ -207,9 +207,10 @@ def rllib_rows(opts: RunOptions) -> list[dict]:
 
 def games_markdown(opts: RunOptions) -> str:
     """The two-player games' table (``studies.games_bench``): games/s of
-    ``opts.batch`` tables over ``3 * batch`` games, and the vector env's steps/s."""
+    ``opts.batch`` tables over ``3 * batch`` games, and the vector env's
+    steps/s, for 9-ball and 10-ball."""
     from billiards_env.studies import games_bench
-    return games_bench.markdown(games_bench.rows(("nine_ball",), opts.batch, 3 * opts.batch))
+    return games_bench.markdown(games_bench.rows(("nine_ball", "ten_ball"), opts.batch, 3 * opts.batch))
 
 
 # --only name -> (heading printed, rows of the section), in the order they run
