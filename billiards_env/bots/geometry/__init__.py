@@ -11,7 +11,7 @@ and the object ball comes into the pocket within its acceptance angle.
 
 One job per module:
 
-- ``lines``: the construction's scalar kernels (ghost ball, approach to a
+- ``lines``: the construction's scalar kernels (ghost ball, cut, approach to a
   pocket, segment distance, blocked path), written once;
 - ``pockets``: each pocket's aim point, axis, side / corner and limit;
 - ``speed``: the stroke speed that carries a pot (rolling and slide losses);

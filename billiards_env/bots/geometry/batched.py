@@ -18,7 +18,8 @@ import numpy as np
 from ...envs.target_frame import CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG
 from ...physics import PhysicsParams, Table
 from ...physics.strike import Shots
-from .lines import MIN_LINE, approach_cos, as_bool, blocked, ghost_ball, line_length, paths_blocked, sqrt_test_d2
+from .lines import (MIN_CUE_PATH, MIN_LINE, approach_cos, as_bool, blocked, cut_cos_of_units, ghost_ball,
+                    line_length, paths_blocked, sqrt_test_d2)
 from .pockets import pocket_aim_points, pocket_axes, side_pocket_mask
 from .speed import required_speed
 
@@ -45,7 +46,7 @@ def _ghost_lines(pos, on, target, pockets, R, d2, out):
             m = max(dcg, MIN_LINE)
             d_op[e, p], d_cg[e, p] = d, dcg
             ghost[e, p, 0], ghost[e, p, 1], cg[e, p, 0], cg[e, p, 1] = gx, gy, vx, vy
-            cos_cut[e, p] = min(max((vx / m) * ux + (vy / m) * uy, -1.0), 1.0)
+            cos_cut[e, p] = min(max(cut_cos_of_units(vx, vy, m, ux, uy), -1.0), 1.0)
             cos_app[e, p] = min(max(approach_cos(ux, uy, axes[p, 0], axes[p, 1]), -1.0), 1.0)
             blk[e, p] = blocked(pos[e], on[e], t, -1, cx, cy, gx, gy, d2) or \
                 blocked(pos[e], on[e], t, -1, ox, oy, px, py, d2)
@@ -77,7 +78,7 @@ def ghost_shots(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, table
     cut = np.arccos(cos_cut)
     phi = np.arctan2(cg[..., 1], cg[..., 0])
     approach = np.arccos(cos_app)
-    valid = (cut < math.radians(88.0)) & (d_cg > 1e-9)
+    valid = (cut < math.radians(88.0)) & (d_cg > MIN_CUE_PATH)
     return dict(phi=phi, cut=cut, d_cg=d_cg, d_op=d_op, approach=approach, blocked=blocked_,
                 valid=valid, ghost=ghost)
 

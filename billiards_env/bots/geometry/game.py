@@ -13,7 +13,7 @@ from typing import NamedTuple
 
 import numba
 
-from .lines import MIN_LINE, approach_cos, blocked, ghost_ball
+from .lines import MIN_CUE_PATH, MIN_LINE, approach_cos, blocked, cut_cos, ghost_ball
 
 _jit = numba.njit(cache=True, nogil=True)
 
@@ -75,9 +75,9 @@ def _best_pots(pos, on, targets, pockets, lim, out):
                     continue
                 vx, vy = gx - cx, gy - cy
                 dcg = math.hypot(vx, vy)
-                if dcg < 1e-9:
+                if dcg < MIN_CUE_PATH:
                     continue
-                c = math.acos(min(max((vx * ux + vy * uy) / dcg, -1.0), 1.0))
+                c = math.acos(min(max(cut_cos(vx, vy, dcg, ux, uy), -1.0), 1.0))
                 if c > max_cut:
                     continue
                 k = c + dist_weight * (dcg + dop)

@@ -6,16 +6,20 @@ bots' per-table searches (``geometry.game``).
   ``dop`` = |P - O|, the unit direction u = (P - O) / dop and the ghost
   ball's centre G = O - 2R u, where the cue ball must arrive (Alciatore,
   "The Illustrated Principles of Pool and Billiards", ghost-ball aiming);
+- ``cut_cos``: the cosine of the cut angle, between the cue ball's path
+  (to the ghost ball) and the object ball's;
 - ``approach_cos``: the cosine of the angle between the object ball's path
   and a pocket's axis (pointing into the table), the pocket's acceptance test;
 - ``seg_dist2`` and ``blocked``: a path (segment a-b) is blocked when some
   other ball on the table lies within a given distance of it.
 
-How each caller measures a length (``line_length``, numpy's rounding, or
-``math.hypot``) and applies arccos / arctan2 (numpy's vectorised functions,
-or libm's) is its own: they differ in the last bits (module
-``geometry`` docstring), and both callers' results are kept bit-identical
-to what they were.
+The two callers round differently, and each keeps its rounding so that
+its results stay bit-identical to what they were (the ``geometry``
+docstring says by how much they differ): the batched shots measure a
+length as ``line_length`` (numpy's norm), the cut as ``cut_cos_of_units``
+and take numpy's vectorised arccos / arctan2 on the arrays; the game
+kernels measure a length with ``math.hypot``, the cut as ``cut_cos`` and
+take libm's acos / atan2.
 """
 from __future__ import annotations
 
@@ -27,6 +31,7 @@ import numpy as np
 _jit = numba.njit(cache=True, nogil=True)
 MIN_LINE = 1e-12     # m: a ball this close to its aim point has no direction to it
 MIN_SEGMENT2 = 1e-18  # m^2: a shorter segment is measured as the point a (no direction to project on)
+MIN_CUE_PATH = 1e-9   # m: a cue ball this close to the ghost ball has no path to aim along
 
 
 @_jit
@@ -43,6 +48,21 @@ def ghost_ball(ox, oy, px, py, R, dop):
     (gx, gy), 2R behind the object ball on that line."""
     ux, uy = (px - ox) / dop, (py - oy) / dop
     return ux, uy, ox - 2 * R * ux, oy - 2 * R * uy
+
+
+@_jit
+def cut_cos(vx, vy, dcg, ux, uy):
+    """cos of the cut angle: between the cue ball's path (vx, vy), of length
+    ``dcg`` (> 0), and the object ball's (ux, uy), as v.u / dcg (the game
+    kernels' rounding)."""
+    return (vx * ux + vy * uy) / dcg
+
+
+@_jit
+def cut_cos_of_units(vx, vy, dcg, ux, uy):
+    """``cut_cos`` as (v / dcg).u: the batched shots' rounding (they divide
+    the path by its length first, as numpy array code does)."""
+    return (vx / dcg) * ux + (vy / dcg) * uy
 
 
 @_jit
