@@ -1,7 +1,7 @@
 """``ghost`` and ``ghost-safety``: rule-aware ghost-ball bots for the two-player games.
 
-``GhostBot`` plays the ghost-ball shot (``bots.geometry``, as kernels in
-``bots.game_geometry``) on the easiest legal target and pocket; the seeded
+``GhostBot`` plays the ghost-ball shot (``bots.geometry``, its kernels in
+``bots.geometry.game``) on the easiest legal target and pocket; the seeded
 standard break; with ball in hand, the cue ball placed for a short
 straight-in shot on a legal target; after the opponent's push-out, it passes
 when it has no pot. When no pot is likely (every pot blocked or cut more
@@ -35,7 +35,6 @@ from ..physics.noise import perturb
 from ..physics.strike import Shots
 from ..rules import records as R
 from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP
-from . import game_geometry as GG
 from . import geometry as G
 from .plan import ShotPlan
 
@@ -75,7 +74,7 @@ class PotGeometry:
         self.table, self.params = table, params
         self.aims = np.ascontiguousarray(G.pocket_aim_points(table, inset=0.0))
         self.axes = np.ascontiguousarray(G.pocket_axes(table))
-        self.limits = GG.pocket_limits(table, APPROACH_CORNER, APPROACH_SIDE)
+        self.limits = G.pocket_limits(table, APPROACH_CORNER, APPROACH_SIDE)
         self.pockets = np.ascontiguousarray(table.geometry(True)[3], dtype=np.float64)
 
 
@@ -99,14 +98,14 @@ class GhostBot:
     # --- pots ---------------------------------------------------------------
     def best_pots(self, geo: PotGeometry, pos: np.ndarray, on: np.ndarray, targets: np.ndarray) -> dict:
         """The easiest ghost-ball pot per table over the legal targets and
-        pockets (``game_geometry.best_pots``): arrays [n] ``cost`` (inf: none
+        pockets (``geometry.best_pots``): arrays [n] ``cost`` (inf: none
         open), ``phi``, ``speed``, ``pocket``, ``ball``, ``cut``."""
         p = geo.params
         n = len(pos)
         out = dict(cost=np.empty(n), phi=np.zeros(n), d_cg=np.zeros(n), d_op=np.zeros(n), cut=np.zeros(n),
                    pocket=np.zeros(n, dtype=np.int64), ball=np.zeros(n, dtype=np.int64))
-        GG.best_pots(np.ascontiguousarray(pos), np.ascontiguousarray(on), np.ascontiguousarray(targets), geo.aims,
-                     geo.axes, geo.limits, GG.PotLimits(p.R, BLOCK_CLEAR, MAX_CUT, self.dist_weight), out)
+        G.best_pots(np.ascontiguousarray(pos), np.ascontiguousarray(on), np.ascontiguousarray(targets), geo.aims,
+                     geo.axes, geo.limits, G.PotLimits(p.R, BLOCK_CLEAR, MAX_CUT, self.dist_weight), out)
         out["speed"] = G.required_speed(out["d_cg"], out["d_op"], out["cut"], p, b=0.0, margin=1.0)
         return out
 
@@ -114,7 +113,7 @@ class GhostBot:
     def placements(self, geo: PotGeometry, pos: np.ndarray, on: np.ndarray, targets: np.ndarray,
                    kitchen: np.ndarray) -> np.ndarray:
         """A cue-ball spot [n, 2] per table for a short straight-in shot on a
-        legal target (``game_geometry.straight_in_spots``: behind the ghost
+        legal target (``geometry.straight_in_spots``: behind the ghost
         ball on the line pocket -> ball, ``PLACE_BACK`` metres away, on the
         allowed area, clear of every ball, both paths open; the shortest
         object-ball run wins). Tables with no such spot get the head spot
@@ -126,8 +125,8 @@ class GhostBot:
         y_hi = np.where(kitchen, HEAD_STRING * t.length - KITCHEN_GAP, t.length - R_ - PLACE_CLEAR)
         on_c = np.ascontiguousarray(on).copy()
         on_c[:, 0] = False  # the cue ball is in hand
-        GG.straight_in_spots(np.ascontiguousarray(pos), on_c, np.ascontiguousarray(targets), y_hi, geo.aims,
-                             np.array(PLACE_BACK), GG.SpotLimits(t.width, R_, PLACE_CLEAR), geo.pockets, spot)
+        G.straight_in_spots(np.ascontiguousarray(pos), on_c, np.ascontiguousarray(targets), y_hi, geo.aims,
+                             np.array(PLACE_BACK), G.SpotLimits(t.width, R_, PLACE_CLEAR), geo.pockets, spot)
         return spot
 
     def eight_ball_shot(self, view, rows, pos, shots: Shots, pocket):
@@ -191,7 +190,7 @@ class GhostBot:
         rec = self.judge(view, rows, pos, Shots(phi, speed, np.zeros(n * K), b), np.full(n, -1), rep)
         pv = self.last_judged
         open_line = np.empty(n * K, dtype=bool)
-        GG.open_lines(pv.pos, pv.on_table, pv.next.targets, R_, open_line)
+        G.open_lines(pv.pos, pv.on_table, pv.next.targets, R_, open_line)
         good = rec.legal & ~rec.game_over & rec.turn_over
         score = good * 2.0 + (good & ~open_line) * 1.0 + (rec.winner == rec.shooter) * 10.0
         score = score.reshape(n, K) - 0.01 * speed.reshape(n, K)
@@ -243,7 +242,7 @@ class GhostBot:
         if len(none):
             tgt = np.empty(len(none), dtype=np.int64)
             seen = np.empty(len(none), dtype=bool)
-            GG.nearest_open_target(np.ascontiguousarray(pos[none]), np.ascontiguousarray(on[none]),
+            G.nearest_open_target(np.ascontiguousarray(pos[none]), np.ascontiguousarray(on[none]),
                                    np.ascontiguousarray(tg[none]), p.R, tgt, seen)
             d = pos[none, np.maximum(tgt, 0)] - pos[none, 0]
             phi[none], speed[none] = np.arctan2(d[:, 1], d[:, 0]), FALLBACK_SPEED  # full on the nearest in sight

@@ -1,12 +1,10 @@
-"""Ghost-ball geometry for the game policies as numba kernels over tables.
-
-The same constructions as ``bots.geometry`` (ghost ball, cut angle,
-approach to the pocket, blocked paths: see its docstring), written as loops
-so that a policy can weigh every legal target and pocket of a thousand
-tables in well under a millisecond per table: ``best_pots`` (the easiest
-open pot per table), ``straight_in_spots`` (a ball-in-hand spot for a
-straight-in pot) and ``open_lines`` (whether the cue ball sees a legal
-target).
+"""The game bots' searches over tables, as numba kernels: the ghost-ball
+lines (``geometry.lines``) of every legal target and pocket of a thousand
+tables weighed in well under a millisecond per table. ``best_pots`` (the
+easiest open pot per table), ``straight_in_spots`` (a ball-in-hand spot for
+a straight-in pot), ``open_lines`` (whether the cue ball sees a legal
+target) and ``nearest_open_target``. Lengths are ``math.hypot``, angles
+libm's ``acos`` / ``atan2`` (the bots' choices were measured with them).
 """
 from __future__ import annotations
 
@@ -14,10 +12,10 @@ import math
 from typing import NamedTuple
 
 import numba
-import numpy as np
+
+from .lines import MIN_CUE_PATH, MIN_LINE, approach_cos, blocked, cut_cos, ghost_ball
 
 _jit = numba.njit(cache=True, nogil=True)
-MIN_LINE = 1e-12  # m: a ball this close to a pocket's aim point has no direction to it
 
 
 class PotLimits(NamedTuple):
@@ -38,44 +36,6 @@ class SpotLimits(NamedTuple):
     width: float
     R: float
     clear: float
-
-
-@_jit
-def _ghost(ox, oy, px, py, R):
-    """The ghost-ball construction for potting the ball at (ox, oy) towards
-    the aim point (px, py): the unit direction (ux, uy) ball -> aim point,
-    the distance ``dop`` and the ghost ball's centre (gx, gy), 2R behind the
-    ball on that line. ``dop`` is 0 (and the rest meaningless) when the ball
-    is within ``MIN_LINE`` of the aim point."""
-    ux, uy = px - ox, py - oy
-    dop = math.hypot(ux, uy)
-    if dop < MIN_LINE:
-        return 0.0, 0.0, 0.0, ox, oy
-    ux /= dop
-    uy /= dop
-    return ux, uy, dop, ox - 2 * R * ux, oy - 2 * R * uy
-
-
-@_jit
-def _seg_dist2(ax, ay, bx, by, px, py):
-    """Squared distance from (px, py) to the segment a-b."""
-    dx, dy = bx - ax, by - ay
-    L2 = max(dx * dx + dy * dy, 1e-18)
-    t = min(max(((px - ax) * dx + (py - ay) * dy) / L2, 0.0), 1.0)
-    qx, qy = ax + t * dx - px, ay + t * dy - py
-    return qx * qx + qy * qy
-
-
-@_jit
-def _blocked(pos, on, skip1, skip2, ax, ay, bx, by, d2):
-    """Some ball on the table other than ``skip1``/``skip2`` (and the cue ball)
-    lies closer than sqrt(d2) to the segment a-b."""
-    for j in range(1, pos.shape[0]):
-        if j == skip1 or j == skip2 or not on[j]:
-            continue
-        if _seg_dist2(ax, ay, bx, by, pos[j, 0], pos[j, 1]) < d2:
-            return True
-    return False
 
 
 def best_pots(pos, on, targets, aims, axes, limits, lim: PotLimits, out: dict) -> None:
@@ -107,23 +67,24 @@ def _best_pots(pos, on, targets, pockets, lim, out):
                 continue
             ox, oy = pos[e, b, 0], pos[e, b, 1]
             for p in range(aims.shape[0]):
-                ux, uy, dop, gx, gy = _ghost(ox, oy, aims[p, 0], aims[p, 1], R)
-                if dop == 0.0:
+                dop = math.hypot(aims[p, 0] - ox, aims[p, 1] - oy)
+                if dop < MIN_LINE:
                     continue
-                if math.acos(min(max(-(ux * axes[p, 0] + uy * axes[p, 1]), -1.0), 1.0)) > limits[p]:
+                ux, uy, gx, gy = ghost_ball(ox, oy, aims[p, 0], aims[p, 1], R, dop)
+                if math.acos(min(max(approach_cos(ux, uy, axes[p, 0], axes[p, 1]), -1.0), 1.0)) > limits[p]:
                     continue
                 vx, vy = gx - cx, gy - cy
                 dcg = math.hypot(vx, vy)
-                if dcg < 1e-9:
+                if dcg < MIN_CUE_PATH:
                     continue
-                c = math.acos(min(max((vx * ux + vy * uy) / dcg, -1.0), 1.0))
+                c = math.acos(min(max(cut_cos(vx, vy, dcg, ux, uy), -1.0), 1.0))
                 if c > max_cut:
                     continue
                 k = c + dist_weight * (dcg + dop)
                 if k >= cost[e]:
                     continue
-                if _blocked(pos[e], on[e], b, -1, cx, cy, gx, gy, d2) or \
-                        _blocked(pos[e], on[e], b, -1, ox, oy, aims[p, 0], aims[p, 1], d2):
+                if blocked(pos[e], on[e], b, -1, cx, cy, gx, gy, d2) or \
+                        blocked(pos[e], on[e], b, -1, ox, oy, aims[p, 0], aims[p, 1], d2):
                     continue
                 cost[e], phi[e], d_cg[e], d_op[e], cut[e], pocket[e], ball[e] = (k, math.atan2(vy, vx), dcg, dop, c,
                                                                                   p, b)
@@ -154,10 +115,11 @@ def _straight_in_spots(pos, on, targets, y_hi, aims, backs, lim, pockets, spot):
                 continue
             ox, oy = pos[e, b, 0], pos[e, b, 1]
             for p in range(aims.shape[0]):
-                ux, uy, dop, gx, gy = _ghost(ox, oy, aims[p, 0], aims[p, 1], R)
-                if dop == 0.0:
+                dop = math.hypot(aims[p, 0] - ox, aims[p, 1] - oy)
+                if dop < MIN_LINE:
                     continue
-                if _blocked(pos[e], on[e], b, -1, ox, oy, aims[p, 0], aims[p, 1], d2):
+                ux, uy, gx, gy = ghost_ball(ox, oy, aims[p, 0], aims[p, 1], R, dop)
+                if blocked(pos[e], on[e], b, -1, ox, oy, aims[p, 0], aims[p, 1], d2):
                     continue
                 for k in range(backs.shape[0]):
                     cost = dop + 0.5 * backs[k]
@@ -176,7 +138,7 @@ def _straight_in_spots(pos, on, targets, y_hi, aims, backs, lim, pockets, spot):
                     for q in range(pockets.shape[0]):
                         if math.hypot(x - pockets[q, 0], y - pockets[q, 1]) < pockets[q, 2] + R:
                             ok = False
-                    if not ok or _blocked(pos[e], on[e], b, -1, x, y, gx, gy, d2):
+                    if not ok or blocked(pos[e], on[e], b, -1, x, y, gx, gy, d2):
                         continue
                     best = cost
                     spot[e, 0], spot[e, 1] = x, y
@@ -193,16 +155,10 @@ def open_lines(pos, on, targets, R, out):
     for e in range(pos.shape[0]):
         out[e] = False
         for b in range(1, pos.shape[1]):
-            if targets[e, b] and on[e, b] and not _blocked(pos[e], on[e], b, -1, pos[e, 0, 0], pos[e, 0, 1],
+            if targets[e, b] and on[e, b] and not blocked(pos[e], on[e], b, -1, pos[e, 0, 0], pos[e, 0, 1],
                                                              pos[e, b, 0], pos[e, b, 1], d2):
                 out[e] = True
                 break
-
-
-def pocket_limits(table, corner: float, side: float) -> np.ndarray:
-    """The steepest approach angle accepted for each pocket (side or corner)."""
-    from .geometry import side_pocket_mask
-    return np.where(side_pocket_mask(table), side, corner).astype(np.float64)
 
 
 @_jit
@@ -221,7 +177,7 @@ def nearest_open_target(pos, on, targets, R, out, seen):
             d = math.hypot(pos[e, b, 0] - pos[e, 0, 0], pos[e, b, 1] - pos[e, 0, 1])
             if d < best_any:
                 best_any, any_b = d, b
-            if d < best_open and not _blocked(pos[e], on[e], b, -1, pos[e, 0, 0], pos[e, 0, 1], pos[e, b, 0],
+            if d < best_open and not blocked(pos[e], on[e], b, -1, pos[e, 0, 0], pos[e, 0, 1], pos[e, b, 0],
                                               pos[e, b, 1], d2):
                 best_open, out[e] = d, b
         seen[e] = out[e] >= 0

@@ -1,62 +1,55 @@
-"""Ghost-ball geometry on batched states (numpy, vectorised over tables).
+"""The ghost-ball shots of a batch of tables (arrays over tables and
+pockets): what the one-player bots, the lookahead and the agents' features
+and shot menu build on.
 
-The ghost-ball construction (Alciatore, "The Illustrated Principles of Pool
-and Billiards", ghost-ball aiming): to send the object ball at O towards an aim point P,
-the cue ball must arrive at the *ghost ball* G = O - 2R * unit(P - O), so the
-cue aims at G. The cut angle theta is the angle between the cue's path
-(C -> G) and the object ball's path (O -> P); the object ball leaves with
-about v_c * cos(theta) * (1 + e_b) / 2 of the cue ball's speed v_c.
-
-Speed model (used to pick a stroke speed from distances): a ball rolling a
-distance d with rolling resistance mu_r loses v^2 by 2 mu_r g d; an object
-ball leaves the collision sliding without spin and reaches rolling at 5/7 of
-its launch speed; a cue ball struck with height offset b ends its slide at
-5/7 (1 + b) of its strike speed (conservation of angular momentum about the
-contact point, Alciatore's technical proofs on stun and roll).
+``ghost_shots`` gives every pocket's ghost-ball shot (aim, cut, distances,
+approach, blocked), ``choose_pocket`` / ``open_pots`` the easiest or the
+open ones, ``ghost_ball_shot`` the shot played; ``contact_shots`` and
+``kick_shots`` straight and one-rail hits on a ball. The lines are
+``geometry.lines``' kernels; arccos and arctan2 are numpy's (vectorised).
 """
 from __future__ import annotations
 
 import math
 
+import numba
 import numpy as np
 
-from ..envs.target_frame import CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG, side_pockets
-from ..envs.target_frame import pocket_axes as _pocket_axes
-from ..physics import PhysicsParams, Table
-from ..physics.strike import Shots
+from ...envs.target_frame import CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG
+from ...physics import PhysicsParams, Table
+from ...physics.strike import Shots
+from .lines import (MIN_CUE_PATH, MIN_LINE, approach_cos, as_bool, blocked, cut_cos_of_units, ghost_ball,
+                    line_length, paths_blocked, sqrt_test_d2)
+from .pockets import pocket_aim_points, pocket_axes, side_pocket_mask
+from .speed import required_speed
+
+_jit = numba.njit(cache=True, nogil=True)
 
 
-def pocket_aim_points(table: Table, inset: float = 0.02) -> np.ndarray:
-    """Aim points [P, 2], one per pocket, in the order of ``table.pockets``:
-    the centre of each pocket's mouth pushed ``inset`` metres into the pocket
-    (corner pockets along the diagonal, side pockets across the rail)."""
-    w, l = table.width, table.length
-    pts = []
-    for (cx, cy, _), side in zip(table.pockets, side_pocket_mask(table)):
-        if side:  # side pocket: the mouth centre is on the rail line
-            x = 0.0 if cx < w / 2 else w
-            pts.append((x + (-inset if x == 0.0 else inset), l / 2))
-        else:  # corner pocket: on the diagonal, `inset` in from the corner point
-            sx = 1.0 if cx < w / 2 else -1.0
-            sy = 1.0 if cy < l / 2 else -1.0
-            d = inset / math.sqrt(2.0)
-            pts.append((cx + sx * d, cy + sy * d))
-    return np.array(pts, dtype=np.float64)
-
-
-def pocket_axes(table: Table) -> np.ndarray:
-    """Unit vectors [P, 2] pointing from each pocket into the table (the
-    direction a ball must come from to enter the pocket head-on)."""
-    return _pocket_axes(table.pockets, table.width, table.length)  # the one the env's target frame shows
-
-
-def _seg_point_dist(a: np.ndarray, b: np.ndarray, p: np.ndarray) -> np.ndarray:
-    """Distance from points p [..., 2] to segments a-b [..., 2] (broadcast)."""
-    d = b - a
-    L2 = np.maximum(np.sum(d * d, axis=-1), 1e-18)
-    lam = np.clip(np.sum((p - a) * d, axis=-1) / L2, 0.0, 1.0)
-    near = a + lam[..., None] * d
-    return np.linalg.norm(p - near, axis=-1)
+@_jit
+def _ghost_lines(pos, on, target, pockets, R, d2, out):
+    """Per table e and pocket p, the ghost-ball line of ``ghost_shots``
+    before its arccos / arctan2 (which numpy takes): ``out`` = (d_op,
+    ghost [E, P, 2], cue -> ghost vector cg [E, P, 2], d_cg, cos of the cut,
+    cos of the approach, blocked). ``pockets``: (aims, axes)."""
+    aims, axes = pockets
+    d_op, ghost, cg, d_cg, cos_cut, cos_app, blk = out
+    for e in range(pos.shape[0]):
+        t = target[e]
+        cx, cy, ox, oy = pos[e, 0, 0], pos[e, 0, 1], pos[e, t, 0], pos[e, t, 1]
+        for p in range(aims.shape[0]):
+            px, py = aims[p, 0], aims[p, 1]
+            d = line_length(px - ox, py - oy)
+            ux, uy, gx, gy = ghost_ball(ox, oy, px, py, R, max(d, MIN_LINE))
+            vx, vy = gx - cx, gy - cy
+            dcg = line_length(vx, vy)
+            m = max(dcg, MIN_LINE)
+            d_op[e, p], d_cg[e, p] = d, dcg
+            ghost[e, p, 0], ghost[e, p, 1], cg[e, p, 0], cg[e, p, 1] = gx, gy, vx, vy
+            cos_cut[e, p] = min(max(cut_cos_of_units(vx, vy, m, ux, uy), -1.0), 1.0)
+            cos_app[e, p] = min(max(approach_cos(ux, uy, axes[p, 0], axes[p, 1]), -1.0), 1.0)
+            blk[e, p] = blocked(pos[e], on[e], t, -1, cx, cy, gx, gy, d2) or \
+                blocked(pos[e], on[e], t, -1, ox, oy, px, py, d2)
 
 
 def ghost_shots(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, table: Table,
@@ -67,67 +60,27 @@ def ghost_shots(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, table
     Returns a dict of arrays [E, P]: ``phi`` (cue aim angle), ``cut`` (cut
     angle, rad), ``d_cg`` (cue to ghost), ``d_op`` (object to pocket),
     ``approach`` (angle between the object ball's path and the pocket axis),
-    ``blocked`` (another ball lies on either path) and ``valid``.
+    ``blocked`` (another ball on the table lies within 2R of either path),
+    ``valid`` (the cut is below 88 degrees, so the cue ball need not pass
+    through the object ball to reach the ghost) and ``ghost`` [E, P, 2].
     """
-    E, B, _ = pos.shape
+    pos = np.ascontiguousarray(pos, dtype=np.float64)
+    E = len(pos)
     R = params.R
-    ar = np.arange(E)
-    cue = pos[:, 0]                       # [E, 2]
-    obj = pos[ar, target]                 # [E, 2]
-    P = pocket_aim_points(table, inset)   # [P, 2]
-    axes = pocket_axes(table)
-    op = P[None] - obj[:, None]           # [E, P, 2]
-    d_op = np.linalg.norm(op, axis=-1)
-    u_op = op / np.maximum(d_op, 1e-12)[..., None]
-    ghost = obj[:, None] - 2 * R * u_op   # [E, P, 2]
-    cg = ghost - cue[:, None]
-    d_cg = np.linalg.norm(cg, axis=-1)
-    u_cg = cg / np.maximum(d_cg, 1e-12)[..., None]
-    cos_cut = np.clip(np.sum(u_cg * u_op, axis=-1), -1.0, 1.0)
+    aims = np.ascontiguousarray(pocket_aim_points(table, inset))   # [P, 2]
+    axes = np.ascontiguousarray(pocket_axes(table))
+    P = len(aims)
+    d_op, d_cg, cos_cut, cos_app = (np.empty((E, P)) for _ in range(4))
+    ghost, cg = np.empty((E, P, 2)), np.empty((E, P, 2))
+    blocked_ = np.empty((E, P), dtype=bool)
+    _ghost_lines(pos, as_bool(on_table), np.ascontiguousarray(target, dtype=np.int64), (aims, axes), R,
+                 sqrt_test_d2(2 * R), (d_op, ghost, cg, d_cg, cos_cut, cos_app, blocked_))
     cut = np.arccos(cos_cut)
     phi = np.arctan2(cg[..., 1], cg[..., 0])
-    approach = np.arccos(np.clip(np.sum(-u_op * axes[None], axis=-1), -1.0, 1.0))
-    # Blocking: any other ball on the table within 2R of the cue->ghost path
-    # or of the object->pocket path.
-    blocked = np.zeros((E, len(P)), dtype=bool)
-    for j in range(B):
-        other = on_table[:, j] & (j != 0) & (j != target)
-        if not other.any():
-            continue
-        pj = pos[:, j][:, None]  # [E, 1, 2]
-        d1 = _seg_point_dist(cue[:, None], ghost, pj)
-        d2 = _seg_point_dist(obj[:, None], P[None], pj)
-        blocked |= other[:, None] & ((d1 < 2 * R) | (d2 < 2 * R))
-    # The cue ball must not have to pass through the object ball itself: the
-    # ghost must be reachable (cut < 90 deg).
-    valid = (cut < math.radians(88.0)) & (d_cg > 1e-9)
-    return dict(phi=phi, cut=cut, d_cg=d_cg, d_op=d_op, approach=approach, blocked=blocked,
+    approach = np.arccos(cos_app)
+    valid = (cut < math.radians(88.0)) & (d_cg > MIN_CUE_PATH)
+    return dict(phi=phi, cut=cut, d_cg=d_cg, d_op=d_op, approach=approach, blocked=blocked_,
                 valid=valid, ghost=ghost)
-
-
-def required_speed(d_cg, d_op, cut, params: PhysicsParams, b: float = 0.0, margin: float = 1.25,
-                   v_arrive: float = 0.35) -> np.ndarray:
-    """Cue-ball strike speed (m/s) that carries the object ball ``d_op`` metres
-    to the pocket and still arriving at ``v_arrive`` m/s, times ``margin``.
-
-    Object ball: launch speed v_o slides to 5/7 v_o, then rolls with
-    deceleration mu_r g: v_o = 7/5 sqrt(v_arrive^2 + 2 mu_r g d_op). Cut
-    transfer: v_c = v_o / (cos(cut) (1 + e_b) / 2). Cue ball to the ghost:
-    strike speed v0 = sqrt(v_c^2 + 2 mu_r g d_cg) / f where f = 5/7 (1 + b)
-    (capped to [5/7, 1]) is the slide loss of a centre/draw hit.
-    """
-    v_o = 1.4 * np.sqrt(v_arrive ** 2 + 2 * params.mu_r * params.g * d_op)
-    v_c = v_o / (np.maximum(np.cos(cut), 0.15) * (1 + params.e_b) / 2)
-    return np.minimum(margin * rolling_strike_speed(d_cg, v_c, params, b), params.max_speed)
-
-
-def rolling_strike_speed(distance, v_arrive, params: PhysicsParams, b: float = 0.0) -> np.ndarray:
-    """Strike speed (m/s) with which the cue ball, struck at height offset
-    ``b``, arrives ``distance`` metres away at ``v_arrive``: the slide ends at
-    f = 5/7 (1 + b) of the strike speed (capped to [5/7, 1]), then rolling
-    resistance takes 2 mu_r g d of v^2 (not capped to the max speed)."""
-    f = min(max(5.0 / 7.0 * (1 + b), 5.0 / 7.0), 1.0)
-    return np.sqrt(np.square(v_arrive) + 2 * params.mu_r * params.g * np.asarray(distance)) / f
 
 
 def contact_shots(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, fullness: np.ndarray, R: float,
@@ -142,7 +95,7 @@ def contact_shots(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, ful
     or the cue ball would touch a cushion line (closer than R to the edge of
     the ``width`` x ``length`` bed) where it meets the target.
     """
-    E, B, _ = pos.shape
+    E = len(pos)
     ar = np.arange(E)
     cue, obj = pos[:, 0], pos[ar, target]
     d_vec = obj - cue
@@ -154,10 +107,7 @@ def contact_shots(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, ful
     path = np.maximum(along - np.sqrt(np.maximum(4 * R * R - b * b, 0.0)), 0.0)
     end = cue[:, None] + path[..., None] * u
     blocked = ((end[..., 0] < R) | (end[..., 0] > width - R) | (end[..., 1] < R) | (end[..., 1] > length - R))
-    for j in range(1, B):
-        other = on_table[:, j] & (j != target)
-        if other.any():
-            blocked |= other[:, None] & (_seg_point_dist(cue[:, None], end, pos[:, j][:, None]) < 2 * R)
+    _paths_blocked(pos, on_table, target, np.broadcast_to(cue[:, None], end.shape), end, R, blocked)
     return phi, path, blocked
 
 
@@ -190,10 +140,6 @@ def open_pots(shots: dict, side_mask: np.ndarray | None = None,
     if side_mask is not None:
         ok &= shots["approach"] <= np.where(side_mask[None], approach_limit_side, approach_limit_corner)
     return ok
-
-
-def side_pocket_mask(table: Table) -> np.ndarray:
-    return side_pockets(table.pockets, table.length)
 
 
 def ghost_ball_shot(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, table: Table,
@@ -229,7 +175,7 @@ def kick_shots(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, R: flo
     either leg, the rebound point off the rail or within ``KICK_POCKET_CLEAR``
     of a pocket's capture circle (``pockets`` [P, 3]: x, y, r).
     """
-    E, B, _ = pos.shape
+    E = len(pos)
     ar = np.arange(E)
     cue, obj = pos[:, 0], pos[ar, target]
     lines = ((0, R), (0, width - R), (1, R), (1, length - R))
@@ -256,10 +202,16 @@ def kick_shots(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, R: flo
         leg2 = obj - hit
         n2 = np.maximum(np.linalg.norm(leg2, axis=1), 1e-12)
         end = obj - 2 * R * leg2 / n2[:, None]
-        for j in range(1, B):
-            other = on_table[:, j] & (j != target)
-            if other.any():
-                pj = pos[:, j]
-                bad |= other & ((_seg_point_dist(cue, hit, pj) < 2 * R) | (_seg_point_dist(hit, end, pj) < 2 * R))
-        blocked[:, k] = bad
+        bad = bad[:, None].copy()
+        _paths_blocked(pos, on_table, target, cue[:, None], hit[:, None], R, bad)
+        _paths_blocked(pos, on_table, target, hit[:, None], end[:, None], R, bad)
+        blocked[:, k] = bad[:, 0]
     return phi, path, blocked
+
+
+def _paths_blocked(pos, on_table, target, a, b, R: float, out: np.ndarray) -> None:
+    """``out`` [E, K] |= another ball on the table (not the cue ball, not
+    ``target``) lies within 2R of the path a-b [E, K, 2] (``lines.paths_blocked``)."""
+    paths_blocked(np.ascontiguousarray(pos, dtype=np.float64), as_bool(on_table),
+                  np.ascontiguousarray(target, dtype=np.int64), np.ascontiguousarray(a, dtype=np.float64),
+                  np.ascontiguousarray(b, dtype=np.float64), sqrt_test_d2(2 * R), out)
