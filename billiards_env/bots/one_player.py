@@ -25,7 +25,7 @@ from typing import Protocol
 import numpy as np
 
 from ..envs.unwrap import env_chain
-from ..physics import BallState, simulate, strike_velocity
+from ..physics import BallState, SimOptions, simulate, strike_velocity
 from ..physics.strike import Shots, draw_to_speed
 from . import geometry as G
 from .plan import ShotPlan
@@ -97,7 +97,7 @@ class GhostBallPolicy:
 def candidate_success(struck: BallState, target: np.ndarray, table, params, effects=None, models=None) -> np.ndarray:
     """Success of each struck table (one candidate shot each): first contact
     with its ``target`` ball, that ball pocketed, the cue ball not."""
-    res = simulate(struck, table, params, effects=effects, models=models, validate=False)
+    res = simulate(struck, table, params, effects=effects, models=models, options=SimOptions(validate=False))
     before = struck.pocket >= 0
     after = res.state.pocket >= 0
     newly = after & ~before
