@@ -22,7 +22,7 @@ import dataclasses
 
 import numpy as np
 
-from ..physics import BallState, simulate, strike_velocity
+from ..physics import BallState, SimOptions, simulate, strike_velocity
 from ..physics.noise import NoiseConfig, perturb
 from ..rules import Constraints, ShotInput, ShotRecord
 
@@ -93,7 +93,8 @@ def play_shots(view, start: BallState, shots, noise=None, rng=None, rows=None):
             z *= scale[:, None]
         shots = perturb(shots, z, cfg, view.params)
     struck = strike_velocity(start, *shots, view.params)
-    return simulate(struck, view.table, view.params, effects=view.effects, models=view.models, validate=False)
+    return simulate(struck, view.table, view.params, effects=view.effects, models=view.models,
+                    options=SimOptions(validate=False))
 
 
 def preview(view, plan, rows=None, noise=None, rng=None, start: BallState | None = None):

@@ -24,7 +24,7 @@ import math
 import numba
 import numpy as np
 
-from ..physics import BallState, simulate
+from ..physics import BallState, SimOptions, simulate
 from ..physics.noise import OFFSET_SAFETY, clip_offset as _clip_offset, perturb  # noqa: F401 (OFFSET_SAFETY re-exported)
 from ..physics.strike import Shots, apply_strike, draw_to_speed, speed_to_draw
 from ..bots.view import TaskView
@@ -256,7 +256,7 @@ class BilliardsCore:
         c = self.cfg
         return simulate(state, self.table, self.params, solver=c.solver, dt=c.dt,
                         record=self.record, effects=self.effects, models=self.models,
-                        validate=False)  # states are ours, already checked
+                        options=SimOptions(validate=False))  # states are ours, already checked
 
     @staticmethod
     def at_rest(s: BallState) -> BallState:

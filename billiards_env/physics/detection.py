@@ -13,6 +13,7 @@ import math
 
 from ._jit import njit, njit_inline
 from . import constants as C
+from .layout import Motion
 from .vec import norm
 from .roots import first_entry, first_entry_quadratic
 
@@ -112,8 +113,11 @@ def pair_time(pos, vel, st, paths, e, i, j, H, p, lag):
 
 
 @njit
-def _circle_time(px, py, vx, vy, ax, ay, cx, cy, r, H, f_tol, f_floor):
-    """Time until a point moving as p + v t + a t^2/2 enters the circle (c, r)."""
+def _circle_time(m, cx, cy, r, H, f_tol, f_floor):
+    """Time until a point moving as ``m`` (layout.Motion: p + v t + a t^2/2)
+    enters the circle (c, r) within H; ``f_tol``, ``f_floor`` as in
+    roots.first_entry."""
+    px, py, vx, vy, ax, ay = m
     dx, dy = px - cx, py - cy
     gap = norm(dx, dy) - r
     if gap > norm(vx, vy) * H + 0.5 * norm(ax, ay) * H * H + f_tol:
@@ -127,9 +131,11 @@ def _circle_time(px, py, vx, vy, ax, ay, cx, cy, r, H, f_tol, f_floor):
 
 
 @njit
-def _segment_time(segs, norms, s, x, y, vx, vy, ax, ay, H, R, quadratic):
-    """Time until the ball touches cushion segment s within H (inf if not);
-    the contact point must lie on the segment (tips handle its ends)."""
+def _segment_time(segs, norms, s, m, H, R, quadratic):
+    """Time until the ball moving as ``m`` (layout.Motion) touches cushion
+    segment s within H (inf if not); the contact point must lie on the
+    segment (tips handle its ends)."""
+    x, y, vx, vy, ax, ay = m
     nx, ny = norms[s, 0], norms[s, 1]
     c0 = (x - segs[s, 0]) * nx + (y - segs[s, 1]) * ny - R
     c1 = vx * nx + vy * ny
@@ -155,38 +161,44 @@ def _segment_box_apart(segs, s, bx0, bx1, by0, by1, gap):
 
 
 @njit
-def _tip_time(tips, v, x, y, vx, vy, ax, ay, H, R, quadratic):
-    """Time until the ball touches jaw tip v within H (inf if not)."""
+def _tip_time(tips, v, m, H, R, quadratic):
+    """Time until the ball moving as ``m`` (layout.Motion) touches jaw tip v
+    within H (inf if not)."""
     if quadratic:
+        x, y, vx, vy = m.x, m.y, m.vx, m.vy
         dx, dy = x - tips[v, 0], y - tips[v, 1]
         c0 = dx * dx + dy * dy - R * R
         return first_entry_quadratic(vx * vx + vy * vy, 2.0 * (dx * vx + dy * vy), c0,
                                      H, 2.0 * R * C.CONTACT_TOL, -math.inf)
-    return _circle_time(x, y, vx, vy, ax, ay, tips[v, 0], tips[v, 1], R, H, 2.0 * R * C.CONTACT_TOL, -math.inf)
+    return _circle_time(m, tips[v, 0], tips[v, 1], R, H, 2.0 * R * C.CONTACT_TOL, -math.inf)
 
 
 @njit
-def _pocket_time(pockets, k, x, y, vx, vy, ax, ay, H, quadratic):
-    """Time until the ball's centre enters pocket k's capture circle within H."""
+def _pocket_time(pockets, k, m, H, quadratic):
+    """Time until the centre of the ball moving as ``m`` (layout.Motion)
+    enters pocket k's capture circle within H."""
     cx, cy, r = pockets[k, 0], pockets[k, 1], pockets[k, 2]
     if quadratic:
+        x, y, vx, vy = m.x, m.y, m.vx, m.vy
         dx, dy = x - cx, y - cy
         return first_entry_quadratic(vx * vx + vy * vy, 2.0 * (dx * vx + dy * vy),
                                      dx * dx + dy * dy - r * r, H, 0.0, -math.inf)
-    return _circle_time(x, y, vx, vy, ax, ay, cx, cy, r, H, 0.0, -math.inf)
+    return _circle_time(m, cx, cy, r, H, 0.0, -math.inf)
 
 
 @njit_inline
-def boundary_time(pos, vel, st, e, i, ax, ay, H, p, geo, quadratic):
-    """Earliest contact of ball i, moving with acceleration (ax, ay), with a
-    cushion segment, a jaw tip or a pocket of ``geo`` (layout.Geometry)
-    within H. Returns (time, kind, index). With ``quadratic`` the ball moves
-    in a straight line (step solver; pass ax = ay = 0).
+def boundary_time(balls, e, i, ax, ay, H, p, geo, quadratic):
+    """Earliest contact of ball i of ``balls`` (layout.Balls), moving with
+    acceleration (ax, ay), with a cushion segment, a jaw tip or a pocket of
+    ``geo`` (layout.Geometry) within H. Returns (time, kind, index). With
+    ``quadratic`` the ball moves in a straight line (step solver; pass
+    ax = ay = 0).
 
     Broad phase: the rails (and tips near no pocket) are tested first; a
     pocket's jaws, tips and capture circle only if the box the path sweeps
     until the earliest rail contact (or H) reaches the pocket's
     neighbourhood (``geo.near``, table.pocket_groups)."""
+    pos, vel, st = balls.pos, balls.vel, balls.st
     segs, norms, tips, pockets = geo.segs, geo.norms, geo.tips, geo.pockets
     best = math.inf
     kind = -1
@@ -196,6 +208,7 @@ def boundary_time(pos, vel, st, e, i, ax, ay, H, p, geo, quadratic):
     R = p[C.P_R]
     x, y = pos[e, i, 0], pos[e, i, 1]
     vx, vy = vel[e, i, 0], vel[e, i, 1]
+    m = Motion(x, y, vx, vy, ax, ay)
     # the box swept by the ball's path until its next transition
     bx0, bx1, by0, by1 = -math.inf, math.inf, -math.inf, math.inf
     if H < math.inf:  # (H is infinite only without sliding friction)
@@ -206,7 +219,7 @@ def boundary_time(pos, vel, st, e, i, ax, ay, H, p, geo, quadratic):
         s = rails[q]
         if _segment_box_apart(segs, s, bx0, bx1, by0, by1, R + BOX_SLACK):
             continue
-        t = _segment_time(segs, norms, s, x, y, vx, vy, ax, ay, min(H, best), R, quadratic)
+        t = _segment_time(segs, norms, s, m, min(H, best), R, quadratic)
         if t < best:
             best = t; kind = C.EV_CUSHION; idx = s
     free_tips = geo.free_tips
@@ -215,7 +228,7 @@ def boundary_time(pos, vel, st, e, i, ax, ay, H, p, geo, quadratic):
         if (_apart(bx0, bx1, tips[v, 0], tips[v, 0], R + BOX_SLACK)
                 or _apart(by0, by1, tips[v, 1], tips[v, 1], R + BOX_SLACK)):
             continue
-        t = _tip_time(tips, v, x, y, vx, vy, ax, ay, min(H, best), R, quadratic)
+        t = _tip_time(tips, v, m, min(H, best), R, quadratic)
         if t < best:
             best = t; kind = C.EV_JAW_TIP; idx = v
     if pockets.shape[0] == 0:
@@ -234,7 +247,7 @@ def boundary_time(pos, vel, st, e, i, ax, ay, H, p, geo, quadratic):
                 break
             if _segment_box_apart(segs, s, bx0, bx1, by0, by1, gap):
                 continue
-            t = _segment_time(segs, norms, s, x, y, vx, vy, ax, ay, min(H, best), R, quadratic)
+            t = _segment_time(segs, norms, s, m, min(H, best), R, quadratic)
             if t < best:
                 best = t; kind = C.EV_CUSHION; idx = s
         for q in range(gtips.shape[1]):
@@ -243,13 +256,13 @@ def boundary_time(pos, vel, st, e, i, ax, ay, H, p, geo, quadratic):
                 break
             if _apart(bx0, bx1, tips[v, 0], tips[v, 0], gap) or _apart(by0, by1, tips[v, 1], tips[v, 1], gap):
                 continue
-            t = _tip_time(tips, v, x, y, vx, vy, ax, ay, min(H, best), R, quadratic)
+            t = _tip_time(tips, v, m, min(H, best), R, quadratic)
             if t < best:
                 best = t; kind = C.EV_JAW_TIP; idx = v
         cx, cy, r = pockets[k, 0], pockets[k, 1], pockets[k, 2]
         if _apart(bx0, bx1, cx, cx, r + BOX_SLACK) or _apart(by0, by1, cy, cy, r + BOX_SLACK):
             continue
-        t = _pocket_time(pockets, k, x, y, vx, vy, ax, ay, min(H, best), quadratic)
+        t = _pocket_time(pockets, k, m, min(H, best), quadratic)
         if t < best:
             best = t; kind = C.EV_POCKET; idx = k
     return best, kind, idx

@@ -24,7 +24,7 @@ from . import constants as C
 from . import diagnostics, event_log
 from ._jit import njit, njit_inline, variant_njit
 from .detection import boundary_time, pair_time, sweep_path
-from .layout import impact_scratch
+from .layout import ChunkScratch, impact_scratch
 from .motion import acceleration, apply_transition, classify, evolve, transition_time
 from .vec import norm
 
@@ -61,7 +61,7 @@ def refresh(balls, scr, geo, e, i, t, p):
     tt[e, i] = t + transition_time(vel, om, st, e, i, p)
     h = tt[e, i] - t
     ax, ay = acceleration(vel, om, st, e, i, p)
-    tb_rel, k, idx = boundary_time(pos, vel, st, e, i, ax, ay, h, p, geo, False)
+    tb_rel, k, idx = boundary_time(balls, e, i, ax, ay, h, p, geo, False)
     tb[e, i] = t + tb_rel; scr.bkind[e, i] = k; scr.bidx[e, i] = idx
     # A pair needs looking at only until the first known event of either
     # ball (transition or boundary): that event refreshes the ball and so
@@ -129,10 +129,11 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
     resolve_impact_set = impacts.resolve_impact_set
 
     @variant_njit(__name__, spin_on, zspin_on, diag_on, *impacts.choices)
-    def table(balls, geo, p, scr, out, log, max_events, e, imp, stuck, todo):
-        """Simulate table e to rest (imp: its impact scratch, stuck: a
-        flag per ball, todo: room for an index per ball)."""
+    def table(balls, geo, p, scr, out, log, max_events, e, work):
+        """Simulate table e to rest (work: its worker's
+        layout.ChunkScratch)."""
         pos, vel, om, st, tpair, tlast = balls.pos, balls.vel, balls.om, balls.st, scr.tpair, scr.tlast
+        imp, stuck, todo = work
         B = pos.shape[1]
         prepare(balls, e, p)
         t = 0.0
@@ -236,10 +237,9 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
         E = balls.pos.shape[0]
         per = max(1, min(TABLES_PER_CHUNK, E // MIN_CHUNKS))
         for c in numba.prange((E + per - 1) // per):
-            imp = impact_scratch()
-            stuck = np.zeros(balls.pos.shape[1], dtype=np.bool_)
-            todo = np.empty(balls.pos.shape[1], dtype=np.int64)
+            work = ChunkScratch(impact_scratch(), np.zeros(balls.pos.shape[1], dtype=np.bool_),
+                                np.empty(balls.pos.shape[1], dtype=np.int64))
             for e in range(c * per, min(E, (c + 1) * per)):
-                table(balls, geo, p, scr, out, log, max_events, e, imp, stuck, todo)
+                table(balls, geo, p, scr, out, log, max_events, e, work)
 
     return run

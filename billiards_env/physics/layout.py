@@ -37,6 +37,13 @@ LogBuffers = namedtuple("LogBuffers", "on n t kind ij state")
 # (i, j), approach speeds (w), distinct balls and two state copies (saved,
 # swapped) for the two resolution orders (impacts.resolve_impact_set)
 ImpactScratch = namedtuple("ImpactScratch", "i j w balls saved swapped")
+# One worker's scratch, reused for each table of its chunk (event solver):
+# imp its ImpactScratch, stuck [B] a flag per ball (the balls of the events
+# at the current instant), todo [B] the balls whose events to recompute
+ChunkScratch = namedtuple("ChunkScratch", "imp stuck todo")
+# A ball's motion coefficients within one motion state, built inside the
+# detection kernels: its path is r(t) = (x, y) + (vx, vy) t + (ax, ay) t^2 / 2
+Motion = namedtuple("Motion", "x y vx vy ax ay")
 
 
 @njit_alloc

@@ -2,6 +2,8 @@
 from __future__ import annotations
 
 import dataclasses
+import numbers
+from typing import NamedTuple
 
 import numba
 import numpy as np
@@ -21,6 +23,38 @@ RECORD_CAPACITY = 4096  # events kept per table when record=True
 # Bytes of per-table scratch a call holds at once: larger batches run in chunks of tables (results do
 # not depend on the batch size), so 120,000 8-ball tables take ~64 MB of pair times, not ~245 MB.
 MAX_SCRATCH_BYTES = 64 * 2 ** 20
+
+
+class SimOptions(NamedTuple):
+    """The less common options of a ``simulate`` call (``simulate(...,
+    options=SimOptions(max_events=100))``); until this structure they were
+    ``simulate``'s keywords ``max_events`` and ``validate``.
+
+    ``max_events``: events (step solver: contacts) a table may have; a table
+    that reaches it stops there, with ``SimResult.truncated`` set.
+    ``validate``: check the input state (array shapes, finite values, no
+    ball overlapping another or off the table); ``False`` skips the checks
+    for a caller whose states are already known to be valid.
+
+    A named tuple, not a frozen dataclass: callers that simulate one table
+    at a time build one per call, and a tuple is built 5x faster (0.5 us
+    against 2.5 us, ``python -m timeit``). ``simulate`` checks its fields."""
+
+    max_events: int = C.MAX_EVENTS
+    validate: bool = True
+
+
+def _check_options(options) -> None:
+    if not isinstance(options, SimOptions):
+        raise TypeError(f"options must be a SimOptions, got {type(options).__name__}")
+    m = options.max_events
+    if isinstance(m, (bool, np.bool_)) or not isinstance(m, numbers.Integral) or m < 0:
+        raise ValueError(f"SimOptions.max_events must be a non-negative integer, got {m!r}")
+    if not isinstance(options.validate, (bool, np.bool_)):
+        raise TypeError(f"SimOptions.validate must be True or False, got {options.validate!r}")
+
+
+DEFAULT_OPTIONS = SimOptions()
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -75,9 +109,9 @@ def kernel_geometry(table: Table, pockets: bool) -> Geometry:
 
 
 def simulate(state: BallState, table: Table, params: PhysicsParams | None = None, solver: str = "event",
-             dt: float | None = None, record: bool = False, effects: Effects | None = None,
-             max_events: int = C.MAX_EVENTS, diagnostics: bool = False, validate: bool = True,
-             models: Models | dict | None = None) -> SimResult:
+             dt: float | None = None, record: bool = False, effects: Effects | None = None, *,
+             diagnostics: bool = False, models: Models | dict | None = None,
+             options: SimOptions | None = None) -> SimResult:
     """Simulate every table of the batch until all balls rest.
 
     ``solver="event"`` (exact, event-driven) or ``"step"`` (fixed step ``dt``).
@@ -87,8 +121,21 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
     each table's event log. ``diagnostics=True`` compiles a checking variant
     that reports per table the largest energy gain and momentum error of any
     impact, the smallest gap between balls and the largest excursion off the
-    table. The input state is never modified.
+    table. ``options`` (a ``SimOptions``) holds the less common options: the
+    event cap and whether to validate the input. The input state is never
+    modified.
+
+    Changed: the keywords ``max_events=n`` and ``validate=False`` are now
+    ``options=SimOptions(max_events=n, validate=False)`` (same meaning and
+    defaults), and ``diagnostics``, ``models`` and ``options`` are keywords
+    only (no caller passed them by position); every other argument is as
+    before.
     """
+    if options is None:
+        options = DEFAULT_OPTIONS
+    elif options is not DEFAULT_OPTIONS:
+        _check_options(options)
+    max_events = options.max_events
     params = params or PhysicsParams.standard()
     effects = effects or Effects()
     models = Models.from_dict(models) if isinstance(models, dict) else (models or Models())
@@ -107,7 +154,7 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
         raise TypeError(f"table must be a Table, got {type(table).__name__}")
     if not isinstance(params, PhysicsParams):
         raise TypeError(f"params must be a PhysicsParams, got {type(params).__name__}")
-    if validate:
+    if options.validate:
         check_arrays(state)
         check_finite(state)
         check_placement(state, table, params, effects.pockets)

@@ -33,7 +33,7 @@ def earliest_contact(balls, geo, e, rem, p):
             if tij < tmin:
                 tmin = tij; kind = C.EV_BALL_BALL; a = i; b = j
     for i in range(B):
-        tbi, k, idx = boundary_time(pos, vel, st, e, i, 0.0, 0.0, min(rem, tmin), p, geo, True)
+        tbi, k, idx = boundary_time(balls, e, i, 0.0, 0.0, min(rem, tmin), p, geo, True)
         if tbi < tmin:
             tmin = tbi; kind = k; a = i; b = idx
     return tmin, kind, a, b

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from billiards_env.physics import BallState, PhysicsParams, Table, simulate, strike, strike_velocity
+from billiards_env.physics import BallState, PhysicsParams, SimOptions, Table, simulate, strike, strike_velocity
 
 P = PhysicsParams.standard()
 R = P.R
@@ -69,6 +69,31 @@ def test_wrong_shape_and_dtype():
     unchanged(bad, lambda s: simulate(s, T, P), TypeError, "float64")
     bad = BallState(s.pos, s.vel, s.omega, s.pocket.astype(np.float64))
     unchanged(bad, lambda s: simulate(s, T, P), TypeError, "pocket must be an integer")
+
+
+@pytest.mark.parametrize("options,exc,match", [
+    ((100, True), TypeError, "options must be a SimOptions"),
+    (SimOptions(max_events=-1), ValueError, "max_events must be a non-negative integer"),
+    (SimOptions(max_events=2.5), ValueError, "max_events must be a non-negative integer"),
+    (SimOptions(max_events=True), ValueError, "max_events must be a non-negative integer"),
+    (SimOptions(validate="no"), TypeError, "validate must be True or False")])
+def test_bad_options(options, exc, match):
+    unchanged(good(), lambda s: simulate(s, T, P, options=options), exc, match)
+
+
+def test_options_cap_events_and_skip_validation():
+    """``SimOptions.max_events`` cuts a table off at that many events
+    (truncated); ``validate=False`` skips the input checks (an off-table
+    ball that ``simulate`` would refuse)."""
+    s = good()
+    full = simulate(s, T, P)
+    assert full.n_events[0] > 2 and not full.truncated[0]
+    cut = simulate(s, T, P, options=SimOptions(max_events=2))
+    assert cut.n_events[0] == 2 and cut.truncated[0]
+    s.pos[0, 1] = (-0.2, 1.0)
+    simulate(s, T, P, options=SimOptions(validate=False))
+    with pytest.raises(ValueError, match="off the table"):
+        simulate(s, T, P)
 
 
 @pytest.mark.parametrize("field,value,match", [("mu_s", -0.1, "mu_s"), ("mu_b", -1.0, "mu_b"),

@@ -20,7 +20,7 @@ import billiards_env  # noqa: F401  (registers the env ids)
 from billiards_env.bots import make_bot
 from billiards_env.envs.games import GameConfig, GameCore
 from billiards_env.envs.games.play import bot_actions
-from billiards_env.physics import BallState, PhysicsParams, Table, simulate, strike_velocity
+from billiards_env.physics import BallState, PhysicsParams, SimOptions, Table, simulate, strike_velocity
 from billiards_env.rendering import GameRecorder, RecordReplay, Replay, replay_html, save_replay_html
 from billiards_env.studies.matches import play_pairing
 
@@ -252,7 +252,7 @@ def test_browser_link_opens_at_that_moment(browser, tmp_path):
     rep.add_log(res2.events[0], duration=float(res2.time[0]))
     path = save_replay_html(rep, tmp_path / "two.html")
     for n in (3, int(res2.n_events[0]) // 2):
-        cut = simulate(nxt, table, params, max_events=n)
+        cut = simulate(nxt, table, params, options=SimOptions(max_events=n))
         t = float(cut.time[0])
         _open(browser, path, f"#shot=2&t={t!r}")
         cur = browser.execute_script("return window.billiardsReplay.current()")

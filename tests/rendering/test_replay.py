@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 
 import billiards_env  # noqa: F401  (registers the env ids)
-from billiards_env.physics import BallState, Effects, EventLog, PhysicsParams, Table, simulate, strike_velocity
+from billiards_env.physics import BallState, Effects, EventLog, PhysicsParams, SimOptions, Table, simulate, strike_velocity
 from billiards_env.physics import constants as C
 from billiards_env.physics.state import diamond_slots
 from billiards_env.rendering import (RecordReplay, Replay, ball_color, ball_paths, positions_at, replay_html,
@@ -119,7 +119,7 @@ def test_positions_equal_the_simulator_at_every_event(brk):
     n_total = int(res.n_events[0])
     times = rep.event_times(0)
     for n in sorted(set(np.linspace(1, n_total, 25).astype(int))):
-        cut = simulate(start, table, params, max_events=n)
+        cut = simulate(start, table, params, options=SimOptions(max_events=n))
         t = float(cut.time[0])
         pos, on = rep.positions_at(t)
         sim_on = cut.state.pocket[0] < 0
@@ -306,7 +306,7 @@ def test_browser_positions_match_simulator(brk, browser, break_page):
     js = "return window.billiardsReplay.positionsAt(arguments[0], arguments[1])"
     n_total = int(res.n_events[0])
     for n in (1, 5, n_total // 3, n_total // 2, n_total - 1, n_total):
-        cut = simulate(start, table, params, max_events=n)
+        cut = simulate(start, table, params, options=SimOptions(max_events=n))
         t = float(cut.time[0])
         got = np.array(browser.execute_script(js, 0, t), dtype=object)
         pos = np.array(got[:, :2], dtype=float)
