@@ -15,13 +15,13 @@ For every table where the bot is to move (all tables at once, in batched ``GameV
 3. **Rules and leave.** Every candidate is previewed once without noise and judged by the rules. Its value for
    the mover: 1 for a win, 0 for a loss; if the mover keeps the table, ``position_value`` of the leave (the ease
    of the mover's best next pot, ``leave_ease``); if the turn passes, 1 minus the opponent's ``position_value``
-   (their best pot's ease, with ball in hand after a foul). ``position_value(e) = V_NONE + (V_FULL - V_NONE) e``:
+   (their best pot's ease, with ball in hand after a foul). ``position_value(e, self.v_none, self.v_full) = V_NONE + (V_FULL - V_NONE) e``:
    a table with no pot is worth ``V_NONE`` (a safety battle), a sure pot ``V_FULL``.
 4. **Noise.** The ``n_eval`` best candidates (``n_eval_safe`` of them kept for safeties and kicks) are previewed
    again ``n_samples`` times each under sampled execution noise (the env's own noise; the ``tournament`` preset
    when the env has none) and valued the same way; the best mean is played.
 5. **Declarations (9-ball).** Where a push-out is allowed, ``n_push`` soft pushes are previewed; a push leaving
-   ease ``e`` is worth ``min(v, 1 - v)`` with ``v = position_value(e)`` (the opponent chooses whether to shoot),
+   ease ``e`` is worth ``min(v, 1 - v)`` with ``v = position_value(e, self.v_none, self.v_full)`` (the opponent chooses whether to shoot),
    and is declared when it beats the best shot's value. After the opponent's push-out, the shot is passed back
    when the best shot's value is below 1/2 (the opponent would then shoot the same table).
 6. **Breaks** are ``GhostBot``'s seeded standard break.
@@ -61,7 +61,7 @@ SIGMA_MODEL = 0.012                # rad: object-ball direction error the ghost-
 MIN_AIM_SIGMA = math.radians(0.125)  # rad: the aim noise the leave is judged with at least (tournament level)
 HAND_DCG = 0.3                     # m: cue-to-ghost distance assumed for a shooter with ball in hand
 ROLL_MIN = 0.35                    # m/s: speed the object ball should still have at the pocket's line
-V_NONE = 0.4                       # value of a table whose shooter has no pot (a safety battle, slightly behind)
+V_NONE = 0.5                       # value of a table whose shooter has no pot (a safety battle: even)
 V_FULL = 0.9                       # value of a table whose shooter has a sure pot (the run may still end)
 THROW = (0.0, math.radians(2.0))   # rad: object-ball overcut tried against collision-induced throw
 SPEEDS = (1.15, 1.8, 2.8)          # factors of the speed that just drops the ball
@@ -178,9 +178,9 @@ def _leave_ease(pos, on, targets, hand, pockets, lim, out):
         out[e] = best
 
 
-def position_value(ease: np.ndarray) -> np.ndarray:
+def position_value(ease: np.ndarray, v_none: float = V_NONE, v_full: float = V_FULL) -> np.ndarray:
     """The chance the shooter of a table wins, from the ease of their best pot (see the module docstring)."""
-    return V_NONE + (V_FULL - V_NONE) * ease
+    return v_none + (v_full - v_none) * ease
 
 
 # --- the bot ------------------------------------------------------------------------------------------------------
@@ -189,17 +189,22 @@ class GameLookahead:
 
     name = "lookahead"
 
-    def __init__(self, seed: int = 0, n_pots: int = 4, hand_pots: int = 3, n_safe: int = 16, n_kick: int = 8,
-                 n_push: int = 24, n_eval: int = 16, n_eval_safe: int = 4, n_samples: int = 8):
+    def __init__(self, seed: int = 0, n_pots: int = 6, hand_pots: int = 3, n_safe: int = 16, n_kick: int = 8,
+                 n_push: int = 24, n_eval: int = 32, n_eval_safe: int = 4, n_samples: int = 12,
+                 throws: tuple = THROW, speeds: tuple = SPEEDS, heights: tuple = HEIGHTS,
+                 sigma_model: float = SIGMA_MODEL, v_none: float = V_NONE, v_full: float = V_FULL):
         if n_safe + n_kick < 1:
             raise ValueError("GameLookahead needs n_safe + n_kick >= 1 (every table keeps a candidate)")
         self.rng = np.random.default_rng(seed)
         self.ghost = GhostBot(seed=seed)
         self.n_pots, self.hand_pots, self.n_safe, self.n_kick, self.n_push = n_pots, hand_pots, n_safe, n_kick, n_push
         self.n_eval, self.n_eval_safe, self.n_samples = n_eval, n_eval_safe, n_samples
+        self.throws, self.speeds, self.heights = tuple(throws), tuple(speeds), tuple(heights)
+        self.sigma_model, self.v_none, self.v_full = float(sigma_model), float(v_none), float(v_full)
         self.model: PocketModel | None = None
         self.sims = 0        # shots previewed so far (cost accounting)
         self.last_value = None  # [n] the value of the played shot at the last decision (diagnostics)
+        self.last_kind = None   # [n] what it is: "break", "pot", "safety" (safeties and kicks), "push", "pass"
 
     # --- geometry -------------------------------------------------------------------------------------------------
     def pockets(self, view) -> PocketModel:
@@ -210,7 +215,7 @@ class GameLookahead:
 
     def _lim(self, view, rows=None):
         aim = max(math.radians(view.noise.aim_deg), MIN_AIM_SIGMA)
-        return (view.params.R, BLOCK_CLEAR, MAX_CUT, aim, SIGMA_MODEL, HAND_DCG)
+        return (view.params.R, BLOCK_CLEAR, MAX_CUT, aim, self.sigma_model, HAND_DCG)
 
     def pot_table(self, view, pos, on, targets, cue, hand):
         """``_pot_table`` over tables (cue ball at ``cue`` [n, 2], ``hand`` [n]): dict of [n, B, P] arrays."""
@@ -243,7 +248,7 @@ class GameLookahead:
         rec, nxt = pv.record, pv.next
         hand = nxt.ball_in_hand != RR.IN_HAND_NONE
         e = self.leave_ease(view, pv.pos, pv.on_table, nxt.targets, hand)
-        v = position_value(e)
+        v = position_value(e, self.v_none, self.v_full)
         keep = nxt.shooter == rec.shooter
         val = np.where(keep, v, 1.0 - v)
         return np.where(rec.game_over, (rec.winner == rec.shooter).astype(np.float64), val)
@@ -324,7 +329,7 @@ class GameLookahead:
         ob_dir = np.arctan2(aims[:, 1] - ob[:, 1], aims[:, 0] - ob[:, 0])
         side = np.sign(np.sin(ob_dir - cue_dir))
         dcg = np.maximum(flat["dcg"][si, t], 2 * p.R)
-        tw, sp, hb = (np.asarray(v, dtype=np.float64).ravel() for v in np.meshgrid(THROW, SPEEDS, HEIGHTS,
+        tw, sp, hb = (np.asarray(v, dtype=np.float64).ravel() for v in np.meshgrid(self.throws, self.speeds, self.heights,
                                                                                     indexing="ij"))
         V = len(tw)
         rep = np.repeat(np.arange(len(si)), V)
@@ -400,7 +405,7 @@ class GameLookahead:
         tg[np.arange(len(low)), low] = True
         scratch = ~on[:, 0]
         e = self.leave_ease(view, pv.pos, on, tg, scratch)
-        v = position_value(e)
+        v = position_value(e, self.v_none, self.v_full)
         val = np.where(scratch, 1.0 - v, np.minimum(v, 1.0 - v))
         val = np.where(pv.record.game_over, (pv.record.winner == pv.record.shooter) * 1.0, val)
         val = val.reshape(n, K)
@@ -414,6 +419,7 @@ class GameLookahead:
         phi, speed, a, b = np.zeros(n), np.ones(n), np.zeros(n), np.zeros(n)
         placement, declare, pocket = np.full((n, 2), np.nan), np.zeros(n, bool), np.zeros(n, dtype=np.int64)
         value = np.full(n, np.nan)
+        kind = np.full(n, "break", dtype=object)
         brk = np.nonzero(view.is_break)[0]
         if len(brk):
             g = self.ghost.act(view.take(brk))
@@ -422,9 +428,10 @@ class GameLookahead:
         play = np.nonzero(~view.is_break)[0]
         for lo in range(0, len(play), CHUNK):
             rows = play[lo:lo + CHUNK]
-            sh, pl, pk, val = self.decide(view, rows)
+            sh, pl, pk, val, safe = self.decide(view, rows)
             phi[rows], speed[rows], a[rows], b[rows] = sh
             placement[rows], pocket[rows], value[rows] = pl, pk, val
+            kind[rows] = np.where(safe, "safety", "pot")
         if len(play):
             # 9-ball declarations: a push-out that beats the shot; a pass where the shot is worth less than 1/2
             push = play[view.push_out_allowed[play]]
@@ -436,15 +443,18 @@ class GameLookahead:
                 phi[r], speed[r], a[r], b[r] = pph[use], psp[use], 0.0, 0.0
                 placement[r] = np.nan
                 value[r] = pval[use]
+                kind[r] = "push"
             pas = play[view.may_pass[play] & (value[play] < 0.5)]
             declare[pas] = True
             value[pas] = 1.0 - value[pas]
-        self.last_value = value
+            kind[pas] = "pass"
+        self.last_value, self.last_kind = value, kind
         speed = np.clip(speed, 0.05, view.params.max_speed)
         return ShotPlan.of(Shots(phi, speed, a, b), placement, declare, pocket)
 
     def decide(self, view, rows):
-        """The best candidate of each view row in ``rows``: (shots, placement, pocket, value)."""
+        """The best candidate of each view row in ``rows``: (shots, placement, pocket, value, whether it is a
+        safety or kick)."""
         c = self.candidates(view, rows)
         n = len(rows)
         local = np.searchsorted(rows, c["row"])                       # rows are increasing
@@ -476,9 +486,27 @@ class GameLookahead:
         first = o[np.searchsorted(lp[o], np.arange(n))]
         best = pick[first]
         return ((c["phi"][best], c["speed"][best], c["a"][best], c["b"][best]), c["placement"][best],
-                c["pocket"][best], vn[first])
+                c["pocket"][best], vn[first], c["safe"][best])
 
 
 def game_lookahead(seed: int = 0, **kw) -> GameLookahead:
     """The ``lookahead`` game bot (``bots.make_bot("lookahead")``)."""
     return GameLookahead(seed=seed, **kw)
+
+
+# smaller search budgets, for measuring strength against compute (``module:factory`` entrants of scripts/match.py)
+BUDGETS = dict(fast=dict(n_pots=3, n_eval=8, n_samples=4), medium=dict(n_pots=4, n_eval=16, n_samples=8))
+
+
+def lookahead_fast(seed: int = 0) -> GameLookahead:
+    """``lookahead`` with the ``fast`` budget (about a quarter of the default's previews)."""
+    bot = GameLookahead(seed=seed, **BUDGETS["fast"])
+    bot.name = "lookahead-fast"
+    return bot
+
+
+def lookahead_medium(seed: int = 0) -> GameLookahead:
+    """``lookahead`` with the ``medium`` budget (about half the default's previews)."""
+    bot = GameLookahead(seed=seed, **BUDGETS["medium"])
+    bot.name = "lookahead-medium"
+    return bot
