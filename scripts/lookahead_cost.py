@@ -27,16 +27,18 @@ sys.path.insert(0, str(ROOT))
 
 
 class Timed:
-    """A bot whose ``act`` calls are timed (seconds and decisions)."""
+    """A bot whose ``act`` calls are timed (seconds and decisions); ``tables`` holds the env tables where it
+    played a shot other than a break."""
 
     def __init__(self, bot):
-        self.bot, self.name, self.seconds, self.decisions = bot, bot.name, 0.0, 0
+        self.bot, self.name, self.seconds, self.decisions, self.tables = bot, bot.name, 0.0, 0, set()
 
     def act(self, view):
         t0 = time.perf_counter()
         plan = self.bot.act(view)
         self.seconds += time.perf_counter() - t0
         self.decisions += view.n
+        self.tables.update(view.rows[~view.is_break].tolist())
         return plan
 
 
@@ -86,7 +88,10 @@ def budgets(game: str, names: list, racks: int, opponent: str, noise: str, seed:
         t0 = time.perf_counter()
         r = play_pairing(bot, opponent, game, n_racks=racks, seed=seed, noise=noise)
         s = r.summary()
+        import numpy as np
+        played = np.isin(np.arange(r.n), sorted(bot.tables))
         rows.append(dict(budget=name, opponent=opponent, games=s["games"], win_rate=s["a_win_rate"], ci95=s["ci95"],
+                         lost_without_a_shot=int(((r.winner == 1) & ~played).sum()),
                          ms_per_shot=1e3 * bot.seconds / max(bot.decisions, 1), shots=bot.decisions,
                          previews_per_shot=bot.bot.sims / max(bot.decisions, 1), match_seconds=time.perf_counter() - t0))
     return rows
@@ -116,9 +121,12 @@ def main(argv=None) -> int:
         head = f"# lookahead budgets, {a.game}, {a.noise} noise, against {a.opponent}\n\n" \
                f"`python scripts/lookahead_cost.py --game {a.game} --budgets {' '.join(a.budgets)} --racks {a.racks}" \
                f" --noise {a.noise} --seed {a.seed}` ({a.racks} racks, each played twice)\n\n" \
-               "| budget | games | win rate | 95% interval | ms per shot | previews per shot |\n|---|---|---|---|---|---|\n"
+               "| budget | games | win rate | 95% interval | lost without a shot | ms per shot | previews per shot |\n" \
+               "|---|---|---|---|---|---|---|\n"
         md = head + "".join(f"| {r['budget']} | {r['games']} | {r['win_rate']:.3f} | {r['ci95'][0]:.3f}-{r['ci95'][1]:.3f}"
-                            f" | {r['ms_per_shot']:.1f} | {r['previews_per_shot']:.0f} |\n" for r in rows)
+                            f" | {r['lost_without_a_shot']} | {r['ms_per_shot']:.1f} | {r['previews_per_shot']:.0f} |\n"
+                            for r in rows)
+        md += "\n'lost without a shot': games the lookahead lost without playing a shot other than its break.\n"
         print(md)
         if not a.quick:
             out = Path(a.out)

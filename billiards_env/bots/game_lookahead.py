@@ -9,19 +9,20 @@ For every table where the bot is to move (all tables at once, in batched ``GameV
 2. **Candidates.** From each start: the ``n_pots`` easiest open ghost-ball pots on the legal targets (every
    legal ball and pocket weighed by ``pot_table``'s success probability), each in ``len(THROW)`` aims (the ghost
    ball's and one overcut against collision-induced throw), ``len(SPEEDS)`` speeds (factors of the speed that just
-   drops the ball) and ``len(HEIGHTS)`` tip heights (draw, stun, follow); from the cue ball where it lies also
-   ``n_safe`` safeties (soft shots across the legal targets) and ``n_kick`` kicks (any direction). On the 8 the
-   pot's pocket is called; a safety calls the pocket the 8 is easiest into.
+   drops the ball) and ``len(HEIGHTS)`` tip heights (draw, stun, follow); from the cue ball where it lies (or the
+   first ball-in-hand spot) also ``n_safe`` safeties (soft shots across the legal targets), ``n_bank`` one-rail
+   kicks (aimed at a legal ball's mirror image in a cushion's line) and ``n_kick`` shots in any direction. On
+   the 8 the pot's pocket is called; a safety calls the pocket the 8 is easiest into.
 3. **Rules and leave.** Every candidate is previewed once without noise and judged by the rules. Its value for
    the mover: 1 for a win, 0 for a loss; if the mover keeps the table, ``position_value`` of the leave (the ease
    of the mover's best next pot, ``leave_ease``); if the turn passes, 1 minus the opponent's ``position_value``
-   (their best pot's ease, with ball in hand after a foul). ``position_value(e, self.v_none, self.v_full) = V_NONE + (V_FULL - V_NONE) e``:
+   (their best pot's ease, with ball in hand after a foul). ``position_value(e) = V_NONE + (V_FULL - V_NONE) e``:
    a table with no pot is worth ``V_NONE`` (a safety battle), a sure pot ``V_FULL``.
 4. **Noise.** The ``n_eval`` best candidates (``n_eval_safe`` of them kept for safeties and kicks) are previewed
    again ``n_samples`` times each under sampled execution noise (the env's own noise; the ``tournament`` preset
    when the env has none) and valued the same way; the best mean is played.
 5. **Declarations (9-ball).** Where a push-out is allowed, ``n_push`` soft pushes are previewed; a push leaving
-   ease ``e`` is worth ``min(v, 1 - v)`` with ``v = position_value(e, self.v_none, self.v_full)`` (the opponent chooses whether to shoot),
+   ease ``e`` is worth ``min(v, 1 - v)`` with ``v = position_value(e)`` (the opponent chooses whether to shoot),
    and is declared when it beats the best shot's value. After the opponent's push-out, the shot is passed back
    when the best shot's value is below 1/2 (the opponent would then shoot the same table).
 6. **Breaks** are ``GhostBot``'s seeded standard break.
@@ -33,7 +34,7 @@ success probability is ``erf(tol / (sqrt(2) sigma))`` with the pocket's angular 
 half-width over the ball's distance to it) and the object ball's direction error ``sigma`` (the aim error
 propagated through the contact, ``sigma_aim d_cg / (2R cos cut)``, plus ``SIGMA_MODEL``).
 
-Cost per decision: about ``starts x n_pots x variants + n_safe + n_kick (+ n_push)`` noise-free previews plus
+Cost per decision: about ``starts x n_pots x variants + n_safe + n_bank + n_kick (+ n_push)`` noise-free previews plus
 ``n_eval x n_samples`` noisy ones (``sims`` counts them).
 """
 from __future__ import annotations
@@ -70,6 +71,7 @@ HAND_BACKS = (0.18, 0.4)           # m: ball-in-hand spots behind the ghost ball
 HAND_TURNS = (-math.radians(25), 0.0, math.radians(25))  # rad: and turned about it (a cut for position)
 SAFE_SPEEDS = (0.5, 3.5)           # m/s: range of the safeties' speeds
 KICK_SPEEDS = (1.0, 5.0)           # m/s: range of the kicks' speeds
+BANK_SPEEDS = (1.5, 5.0)           # m/s: range of the one-rail kicks' speeds
 PUSH_SPEEDS = (0.3, 1.6)           # m/s: range of the push-outs' speeds
 CHUNK = 128                        # tables decided per batch of previews (memory stays bounded)
 
@@ -190,6 +192,7 @@ class GameLookahead:
     name = "lookahead"
 
     def __init__(self, seed: int = 0, n_pots: int = 6, hand_pots: int = 3, n_safe: int = 16, n_kick: int = 8,
+                 n_bank: int = 16,
                  n_push: int = 24, n_eval: int = 32, n_eval_safe: int = 4, n_samples: int = 12,
                  throws: tuple = THROW, speeds: tuple = SPEEDS, heights: tuple = HEIGHTS,
                  sigma_model: float = SIGMA_MODEL, v_none: float = V_NONE, v_full: float = V_FULL):
@@ -198,6 +201,7 @@ class GameLookahead:
         self.rng = np.random.default_rng(seed)
         self.ghost = GhostBot(seed=seed)
         self.n_pots, self.hand_pots, self.n_safe, self.n_kick, self.n_push = n_pots, hand_pots, n_safe, n_kick, n_push
+        self.n_bank = int(n_bank)
         self.n_eval, self.n_eval_safe, self.n_samples = n_eval, n_eval_safe, n_samples
         self.throws, self.speeds, self.heights = tuple(throws), tuple(speeds), tuple(heights)
         self.sigma_model, self.v_none, self.v_full = float(sigma_model), float(v_none), float(v_full)
@@ -213,7 +217,7 @@ class GameLookahead:
             self.model = m = PocketModel(view)
         return m
 
-    def _lim(self, view, rows=None):
+    def _lim(self, view):
         aim = max(math.radians(view.noise.aim_deg), MIN_AIM_SIGMA)
         return (view.params.R, BLOCK_CLEAR, MAX_CUT, aim, self.sigma_model, HAND_DCG)
 
@@ -354,10 +358,11 @@ class GameLookahead:
         return np.argmax(pt["prob"][:, 8], axis=1)
 
     def safeties(self, view, rows, cue, placed):
-        """``n_safe`` soft shots at the legal targets and ``n_kick`` shots in any direction per row, the cue
-        ball at ``cue`` [n, 2] (``placed``: there by ball in hand)."""
+        """``n_safe`` soft shots at the legal targets, ``n_bank`` one-rail kicks at them (aimed at a legal ball's
+        mirror image in a random cushion's line) and ``n_kick`` shots in any direction per row, the cue ball at
+        ``cue`` [n, 2] (``placed``: there by ball in hand)."""
         R_ = view.params.R
-        n, Ks, Kk = len(rows), self.n_safe, self.n_kick
+        n, Ks, Kk, Kb = len(rows), self.n_safe, self.n_kick, self.n_bank
         rng = self.rng
         w = (view.targets[rows] & view.on_table[rows]).astype(np.float64)
         w[:, 0] = 0.0
@@ -373,13 +378,25 @@ class GameLookahead:
         repk = np.repeat(np.arange(n), Kk)
         phi_k = rng.uniform(0, 2 * np.pi, n * Kk)
         sp_k = rng.uniform(*KICK_SPEEDS, n * Kk)
-        allrep = np.concatenate([rep, repk])
+        repb = np.repeat(np.arange(n), Kb)
+        ball_b = np.minimum((rng.random((n * Kb, 1)) > cdf[repb]).sum(axis=1), view.n_balls - 1)
+        img = view.pos[rows[repb], ball_b].copy()
+        rail = rng.integers(0, 4, n * Kb)                     # the cushion lines x = R, x = W - R, y = R, y = L - R
+        line = np.array([R_, view.table.width - R_, R_, view.table.length - R_])[rail]
+        axis = (rail >= 2).astype(np.int64)
+        img[np.arange(n * Kb), axis] = 2 * line - img[np.arange(n * Kb), axis]
+        db = img - cue[repb]
+        half_b = np.arcsin(np.minimum(2 * R_ / np.maximum(np.linalg.norm(db, axis=1), 2 * R_), 1.0)) * 0.5
+        phi_b = np.arctan2(db[:, 1], db[:, 0]) + half_b * rng.uniform(-1, 1, n * Kb)
+        sp_b = rng.uniform(*BANK_SPEEDS, n * Kb)
+        allrep = np.concatenate([rep, repk, repb])
         m = len(allrep)
         pocket = np.zeros(n, dtype=np.int64)
         call = view.call_needed[rows]
         if call.any():
             pocket[call] = self.eight_pocket(view, rows[call])
-        return dict(row=rows[allrep], phi=np.concatenate([phi_s, phi_k]), speed=np.concatenate([sp_s, sp_k]),
+        return dict(row=rows[allrep], phi=np.concatenate([phi_s, phi_k, phi_b]),
+                    speed=np.concatenate([sp_s, sp_k, sp_b]),
                     a=np.zeros(m), b=rng.uniform(-0.3, 0.3, m),
                     placement=np.where(placed[allrep, None], cue[allrep], np.nan),
                     pocket=pocket[allrep], safe=np.ones(m, bool))
@@ -495,7 +512,8 @@ def game_lookahead(seed: int = 0, **kw) -> GameLookahead:
 
 
 # smaller search budgets, for measuring strength against compute (``module:factory`` entrants of scripts/match.py)
-BUDGETS = dict(fast=dict(n_pots=3, n_eval=8, n_samples=4), medium=dict(n_pots=4, n_eval=16, n_samples=8))
+BUDGETS = dict(fast=dict(n_pots=3, n_eval=8, n_samples=4), medium=dict(n_pots=4, n_eval=16, n_samples=8),
+               wide=dict(n_eval=64, n_samples=16))
 
 
 def lookahead_fast(seed: int = 0) -> GameLookahead:

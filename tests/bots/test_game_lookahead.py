@@ -57,8 +57,8 @@ def test_prefers_a_pot_that_leaves_a_shot():
 
 def test_prefers_a_safety_to_a_low_percentage_pot():
     """The 1's only pot is a long, thin cut (about one in ten goes); a miss leaves the opponent an easy pot
-    (their best pot's ease above 0.6 on average). The bot plays a safety (legal, nothing pocketed), worth more to it
-    than the pot under the same noise."""
+    (their best pot's ease above 0.6 on average). With at least 4 of 5 seeds the bot plays a safety (legal, nothing
+    pocketed), worth more to it than the pot under the same noise."""
     balls = {0: (1.082, 2.278), 1: (0.344, 1.014), 4: (0.321, 0.362), 7: (0.098, 1.278), 9: (0.202, 0.487)}
     view = nine_ball_view(balls)
     bot = GameLookahead(seed=0)
@@ -76,12 +76,16 @@ def test_prefers_a_safety_to_a_low_percentage_pot():
     after = bot.leave_ease(view, pv.pos, pv.on_table, pv.next.targets, pv.next.ball_in_hand != R.IN_HAND_NONE)
     assert after[miss].mean() > 0.6                                             # the opponent's easy shot
     assert bot.values(view, pv).mean() < 0.4
-    plan = bot.act(view)
-    assert bot.last_kind[0] == "safety"
-    assert bot.last_value[0] > bot.values(view, pv).mean()
-    mine = view.preview(plan)
-    assert mine.record.legal[0] and mine.record.turn_over[0]
-    assert ((mine.pocket >= 0) == (view.pocket >= 0)).all()                     # nothing pocketed: a safety
+    pot_value = bot.values(view, pv).mean()
+    safe = 0
+    for seed in range(5):  # its safeties are sampled: the preference holds for (nearly) every seed
+        bot = GameLookahead(seed=seed)
+        mine = view.preview(bot.act(view))
+        if bot.last_kind[0] == "safety" and mine.record.legal[0] and mine.record.turn_over[0] \
+                and ((mine.pocket >= 0) == (view.pocket >= 0)).all():             # legal, nothing pocketed
+            safe += 1
+            assert bot.last_value[0] > pot_value
+    assert safe >= 4, safe
 
 
 def _check_plan(view, plan, seen):
@@ -135,4 +139,4 @@ def test_cost_script_quick(capsys):
     spec.loader.exec_module(mod)
     assert mod.main(["--quick"]) == 0
     out = capsys.readouterr().out
-    assert '"previews_per_decision"' in out and "| fast | 4 |" in out
+    assert '"previews_per_decision"' in out and "| fast | 4 |" in out and "lost without a shot" in out
