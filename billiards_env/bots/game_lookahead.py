@@ -196,8 +196,8 @@ class GameLookahead:
                  n_push: int = 24, n_eval: int = 32, n_eval_safe: int = 4, n_samples: int = 12,
                  throws: tuple = THROW, speeds: tuple = SPEEDS, heights: tuple = HEIGHTS,
                  sigma_model: float = SIGMA_MODEL, v_none: float = V_NONE, v_full: float = V_FULL):
-        if n_safe + n_kick < 1:
-            raise ValueError("GameLookahead needs n_safe + n_kick >= 1 (every table keeps a candidate)")
+        if n_safe + n_kick + n_bank < 1:
+            raise ValueError("GameLookahead needs n_safe + n_kick + n_bank >= 1 (every table keeps a candidate)")
         self.rng = np.random.default_rng(seed)
         self.ghost = GhostBot(seed=seed)
         self.n_pots, self.hand_pots, self.n_safe, self.n_kick, self.n_push = n_pots, hand_pots, n_safe, n_kick, n_push
