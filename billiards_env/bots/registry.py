@@ -2,7 +2,10 @@
 games benchmark accept.
 
 - ``random``, ``ghost``, ``ghost-safety``, ``search<K>`` (K candidates per
-  pot, default 64): the built-in bots;
+  pot, default 64), ``lookahead`` (``bots.game_lookahead``: shots chosen by
+  their leave under sampled noise): the built-in bots of the games (the
+  one-player tasks' ``lookahead`` is ``bots.lookahead.LookaheadPolicy``,
+  named by the tasks' own policy registry);
 - ``module:factory`` (for example ``my_bots:planner``): a bot of your own;
   ``factory(seed=...)`` must return an object with ``name`` and
   ``act(view: GameView) -> ShotPlan`` (docs/bots.md);
@@ -12,13 +15,13 @@ from __future__ import annotations
 
 import importlib
 
-BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "<module>:<factory>")
+BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "<module>:<factory>")
 DEFAULT_SEARCH_K = 64
 
 
 def is_bot_name(name) -> bool:
     """Whether ``name`` names a built-in bot or a ``module:factory``."""
-    return isinstance(name, str) and (name in ("random", "ghost", "ghost-safety") or ":" in name
+    return isinstance(name, str) and (name in ("random", "ghost", "ghost-safety", "lookahead") or ":" in name
                                       or (name.startswith("search") and (name[6:].isdigit() or name == "search")))
 
 
@@ -34,6 +37,9 @@ def make_bot(spec, seed: int = 0):
     if spec in ("ghost", "ghost-safety"):
         from .ghost import GhostBot
         return GhostBot(seed=seed, safety=spec == "ghost-safety")
+    if spec == "lookahead":
+        from .game_lookahead import GameLookahead
+        return GameLookahead(seed=seed)
     if spec.startswith("search") and (spec[6:].isdigit() or spec == "search"):
         from .search import SearchBot
         return SearchBot(seed=seed, k=int(spec[6:]) if spec[6:] else DEFAULT_SEARCH_K)

@@ -1,0 +1,530 @@
+"""``lookahead`` for the two-player games: shots chosen by the position they leave, under sampled noise.
+
+For every table where the bot is to move (all tables at once, in batched ``GameView.preview`` calls):
+
+1. **Starts.** The cue ball where it lies, or, with ball in hand, ``hand_pots`` x ``len(HAND_BACKS)`` x
+   ``len(HAND_TURNS)`` searched spots: behind the ghost ball of each of the easiest pots (by ``pot_table``, the
+   cue ball placed ideally), at two distances and three angles (a straight-in pot and two cuts that send the cue
+   ball different ways), each made legal by ``view.legal_placement``.
+2. **Candidates.** From each start: the ``n_pots`` easiest open ghost-ball pots on the legal targets (every
+   legal ball and pocket weighed by ``pot_table``'s success probability), each in ``len(THROW)`` aims (the ghost
+   ball's and one overcut against collision-induced throw), ``len(SPEEDS)`` speeds (factors of the speed that just
+   drops the ball) and ``len(HEIGHTS)`` tip heights (draw, stun, follow); from the cue ball where it lies (or the
+   first ball-in-hand spot) also ``n_safe`` safeties (soft shots across the legal targets), ``n_bank`` one-rail
+   kicks (aimed at a legal ball's mirror image in a cushion's line) and ``n_kick`` shots in any direction. On
+   the 8 the pot's pocket is called; a safety calls the pocket the 8 is easiest into.
+3. **Rules and leave.** Every candidate is previewed once without noise and judged by the rules. Its value for
+   the mover: 1 for a win, 0 for a loss; if the mover keeps the table, ``position_value`` of the leave (the ease
+   of the mover's best next pot, ``leave_ease``); if the turn passes, 1 minus the opponent's ``position_value``
+   (their best pot's ease, with ball in hand after a foul). ``position_value(e) = V_NONE + (V_FULL - V_NONE) e``:
+   a table with no pot is worth ``V_NONE`` (a safety battle), a sure pot ``V_FULL``.
+4. **Noise.** The ``n_eval`` best candidates (``n_eval_safe`` of them kept for safeties and kicks) are previewed
+   again ``n_samples`` times each under sampled execution noise (the env's own noise; the ``tournament`` preset
+   when the env has none) and valued the same way; the best mean is played.
+5. **Declarations (9-ball).** Where a push-out is allowed, ``n_push`` soft pushes are previewed; a push leaving
+   ease ``e`` is worth ``min(v, 1 - v)`` with ``v = position_value(e)`` (the opponent chooses whether to shoot),
+   and is declared when it beats the best shot's value. After the opponent's push-out, the shot is passed back
+   when the best shot's value is below 1/2 (the opponent would then shoot the same table).
+6. **Breaks** are ``GhostBot``'s seeded standard break.
+
+``pot_table`` and ``leave_ease`` are the geometric part (numba kernels here): the ghost-ball shot of a ball into a
+pocket; a pot is open when both paths are clear of other balls (by 2R + ``BLOCK_CLEAR``), the cut is below
+``MAX_CUT`` and the approach to the pocket is within its mouth (``CORNER_APPROACH``, ``SIDE_APPROACH``); its
+success probability is ``erf(tol / (sqrt(2) sigma))`` with the pocket's angular tolerance ``tol`` (its accepted
+half-width over the ball's distance to it) and the object ball's direction error ``sigma`` (the aim error
+propagated through the contact, ``sigma_aim d_cg / (2R cos cut)``, plus ``SIGMA_MODEL``).
+
+Cost per decision: about ``starts x n_pots x variants + n_safe + n_bank + n_kick (+ n_push)`` noise-free previews plus
+``n_eval x n_samples`` noisy ones (``sims`` counts them).
+"""
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from ..physics.noise import NoiseConfig
+from ..physics.strike import Shots
+from ..rules import records as RR
+from .ghost import GhostBot
+from .plan import ShotPlan
+
+_jit = numba.njit(cache=True, nogil=True)
+
+BLOCK_CLEAR = 0.004                # m: a pot's paths keep this clear of other balls beyond 2R (execution noise)
+MAX_CUT = math.radians(75)         # a pot cut more than this is not tried
+CORNER_APPROACH = math.radians(60)  # steepest approach to a corner pocket, from its axis, a pot accepts
+SIDE_APPROACH = math.radians(50)   # and to a side pocket (a side pocket's mouth faces straight across the table)
+CORNER_INSET = 0.5                 # corner aim point: this fraction of the capture radius into the table
+POCKET_TOL = 0.6                   # a pot's accepted half-width: this fraction of the pocket's capture radius
+SIGMA_MODEL = 0.012                # rad: object-ball direction error the ghost-ball model makes beyond the aim noise
+MIN_AIM_SIGMA = math.radians(0.125)  # rad: the aim noise the leave is judged with at least (tournament level)
+HAND_DCG = 0.3                     # m: cue-to-ghost distance assumed for a shooter with ball in hand
+ROLL_MIN = 0.35                    # m/s: speed the object ball should still have at the pocket's line
+V_NONE = 0.5                       # value of a table whose shooter has no pot (a safety battle: even)
+V_FULL = 0.9                       # value of a table whose shooter has a sure pot (the run may still end)
+THROW = (0.0, math.radians(2.0))   # rad: object-ball overcut tried against collision-induced throw
+SPEEDS = (1.15, 1.8, 2.8)          # factors of the speed that just drops the ball
+HEIGHTS = (-0.35, 0.0, 0.35)       # tip heights (units of R): draw, stun, follow
+HAND_BACKS = (0.18, 0.4)           # m: ball-in-hand spots behind the ghost ball
+HAND_TURNS = (-math.radians(25), 0.0, math.radians(25))  # rad: and turned about it (a cut for position)
+SAFE_SPEEDS = (0.5, 3.5)           # m/s: range of the safeties' speeds
+KICK_SPEEDS = (1.0, 5.0)           # m/s: range of the kicks' speeds
+BANK_SPEEDS = (1.5, 5.0)           # m/s: range of the one-rail kicks' speeds
+PUSH_SPEEDS = (0.3, 1.6)           # m/s: range of the push-outs' speeds
+CHUNK = 128                        # tables decided per batch of previews (memory stays bounded)
+
+
+class PocketModel:
+    """The pockets as the kernels take them: aim points [P, 2], outward axes [P, 2], steepest approach [P] (rad)
+    and accepted half-widths [P] (m)."""
+
+    def __init__(self, view):
+        pk = view.pockets
+        W, L = view.table.width, view.table.length
+        cx, cy = pk[:, 0] - W / 2, pk[:, 1] - L / 2
+        ax = np.stack([np.sign(cx) * (np.abs(cx) > W / 4), np.sign(cy) * (np.abs(cy) > L / 4)], axis=1)
+        ax = ax / np.linalg.norm(ax, axis=1, keepdims=True)
+        corner = np.abs(ax[:, 0] * ax[:, 1]) > 0
+        self.aims = np.ascontiguousarray(pk[:, :2] - (corner * CORNER_INSET * pk[:, 2])[:, None] * ax)
+        self.axes = np.ascontiguousarray(ax)
+        self.approach = np.where(corner, CORNER_APPROACH, SIDE_APPROACH).astype(np.float64)
+        self.half = np.ascontiguousarray(POCKET_TOL * pk[:, 2])
+        self.table, self.params = view.table, view.params
+
+    def arrays(self):
+        return self.aims, self.axes, self.approach, self.half
+
+
+# --- geometry kernels ---------------------------------------------------------------------------------------------
+@_jit
+def _seg_d2(ax, ay, bx, by, px, py):
+    """Squared distance from (px, py) to the segment a-b."""
+    dx, dy = bx - ax, by - ay
+    L2 = max(dx * dx + dy * dy, 1e-18)
+    t = min(max(((px - ax) * dx + (py - ay) * dy) / L2, 0.0), 1.0)
+    qx, qy = ax + t * dx - px, ay + t * dy - py
+    return qx * qx + qy * qy
+
+
+@_jit
+def _clear(pos, on, skip, ax, ay, bx, by, d2):
+    """No ball on the table but the cue ball and ``skip`` lies within sqrt(d2) of the segment a-b."""
+    for j in range(1, pos.shape[0]):
+        if j != skip and on[j] and _seg_d2(ax, ay, bx, by, pos[j, 0], pos[j, 1]) < d2:
+            return False
+    return True
+
+
+@_jit
+def _pot(pos, on, b, p, cx, cy, hand, pockets, lim):
+    """The ghost-ball pot of ball ``b`` into pocket ``p`` with the cue ball at (cx, cy) (``hand``: placed at will):
+    (success probability, aim phi, cue-ghost distance, ball-pocket distance, cut); probability 0 if it is not open.
+    ``pockets``: ``PocketModel.arrays()``; ``lim``: (R, clear, max cut, sigma aim, sigma model, hand distance)."""
+    aims, axes, approach, half = pockets
+    R, clear, max_cut, sig_aim, sig_model, hand_dcg = lim
+    ox, oy = pos[b, 0], pos[b, 1]
+    ux, uy = aims[p, 0] - ox, aims[p, 1] - oy
+    dop = math.hypot(ux, uy)
+    if dop < 1e-9:
+        return 0.0, 0.0, 0.0, 0.0, 0.0
+    ux /= dop
+    uy /= dop
+    app = math.acos(min(max(ux * axes[p, 0] + uy * axes[p, 1], -1.0), 1.0))
+    if app > approach[p]:
+        return 0.0, 0.0, 0.0, 0.0, 0.0
+    gx, gy = ox - 2 * R * ux, oy - 2 * R * uy
+    d2 = (2 * R + clear) ** 2
+    if hand:
+        dcg, cut, phi = hand_dcg, 0.0, math.atan2(uy, ux)
+    else:
+        vx, vy = gx - cx, gy - cy
+        dcg = math.hypot(vx, vy)
+        if dcg < 1e-9:
+            return 0.0, 0.0, 0.0, 0.0, 0.0
+        cut = math.acos(min(max((vx * ux + vy * uy) / dcg, -1.0), 1.0))
+        if cut > max_cut or not _clear(pos, on, b, cx, cy, gx, gy, d2):
+            return 0.0, 0.0, 0.0, 0.0, 0.0
+        phi = math.atan2(vy, vx)
+    if not _clear(pos, on, b, ox, oy, aims[p, 0], aims[p, 1], d2):
+        return 0.0, 0.0, 0.0, 0.0, 0.0
+    sig = math.hypot(sig_aim * dcg / (2 * R * max(math.cos(cut), 0.2)), sig_model)
+    tol = half[p] * (0.5 + 0.5 * math.cos(app)) / dop
+    return math.erf(tol / (math.sqrt(2.0) * sig)), phi, dcg, dop, cut
+
+
+@_jit
+def _pot_table(pos, on, targets, cue, hand, pockets, lim, prob, phi, dcg, dop, cut):
+    """Every legal ball's pot into every pocket, per table e (cue ball at ``cue[e]``): arrays [n, B, P]."""
+    for e in range(pos.shape[0]):
+        for b in range(1, pos.shape[1]):
+            for p in range(pockets[0].shape[0]):
+                prob[e, b, p] = 0.0
+                if targets[e, b] and on[e, b]:
+                    r = _pot(pos[e], on[e], b, p, cue[e, 0], cue[e, 1], hand[e], pockets, lim)
+                    prob[e, b, p], phi[e, b, p], dcg[e, b, p], dop[e, b, p], cut[e, b, p] = r
+
+
+@_jit
+def _leave_ease(pos, on, targets, hand, pockets, lim, out):
+    """The success probability of the shooter's easiest pot, per table [n] (0: none open, or no cue ball)."""
+    for e in range(pos.shape[0]):
+        best = 0.0
+        if hand[e] or on[e, 0]:
+            for b in range(1, pos.shape[1]):
+                if targets[e, b] and on[e, b]:
+                    for p in range(pockets[0].shape[0]):
+                        q = _pot(pos[e], on[e], b, p, pos[e, 0, 0], pos[e, 0, 1], hand[e], pockets, lim)[0]
+                        best = max(best, q)
+        out[e] = best
+
+
+def position_value(ease: np.ndarray, v_none: float = V_NONE, v_full: float = V_FULL) -> np.ndarray:
+    """The chance the shooter of a table wins, from the ease of their best pot (see the module docstring)."""
+    return v_none + (v_full - v_none) * ease
+
+
+# --- the bot ------------------------------------------------------------------------------------------------------
+class GameLookahead:
+    """Two-player lookahead: see the module docstring."""
+
+    name = "lookahead"
+
+    def __init__(self, seed: int = 0, n_pots: int = 6, hand_pots: int = 3, n_safe: int = 16, n_kick: int = 8,
+                 n_bank: int = 16,
+                 n_push: int = 24, n_eval: int = 32, n_eval_safe: int = 4, n_samples: int = 12,
+                 throws: tuple = THROW, speeds: tuple = SPEEDS, heights: tuple = HEIGHTS,
+                 sigma_model: float = SIGMA_MODEL, v_none: float = V_NONE, v_full: float = V_FULL):
+        if n_safe + n_kick + n_bank < 1:
+            raise ValueError("GameLookahead needs n_safe + n_kick + n_bank >= 1 (every table keeps a candidate)")
+        self.rng = np.random.default_rng(seed)
+        self.ghost = GhostBot(seed=seed)
+        self.n_pots, self.hand_pots, self.n_safe, self.n_kick, self.n_push = n_pots, hand_pots, n_safe, n_kick, n_push
+        self.n_bank = int(n_bank)
+        self.n_eval, self.n_eval_safe, self.n_samples = n_eval, n_eval_safe, n_samples
+        self.throws, self.speeds, self.heights = tuple(throws), tuple(speeds), tuple(heights)
+        self.sigma_model, self.v_none, self.v_full = float(sigma_model), float(v_none), float(v_full)
+        self.model: PocketModel | None = None
+        self.sims = 0        # shots previewed so far (cost accounting)
+        self.last_value = None  # [n] the value of the played shot at the last decision (diagnostics)
+        self.last_kind = None   # [n] what it is: "break", "pot", "safety" (safeties and kicks), "push", "pass"
+
+    # --- geometry -------------------------------------------------------------------------------------------------
+    def pockets(self, view) -> PocketModel:
+        m = self.model
+        if m is None or m.table is not view.table or m.params is not view.params:
+            self.model = m = PocketModel(view)
+        return m
+
+    def _lim(self, view):
+        aim = max(math.radians(view.noise.aim_deg), MIN_AIM_SIGMA)
+        return (view.params.R, BLOCK_CLEAR, MAX_CUT, aim, self.sigma_model, HAND_DCG)
+
+    def pot_table(self, view, pos, on, targets, cue, hand):
+        """``_pot_table`` over tables (cue ball at ``cue`` [n, 2], ``hand`` [n]): dict of [n, B, P] arrays."""
+        n, B = pos.shape[:2]
+        P = len(self.pockets(view).aims)
+        out = {k: np.zeros((n, B, P)) for k in ("prob", "phi", "dcg", "dop", "cut")}
+        _pot_table(np.ascontiguousarray(pos), np.ascontiguousarray(on), np.ascontiguousarray(targets),
+                   np.ascontiguousarray(cue, dtype=np.float64), np.ascontiguousarray(hand, dtype=np.bool_),
+                   self.pockets(view).arrays(), self._lim(view), *out.values())
+        return out
+
+    def leave_ease(self, view, pos, on, targets, hand) -> np.ndarray:
+        """[n] the ease of the shooter's best pot on tables after a shot (``hand``: ball in hand)."""
+        out = np.empty(len(pos))
+        _leave_ease(np.ascontiguousarray(pos), np.ascontiguousarray(on), np.ascontiguousarray(targets),
+                    np.ascontiguousarray(hand, dtype=np.bool_), self.pockets(view).arrays(), self._lim(view), out)
+        return out
+
+    def pot_speed(self, view, dcg, dop, cut) -> np.ndarray:
+        """The cue-ball speed that just drops a ball (rolling after a stun hit, slowed by rolling resistance)."""
+        p = view.params
+        dec = 2.0 * p.mu_r * p.g
+        v_ob = np.sqrt(dec * dop + ROLL_MIN ** 2) * 7.0 / 5.0
+        v_c = v_ob / np.maximum(np.cos(cut), 0.25)
+        return np.sqrt(v_c ** 2 + dec * dcg) * 7.0 / 5.0
+
+    # --- valuing outcomes -----------------------------------------------------------------------------------------
+    def values(self, view, pv) -> np.ndarray:
+        """The mover's value of each previewed shot (module docstring, step 3)."""
+        rec, nxt = pv.record, pv.next
+        hand = nxt.ball_in_hand != RR.IN_HAND_NONE
+        e = self.leave_ease(view, pv.pos, pv.on_table, nxt.targets, hand)
+        v = position_value(e, self.v_none, self.v_full)
+        keep = nxt.shooter == rec.shooter
+        val = np.where(keep, v, 1.0 - v)
+        return np.where(rec.game_over, (rec.winner == rec.shooter).astype(np.float64), val)
+
+    def noise(self, view):
+        return "env" if view.noise.enabled else NoiseConfig.from_any("tournament")
+
+    # --- candidates -----------------------------------------------------------------------------------------------
+    def starts(self, view, rows):
+        """(row of each start, cue-ball spot [S, 2], placed [S]): the cue ball where it lies, or searched
+        ball-in-hand spots."""
+        hand = view.in_hand[rows]
+        srow, cue, placed = [rows[~hand]], [view.pos[rows[~hand], 0]], [np.zeros((~hand).sum(), bool)]
+        h = rows[hand]
+        if len(h):
+            pos, on = view.pos[h], view.on_table[h].copy()
+            on[:, 0] = False
+            pt = self.pot_table(view, pos, on, view.targets[h], pos[:, 0], np.ones(len(h), bool))
+            flat = pt["prob"].reshape(len(h), -1)
+            k = min(self.hand_pots, flat.shape[1])
+            top = np.argsort(-flat, axis=1)[:, :k]                      # [h, k] easiest (ball, pocket)
+            P = pt["prob"].shape[2]
+            ball, pk = top // P, top % P
+            aims = self.pockets(view).aims
+            ob = pos[np.arange(len(h))[:, None], ball]                    # [h, k, 2]
+            u = aims[pk] - ob
+            u /= np.maximum(np.linalg.norm(u, axis=-1, keepdims=True), 1e-9)
+            ghost = ob - 2 * view.params.R * u
+            back = np.asarray(HAND_BACKS)[None, None, :, None, None]
+            turn = np.asarray(HAND_TURNS)[None, None, None, :]
+            ang = np.arctan2(u[..., 1], u[..., 0])[:, :, None, None] + turn        # [h, k, 1, T]
+            d = np.stack([np.cos(ang), np.sin(ang)], axis=-1)[:, :, None]          # [h, k, 1, 1, T, 2]
+            spot = ghost[:, :, None, None, None] - back[..., None] * d              # [h, k, Bk, 1, T, 2]
+            spot = spot.reshape(len(h), -1, 2)
+            # no open pot at all: the head spot or the centre (made legal below)
+            none = flat.max(axis=1) <= 0
+            kitchen = view.ball_in_hand[h] == RR.IN_HAND_KITCHEN
+            spot[none] = np.where(kitchen[none, None], view.marks.head_spot,
+                                  [view.table.width / 2, view.table.length / 2])[:, None]
+            per = spot.shape[1]
+            r_h = np.repeat(h, per)
+            legal, _ = view.legal_placement(spot.reshape(-1, 2), r_h)
+            srow.append(r_h)
+            cue.append(legal)
+            placed.append(np.ones(len(r_h), bool))
+        srow, cue, placed = np.concatenate(srow), np.concatenate(cue), np.concatenate(placed)
+        o = np.argsort(srow, kind="stable")
+        return srow[o], cue[o], placed[o]
+
+    def candidates(self, view, rows):
+        """Candidate shots of view rows ``rows``: dict of flat arrays (row, phi, speed, a, b, placement, pocket,
+        safe)."""
+        p = view.params
+        srow, cue, placed = self.starts(view, rows)
+        pos = view.pos[srow].copy()
+        pos[:, 0] = cue
+        on = view.on_table[srow].copy()
+        on[:, 0] = True
+        tg = view.targets[srow]
+        pt = self.pot_table(view, pos, on, tg, cue, np.zeros(len(srow), bool))
+        S, B, P = pt["prob"].shape
+        flat = {k: v.reshape(S, -1) for k, v in pt.items()}
+        k = min(self.n_pots, B * P)
+        top = np.argsort(-flat["prob"], axis=1)[:, :k]                       # [S, k]
+        take = lambda a: np.take_along_axis(a, top, axis=1)
+        ok = take(flat["prob"]) > 0
+        ok[placed, 1:] = False                                              # a placed start: its best pot only
+        si, ki = np.nonzero(ok)
+        t = top[si, ki]
+        ball, pk = t // P, t % P
+        phi0 = flat["phi"][si, t]
+        cut = flat["cut"][si, t]
+        v0 = self.pot_speed(view, flat["dcg"][si, t], flat["dop"][si, t], cut)
+        # the overcut's side: the cue ball hits the ghost from the side the cut turns it
+        cue_dir = phi0
+        ob = pos[si, ball]
+        aims = self.pockets(view).aims[pk]
+        ob_dir = np.arctan2(aims[:, 1] - ob[:, 1], aims[:, 0] - ob[:, 0])
+        side = np.sign(np.sin(ob_dir - cue_dir))
+        dcg = np.maximum(flat["dcg"][si, t], 2 * p.R)
+        tw, sp, hb = (np.asarray(v, dtype=np.float64).ravel() for v in np.meshgrid(self.throws, self.speeds, self.heights,
+                                                                                    indexing="ij"))
+        V = len(tw)
+        rep = np.repeat(np.arange(len(si)), V)
+        var = np.tile(np.arange(V), len(si))
+        # an object-ball overcut of dtheta needs the cue aim turned by about dtheta 2R cos(cut) / d_cg, away
+        dphi = -side[rep] * tw[var] * 2 * p.R * np.cos(cut[rep]) / dcg[rep]
+        c = dict(row=srow[si][rep], phi=phi0[rep] + dphi, speed=np.minimum(v0[rep] * sp[var], p.max_speed),
+                 a=np.zeros(len(rep)), b=hb[var], placement=np.where(placed[si][rep, None], cue[si][rep], np.nan),
+                 pocket=pk[rep], safe=np.zeros(len(rep), bool))
+        # safeties and kicks: from the cue ball where it lies, or from each row's first ball-in-hand spot
+        first = np.searchsorted(srow, rows)
+        parts = [c, self.safeties(view, rows, cue[first], placed[first])]
+        out = {key: np.concatenate([q[key] for q in parts]) for key in c}
+        return out
+
+    def eight_pocket(self, view, rows) -> np.ndarray:
+        """The pocket each row's 8 is easiest into from where the cue ball lies (0 where no pot is open)."""
+        pos = view.pos[rows]
+        tg = np.zeros(view.targets[rows].shape, bool)
+        tg[:, 8] = True
+        pt = self.pot_table(view, pos, view.on_table[rows], tg, pos[:, 0], np.zeros(len(rows), bool))
+        return np.argmax(pt["prob"][:, 8], axis=1)
+
+    def safeties(self, view, rows, cue, placed):
+        """``n_safe`` soft shots at the legal targets, ``n_bank`` one-rail kicks at them (aimed at a legal ball's
+        mirror image in a random cushion's line) and ``n_kick`` shots in any direction per row, the cue ball at
+        ``cue`` [n, 2] (``placed``: there by ball in hand)."""
+        R_ = view.params.R
+        n, Ks, Kk, Kb = len(rows), self.n_safe, self.n_kick, self.n_bank
+        rng = self.rng
+        w = (view.targets[rows] & view.on_table[rows]).astype(np.float64)
+        w[:, 0] = 0.0
+        w[w.sum(axis=1) == 0, 1:] = 1.0
+        cdf = np.cumsum(w, axis=1) / w.sum(axis=1, keepdims=True)
+        rep = np.repeat(np.arange(n), Ks)
+        ball = np.minimum((rng.random((n * Ks, 1)) > cdf[rep]).sum(axis=1), view.n_balls - 1)
+        d = view.pos[rows[rep], ball] - cue[rep]
+        dist = np.maximum(np.linalg.norm(d, axis=1), 2 * R_)
+        half = np.arcsin(np.minimum(2 * R_ / dist, 1.0)) * 0.95
+        phi_s = np.arctan2(d[:, 1], d[:, 0]) + half * rng.uniform(-1, 1, n * Ks)
+        sp_s = np.exp(rng.uniform(*np.log(SAFE_SPEEDS), n * Ks))
+        repk = np.repeat(np.arange(n), Kk)
+        phi_k = rng.uniform(0, 2 * np.pi, n * Kk)
+        sp_k = rng.uniform(*KICK_SPEEDS, n * Kk)
+        repb = np.repeat(np.arange(n), Kb)
+        ball_b = np.minimum((rng.random((n * Kb, 1)) > cdf[repb]).sum(axis=1), view.n_balls - 1)
+        img = view.pos[rows[repb], ball_b].copy()
+        rail = rng.integers(0, 4, n * Kb)                     # the cushion lines x = R, x = W - R, y = R, y = L - R
+        line = np.array([R_, view.table.width - R_, R_, view.table.length - R_])[rail]
+        axis = (rail >= 2).astype(np.int64)
+        img[np.arange(n * Kb), axis] = 2 * line - img[np.arange(n * Kb), axis]
+        db = img - cue[repb]
+        half_b = np.arcsin(np.minimum(2 * R_ / np.maximum(np.linalg.norm(db, axis=1), 2 * R_), 1.0)) * 0.5
+        phi_b = np.arctan2(db[:, 1], db[:, 0]) + half_b * rng.uniform(-1, 1, n * Kb)
+        sp_b = rng.uniform(*BANK_SPEEDS, n * Kb)
+        allrep = np.concatenate([rep, repk, repb])
+        m = len(allrep)
+        pocket = np.zeros(n, dtype=np.int64)
+        call = view.call_needed[rows]
+        if call.any():
+            pocket[call] = self.eight_pocket(view, rows[call])
+        return dict(row=rows[allrep], phi=np.concatenate([phi_s, phi_k, phi_b]),
+                    speed=np.concatenate([sp_s, sp_k, sp_b]),
+                    a=np.zeros(m), b=rng.uniform(-0.3, 0.3, m),
+                    placement=np.where(placed[allrep, None], cue[allrep], np.nan),
+                    pocket=pocket[allrep], safe=np.ones(m, bool))
+
+    def _plan(self, c, idx=None):
+        idx = slice(None) if idx is None else idx
+        return ShotPlan.of(Shots(c["phi"][idx], c["speed"][idx], c["a"][idx], c["b"][idx]),
+                           placement=c["placement"][idx], pocket=c["pocket"][idx])
+
+    # --- pushes ---------------------------------------------------------------------------------------------------
+    def push_values(self, view, rows):
+        """The best push-out per row: (shots, value)."""
+        n, K = len(rows), self.n_push
+        rep = np.repeat(np.arange(n), K)
+        phi = self.rng.uniform(0, 2 * np.pi, n * K)
+        speed = np.exp(self.rng.uniform(*np.log(PUSH_SPEEDS), n * K))
+        plan = ShotPlan.of(Shots(phi, speed, 0.0, 0.0))
+        pv = view.preview(plan, rows[rep])
+        self.sims += n * K
+        on = pv.on_table
+        tg = np.zeros_like(on)
+        low = np.argmax(on[:, 1:], axis=1) + 1              # 9-ball: the lowest ball on the table is the target
+        tg[np.arange(len(low)), low] = True
+        scratch = ~on[:, 0]
+        e = self.leave_ease(view, pv.pos, on, tg, scratch)
+        v = position_value(e, self.v_none, self.v_full)
+        val = np.where(scratch, 1.0 - v, np.minimum(v, 1.0 - v))
+        val = np.where(pv.record.game_over, (pv.record.winner == pv.record.shooter) * 1.0, val)
+        val = val.reshape(n, K)
+        k = np.argmax(val, axis=1)
+        pick = np.arange(n) * K + k
+        return (phi[pick], speed[pick]), val[np.arange(n), k]
+
+    # --- acting ---------------------------------------------------------------------------------------------------
+    def act(self, view) -> ShotPlan:
+        n = view.n
+        phi, speed, a, b = np.zeros(n), np.ones(n), np.zeros(n), np.zeros(n)
+        placement, declare, pocket = np.full((n, 2), np.nan), np.zeros(n, bool), np.zeros(n, dtype=np.int64)
+        value = np.full(n, np.nan)
+        kind = np.full(n, "break", dtype=object)
+        brk = np.nonzero(view.is_break)[0]
+        if len(brk):
+            g = self.ghost.act(view.take(brk))
+            phi[brk], speed[brk], a[brk], b[brk] = g.phi, g.speed, g.a, g.b
+            placement[brk], pocket[brk] = g.placement, g.pocket
+        play = np.nonzero(~view.is_break)[0]
+        for lo in range(0, len(play), CHUNK):
+            rows = play[lo:lo + CHUNK]
+            sh, pl, pk, val, safe = self.decide(view, rows)
+            phi[rows], speed[rows], a[rows], b[rows] = sh
+            placement[rows], pocket[rows], value[rows] = pl, pk, val
+            kind[rows] = np.where(safe, "safety", "pot")
+        if len(play):
+            # 9-ball declarations: a push-out that beats the shot; a pass where the shot is worth less than 1/2
+            push = play[view.push_out_allowed[play]]
+            if len(push) and self.n_push:
+                (pph, psp), pval = self.push_values(view, push)
+                use = pval > value[push]
+                r = push[use]
+                declare[r] = True
+                phi[r], speed[r], a[r], b[r] = pph[use], psp[use], 0.0, 0.0
+                placement[r] = np.nan
+                value[r] = pval[use]
+                kind[r] = "push"
+            pas = play[view.may_pass[play] & (value[play] < 0.5)]
+            declare[pas] = True
+            value[pas] = 1.0 - value[pas]
+            kind[pas] = "pass"
+        self.last_value, self.last_kind = value, kind
+        speed = np.clip(speed, 0.05, view.params.max_speed)
+        return ShotPlan.of(Shots(phi, speed, a, b), placement, declare, pocket)
+
+    def decide(self, view, rows):
+        """The best candidate of each view row in ``rows``: (shots, placement, pocket, value, whether it is a
+        safety or kick)."""
+        c = self.candidates(view, rows)
+        n = len(rows)
+        local = np.searchsorted(rows, c["row"])                       # rows are increasing
+        pv = view.preview(self._plan(c), c["row"])
+        self.sims += len(c["row"])
+        v0 = self.values(view, pv)
+        # the n_eval best per row (n_eval_safe of them kept for safeties and kicks), in one noisy batch
+        order = np.lexsort((-v0, local))                                # by row, best first
+        rank = np.empty(len(order), dtype=np.int64)
+        starts = np.searchsorted(local[order], np.arange(n))
+        rank[order] = np.arange(len(order)) - np.repeat(starts, np.diff(np.append(starts, len(order))))
+        srank = np.empty(len(order), dtype=np.int64)
+        so = np.lexsort((-v0, ~c["safe"], local))
+        ss = np.searchsorted(local[so], np.arange(n))
+        srank[so] = np.arange(len(so)) - np.repeat(ss, np.diff(np.append(ss, len(so))))
+        pick = np.nonzero((rank < self.n_eval - self.n_eval_safe) | (c["safe"] & (srank < self.n_eval_safe)))[0]
+        S = self.n_samples
+        rep = np.repeat(pick, S)
+        if S:
+            pvn = view.preview(self._plan(c, rep), c["row"][rep], noise=self.noise(view), rng=self.rng)
+            self.sims += len(rep)
+            vn = self.values(view, pvn).reshape(len(pick), S).mean(axis=1)
+        else:
+            vn = v0[pick]
+        # the best noisy mean per row (ties: the noise-free value)
+        score = vn + 1e-3 * v0[pick]
+        lp = local[pick]
+        o = np.lexsort((-score, lp))
+        first = o[np.searchsorted(lp[o], np.arange(n))]
+        best = pick[first]
+        return ((c["phi"][best], c["speed"][best], c["a"][best], c["b"][best]), c["placement"][best],
+                c["pocket"][best], vn[first], c["safe"][best])
+
+
+def game_lookahead(seed: int = 0, **kw) -> GameLookahead:
+    """The ``lookahead`` game bot (``bots.make_bot("lookahead")``)."""
+    return GameLookahead(seed=seed, **kw)
+
+
+# smaller search budgets, for measuring strength against compute (``module:factory`` entrants of scripts/match.py)
+BUDGETS = dict(fast=dict(n_pots=3, n_eval=8, n_samples=4), medium=dict(n_pots=4, n_eval=16, n_samples=8),
+               wide=dict(n_eval=64, n_samples=16))
+
+
+def lookahead_fast(seed: int = 0) -> GameLookahead:
+    """``lookahead`` with the ``fast`` budget (about a quarter of the default's previews)."""
+    bot = GameLookahead(seed=seed, **BUDGETS["fast"])
+    bot.name = "lookahead-fast"
+    return bot
+
+
+def lookahead_medium(seed: int = 0) -> GameLookahead:
+    """``lookahead`` with the ``medium`` budget (about half the default's previews)."""
+    bot = GameLookahead(seed=seed, **BUDGETS["medium"])
+    bot.name = "lookahead-medium"
+    return bot

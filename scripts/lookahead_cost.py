@@ -1,0 +1,141 @@
+#!/usr/bin/env python
+"""The two-player ``lookahead``'s compute: cost per decision on many tables, and strength against compute.
+
+    python scripts/lookahead_cost.py --game nine_ball --tables 1024            # cost per decision at 1,024 tables
+    python scripts/lookahead_cost.py --game eight_ball --budgets fast medium default --racks 60
+    python scripts/lookahead_cost.py --quick                                    # a few tables and racks (the test)
+
+``--tables``: N seeded tables are played ``--rounds`` shots into their games by ``ghost``; then the lookahead
+decides on all tables where a game is live, at once, ``--repeats`` times (after one warm-up call on a few tables,
+which compiles the kernels): the median wall time per decision and the previews per decision.
+
+``--budgets``: for each budget (``bots.game_lookahead.BUDGETS`` or ``default``), ``--racks`` paired racks against
+``--opponent`` (``studies.matches.play_pairing``, each rack twice, each side breaking once) at ``--noise``: the win
+rate with its Wilson 95% interval and the lookahead's wall time per shot over the match. Writes
+``<out>/budgets_<game>_<noise>.json`` and ``.md``.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+
+class Timed:
+    """A bot whose ``act`` calls are timed (seconds and decisions); ``tables`` holds the env tables where it
+    played a shot other than a break."""
+
+    def __init__(self, bot):
+        self.bot, self.name, self.seconds, self.decisions, self.tables = bot, bot.name, 0.0, 0, set()
+
+    def act(self, view):
+        t0 = time.perf_counter()
+        plan = self.bot.act(view)
+        self.seconds += time.perf_counter() - t0
+        self.decisions += view.n
+        self.tables.update(view.rows[~view.is_break].tolist())
+        return plan
+
+
+def bot_of(budget: str, seed: int):
+    from billiards_env.bots.game_lookahead import BUDGETS, GameLookahead
+    if budget != "default" and budget not in BUDGETS:
+        raise SystemExit(f"unknown budget {budget!r}; choose default or one of {sorted(BUDGETS)}")
+    bot = GameLookahead(seed=seed, **({} if budget == "default" else BUDGETS[budget]))
+    bot.name = "lookahead" if budget == "default" else f"lookahead-{budget}"
+    return bot
+
+
+def cost(game: str, n: int, rounds: int, repeats: int, seed: int, budget: str) -> dict:
+    import numpy as np
+
+    from billiards_env.bots import make_bot
+    from billiards_env.envs.games import GameConfig, GameCore
+    from billiards_env.envs.games.play import play_round
+
+    core = GameCore(GameConfig(game=game, noise="tournament"), n)
+    core.streams.seed(np.arange(n), seed * 1_000_003 + np.arange(n))
+    core.reset_tables(np.arange(n), np.zeros(n, dtype=np.int64))
+    ghosts = [make_bot("ghost", seed), make_bot("ghost", seed + 1)]
+    live = np.arange(n)
+    for _ in range(rounds):
+        out = play_round(core, ghosts, live)
+        live = live[~(out["terminated"] | out["truncated"])]
+    bot = bot_of(budget, seed)
+    bot.act(core.view(live[:4]))  # warm-up: compiles the kernels
+    times, sims = [], []
+    for _ in range(repeats):
+        s0 = bot.sims
+        t0 = time.perf_counter()
+        bot.act(core.view(live))
+        times.append(time.perf_counter() - t0)
+        sims.append(bot.sims - s0)
+    t = float(np.median(times))
+    return dict(game=game, budget=budget, tables=int(len(live)), seconds=t, ms_per_decision=1e3 * t / len(live),
+                previews_per_decision=float(np.median(sims)) / len(live))
+
+
+def budgets(game: str, names: list, racks: int, opponent: str, noise: str, seed: int) -> list:
+    from billiards_env.studies.matches import play_pairing
+    rows = []
+    for name in names:
+        bot = Timed(bot_of(name, seed))
+        t0 = time.perf_counter()
+        r = play_pairing(bot, opponent, game, n_racks=racks, seed=seed, noise=noise)
+        s = r.summary()
+        import numpy as np
+        played = np.isin(np.arange(r.n), sorted(bot.tables))
+        rows.append(dict(budget=name, opponent=opponent, games=s["games"], win_rate=s["a_win_rate"], ci95=s["ci95"],
+                         lost_without_a_shot=int(((r.winner == 1) & ~played).sum()),
+                         ms_per_shot=1e3 * bot.seconds / max(bot.decisions, 1), shots=bot.decisions,
+                         previews_per_shot=bot.bot.sims / max(bot.decisions, 1), match_seconds=time.perf_counter() - t0))
+    return rows
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--game", default="nine_ball", choices=["nine_ball", "eight_ball"])
+    ap.add_argument("--tables", type=int, default=0, help="time one decision on this many tables")
+    ap.add_argument("--rounds", type=int, default=3, help="shots played into the games before timing")
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--budget", default="default", help="the budget timed with --tables")
+    ap.add_argument("--budgets", nargs="*", default=[], help="budgets played against --opponent")
+    ap.add_argument("--racks", type=int, default=60)
+    ap.add_argument("--opponent", default="search64")
+    ap.add_argument("--noise", default="tournament")
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--out", default=str(ROOT / "results" / "matches" / "lookahead"))
+    ap.add_argument("--quick", action="store_true", help="8 tables, 1 repeat; the fast budget on 2 racks")
+    a = ap.parse_args(argv)
+    if a.quick:
+        a.tables, a.repeats, a.budgets, a.racks = 8, 1, ["fast"], 2
+    if a.tables:
+        print(json.dumps(cost(a.game, a.tables, a.rounds, a.repeats, a.seed, a.budget)))
+    if a.budgets:
+        rows = budgets(a.game, a.budgets, a.racks, a.opponent, a.noise, a.seed)
+        head = f"# lookahead budgets, {a.game}, {a.noise} noise, against {a.opponent}\n\n" \
+               f"`python scripts/lookahead_cost.py --game {a.game} --budgets {' '.join(a.budgets)} --racks {a.racks}" \
+               f" --noise {a.noise} --seed {a.seed}` ({a.racks} racks, each played twice)\n\n" \
+               "| budget | games | win rate | 95% interval | lost without a shot | ms per shot | previews per shot |\n" \
+               "|---|---|---|---|---|---|---|\n"
+        md = head + "".join(f"| {r['budget']} | {r['games']} | {r['win_rate']:.3f} | {r['ci95'][0]:.3f}-{r['ci95'][1]:.3f}"
+                            f" | {r['lost_without_a_shot']} | {r['ms_per_shot']:.1f} | {r['previews_per_shot']:.0f} |\n"
+                            for r in rows)
+        md += "\n'lost without a shot': games the lookahead lost without playing a shot other than its break.\n"
+        print(md)
+        if not a.quick:
+            out = Path(a.out)
+            out.mkdir(parents=True, exist_ok=True)
+            stem = out / f"budgets_{a.game}_{a.noise}"
+            stem.with_suffix(".json").write_text(json.dumps(rows, indent=1))
+            stem.with_suffix(".md").write_text(md)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,142 @@
+"""The two-player ``lookahead`` (bots.game_lookahead): position play, safeties, legal plans, determinism."""
+import numpy as np
+import pytest
+
+from billiards_env.bots import make_bot
+from billiards_env.bots.game_lookahead import GameLookahead
+from billiards_env.bots.plan import ShotPlan
+from billiards_env.envs.games import GameConfig, GameCore
+from billiards_env.physics.strike import Shots
+from billiards_env.rules import records as R
+from billiards_env.studies.matches import play_pairing
+
+SMALL = dict(n_pots=2, n_eval=4, n_eval_safe=1, n_samples=2, n_safe=4, n_kick=2, n_push=4)  # a cheap budget
+
+
+def nine_ball_view(balls: dict):
+    """The view of one 9-ball table in open play with the balls of ``balls`` (ball -> (x, y)), the rest pocketed."""
+    core = GameCore(GameConfig(game="nine_ball"), 1)
+    core.streams.seed([0], [0])
+    core.reset_tables([0], [0])
+    core.state.pocket[0] = 0
+    for b, xy in balls.items():
+        core.state.pos[0, b] = xy
+        core.state.pocket[0, b] = -1
+    core.game.phase[0] = R.PHASE_PLAY
+    core.game.ball_in_hand[0] = R.IN_HAND_NONE
+    core._changed()
+    return core.view([0])
+
+
+def shot(phi, speed, b=0.0):
+    return ShotPlan.of(Shots(np.array([phi]), speed, 0.0, b))
+
+
+def test_make_bot_gives_the_game_lookahead():
+    bot = make_bot("lookahead", seed=3)
+    assert isinstance(bot, GameLookahead) and bot.name == "lookahead"
+
+
+def test_prefers_a_pot_that_leaves_a_shot():
+    """The 1 is straight in along the diagonal: drawn back, the cue ball stops behind the 9, with no pot on the 2;
+    stunned, it stays near the 1's spot with the 2 open. The bot pots the 1 and leaves a shot, and values that
+    above the draw."""
+    view = nine_ball_view({0: (0.6, 0.6), 1: (0.3, 0.3), 2: (1.0, 2.2), 9: (0.92, 1.52)})
+    bot = GameLookahead(seed=0)
+    draw = view.preview(shot(np.arctan2(-1, -1), 2.5, -0.4))
+    assert draw.pocket[0, 1] >= 0 and draw.pocket[0, 0] < 0                       # it pots the 1 ...
+    assert bot.leave_ease(view, draw.pos, draw.on_table, draw.next.targets, np.zeros(1, bool))[0] == 0.0  # no shot
+    plan = bot.act(view)
+    assert bot.last_kind[0] == "pot"
+    mine = view.preview(plan)
+    assert mine.pocket[0, 1] >= 0 and mine.pocket[0, 0] < 0 and not mine.record.turn_over[0]
+    ease = bot.leave_ease(view, mine.pos, mine.on_table, mine.next.targets, np.zeros(1, bool))[0]
+    assert ease > 0.3, ease
+    assert bot.values(view, mine)[0] > bot.values(view, draw)[0]
+
+
+def test_prefers_a_safety_to_a_low_percentage_pot():
+    """The 1's only pot is a long, thin cut (about one in ten goes); a miss leaves the opponent an easy pot
+    (their best pot's ease above 0.6 on average). With at least 4 of 5 seeds the bot plays a safety (legal, nothing
+    pocketed), worth more to it than the pot under the same noise."""
+    balls = {0: (1.082, 2.278), 1: (0.344, 1.014), 4: (0.321, 0.362), 7: (0.098, 1.278), 9: (0.202, 0.487)}
+    view = nine_ball_view(balls)
+    bot = GameLookahead(seed=0)
+    pt = bot.pot_table(view, view.pos, view.on_table, view.targets, view.pos[:, 0], np.zeros(1, bool))
+    p = np.argmax(pt["prob"][0, 1])
+    assert 0.0 < pt["prob"][0, 1, p] < 0.5                                       # a pot is open, but hard
+    # the pot, struck 64 times under tournament noise: it mostly misses, and a miss leaves the opponent a run
+    n = 64
+    pot = ShotPlan.of(Shots(np.full(n, pt["phi"][0, 1, p]), 1.8 * bot.pot_speed(view, pt["dcg"][0, 1, p],
+                                                                               pt["dop"][0, 1, p], pt["cut"][0, 1, p]),
+                            0.0, 0.0))
+    pv = view.preview(pot, np.zeros(n, dtype=np.int64), noise="tournament", rng=np.random.default_rng(1))
+    assert (pv.pocket[:, 1] >= 0).mean() < 0.3
+    miss = pv.pocket[:, 1] < 0
+    after = bot.leave_ease(view, pv.pos, pv.on_table, pv.next.targets, pv.next.ball_in_hand != R.IN_HAND_NONE)
+    assert after[miss].mean() > 0.6                                             # the opponent's easy shot
+    assert bot.values(view, pv).mean() < 0.4
+    pot_value = bot.values(view, pv).mean()
+    safe = 0
+    for seed in range(5):  # its safeties are sampled: the preference holds for (nearly) every seed
+        bot = GameLookahead(seed=seed)
+        mine = view.preview(bot.act(view))
+        if bot.last_kind[0] == "safety" and mine.record.legal[0] and mine.record.turn_over[0] \
+                and ((mine.pocket >= 0) == (view.pocket >= 0)).all():             # legal, nothing pocketed
+            safe += 1
+            assert bot.last_value[0] > pot_value
+    assert safe >= 4, safe
+
+
+def _check_plan(view, plan, seen):
+    plan.check(view.n, view.params)
+    hand = view.in_hand & ~view.is_break
+    if hand.any():
+        _, moved = view.legal_placement(plan.placement[hand], np.nonzero(hand)[0])
+        assert not moved.any()                                                   # searched spots are legal
+    assert not (plan.declare & ~(view.push_out_allowed | view.may_pass)).any()
+    call = view.call_needed
+    assert ((plan.pocket[call] >= 0) & (plan.pocket[call] < len(view.table.pockets))).all()
+    seen["break"] += view.is_break.sum()
+    seen["hand"] += hand.sum()
+    seen["push_phase"] += view.push_out_allowed.sum() + view.may_pass.sum()
+    seen["call"] += call.sum()
+
+
+@pytest.mark.parametrize("game", ["nine_ball", "eight_ball"])
+def test_plays_legal_plans(game):
+    """Seeded games against search64: every plan is well formed, ball-in-hand spots are legal, declarations only
+    where allowed, a pocket called on the 8; breaks, ball in hand, the push-out phase (9-ball) and the 8 all occur."""
+    bot = GameLookahead(seed=1, **SMALL)
+    seen = dict(IN=0, **{k: 0 for k in ("break", "hand", "push_phase", "call")})
+    act = bot.act
+
+    def checked(view):
+        plan = act(view)
+        _check_plan(view, plan, seen)
+        return plan
+
+    bot.act = checked
+    r = play_pairing(bot, "search64", game, n_racks=12, seed=5, noise="tournament")
+    assert r.n == 24 and (r.winner >= 0).mean() > 0.9
+    assert seen["break"] >= 12 and seen["hand"] > 0
+    assert seen["push_phase" if game == "nine_ball" else "call"] > 0, seen
+
+
+def test_deterministic_for_a_seed():
+    runs = [play_pairing(GameLookahead(seed=4, **SMALL), "ghost", "nine_ball", n_racks=6, seed=2, noise="tournament")
+            for _ in range(2)]
+    assert np.array_equal(runs[0].winner, runs[1].winner) and np.array_equal(runs[0].shots, runs[1].shots)
+
+
+def test_cost_script_quick(capsys):
+    """scripts/lookahead_cost.py's quick mode: a timed decision on a few tables and a two-rack budget match."""
+    import importlib.util
+    from pathlib import Path
+    path = Path(__file__).resolve().parents[2] / "scripts" / "lookahead_cost.py"
+    spec = importlib.util.spec_from_file_location("lookahead_cost", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    assert mod.main(["--quick"]) == 0
+    out = capsys.readouterr().out
+    assert '"previews_per_decision"' in out and "| fast | 4 |" in out and "lost without a shot" in out
