@@ -47,6 +47,7 @@ import numpy as np
 from ..physics.noise import NoiseConfig
 from ..physics.strike import Shots
 from ..rules import records as RR
+from .geometry.lines import blocked, ghost_ball
 from .ghost import GhostBot
 from .plan import ShotPlan
 
@@ -97,26 +98,7 @@ class PocketModel:
         return self.aims, self.axes, self.approach, self.half
 
 
-# --- geometry kernels ---------------------------------------------------------------------------------------------
-@_jit
-def _seg_d2(ax, ay, bx, by, px, py):
-    """Squared distance from (px, py) to the segment a-b."""
-    dx, dy = bx - ax, by - ay
-    L2 = max(dx * dx + dy * dy, 1e-18)
-    t = min(max(((px - ax) * dx + (py - ay) * dy) / L2, 0.0), 1.0)
-    qx, qy = ax + t * dx - px, ay + t * dy - py
-    return qx * qx + qy * qy
-
-
-@_jit
-def _clear(pos, on, skip, ax, ay, bx, by, d2):
-    """No ball on the table but the cue ball and ``skip`` lies within sqrt(d2) of the segment a-b."""
-    for j in range(1, pos.shape[0]):
-        if j != skip and on[j] and _seg_d2(ax, ay, bx, by, pos[j, 0], pos[j, 1]) < d2:
-            return False
-    return True
-
-
+# --- geometry kernels (the ghost ball and the blocked-path test come from bots.geometry.lines) ------------------
 @_jit
 def _pot(pos, on, b, p, cx, cy, hand, pockets, lim):
     """The ghost-ball pot of ball ``b`` into pocket ``p`` with the cue ball at (cx, cy) (``hand``: placed at will):
@@ -125,16 +107,13 @@ def _pot(pos, on, b, p, cx, cy, hand, pockets, lim):
     aims, axes, approach, half = pockets
     R, clear, max_cut, sig_aim, sig_model, hand_dcg = lim
     ox, oy = pos[b, 0], pos[b, 1]
-    ux, uy = aims[p, 0] - ox, aims[p, 1] - oy
-    dop = math.hypot(ux, uy)
+    dop = math.hypot(aims[p, 0] - ox, aims[p, 1] - oy)
     if dop < 1e-9:
         return 0.0, 0.0, 0.0, 0.0, 0.0
-    ux /= dop
-    uy /= dop
+    ux, uy, gx, gy = ghost_ball(ox, oy, aims[p, 0], aims[p, 1], R, dop)
     app = math.acos(min(max(ux * axes[p, 0] + uy * axes[p, 1], -1.0), 1.0))
     if app > approach[p]:
         return 0.0, 0.0, 0.0, 0.0, 0.0
-    gx, gy = ox - 2 * R * ux, oy - 2 * R * uy
     d2 = (2 * R + clear) ** 2
     if hand:
         dcg, cut, phi = hand_dcg, 0.0, math.atan2(uy, ux)
@@ -144,10 +123,10 @@ def _pot(pos, on, b, p, cx, cy, hand, pockets, lim):
         if dcg < 1e-9:
             return 0.0, 0.0, 0.0, 0.0, 0.0
         cut = math.acos(min(max((vx * ux + vy * uy) / dcg, -1.0), 1.0))
-        if cut > max_cut or not _clear(pos, on, b, cx, cy, gx, gy, d2):
+        if cut > max_cut or blocked(pos, on, b, -1, cx, cy, gx, gy, d2):
             return 0.0, 0.0, 0.0, 0.0, 0.0
         phi = math.atan2(vy, vx)
-    if not _clear(pos, on, b, ox, oy, aims[p, 0], aims[p, 1], d2):
+    if blocked(pos, on, b, -1, ox, oy, aims[p, 0], aims[p, 1], d2):
         return 0.0, 0.0, 0.0, 0.0, 0.0
     sig = math.hypot(sig_aim * dcg / (2 * R * max(math.cos(cut), 0.2)), sig_model)
     tol = half[p] * (0.5 + 0.5 * math.cos(app)) / dop
