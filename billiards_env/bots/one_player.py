@@ -144,8 +144,7 @@ class SearchPolicy:
         sh = G.ghost_shots(state.pos, state.on_table, target, table, params, 0.0)
         P = sh["phi"].shape[1]
         # pockets ranked by the ghost-ball cost; candidates favour the easy ones
-        cost = sh["cut"] + 0.5 * (sh["d_cg"] + sh["d_op"])
-        cost = np.where(sh["valid"], cost, np.inf)
+        cost = np.where(sh["valid"], G.pot_cost(sh, 0.5), np.inf)
         order = np.argsort(cost, axis=1)                       # [E, P]
         n_valid = np.maximum(np.isfinite(cost).sum(axis=1), 1)
         # pocket rank for each candidate: first P candidates cover every pocket

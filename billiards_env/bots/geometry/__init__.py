@@ -35,13 +35,13 @@ bit-identity at once (a 9-ball pairing of ``ghost-safety`` and
 ``search64``, 24 games, ended differently).
 """
 from .batched import (KICK_POCKET_CLEAR, choose_pocket, contact_shots, ghost_ball_shot, ghost_shots,
-                      kick_shots, open_pots)
+                      kick_shots, open_pots, pot_cost)
 from .game import (PotLimits, SpotLimits, best_pots, nearest_open_target, open_lines,
                    straight_in_spots)
 from .pockets import pocket_aim_points, pocket_axes, pocket_limits, side_pocket_mask
 from .speed import required_speed, rolling_strike_speed
 
 __all__ = ["KICK_POCKET_CLEAR", "choose_pocket", "contact_shots", "ghost_ball_shot", "ghost_shots", "kick_shots",
-           "open_pots", "PotLimits", "SpotLimits", "best_pots", "nearest_open_target", "open_lines",
+           "open_pots", "pot_cost", "PotLimits", "SpotLimits", "best_pots", "nearest_open_target", "open_lines",
            "straight_in_spots", "pocket_aim_points", "pocket_axes", "pocket_limits", "side_pocket_mask",
            "required_speed", "rolling_strike_speed"]

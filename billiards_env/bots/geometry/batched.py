@@ -111,6 +111,13 @@ def contact_shots(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, ful
     return phi, path, blocked
 
 
+def pot_cost(shots: dict, dist_weight: float, cut_weight: float = 1.0) -> np.ndarray:
+    """How hard each pot of ``ghost_shots`` is [E, P]: ``cut_weight`` x the cut
+    angle (rad) + ``dist_weight`` x the total distance (m), cue to ghost ball
+    and object ball to pocket (the game kernels' ``best_pots`` rank pots the same way)."""
+    return cut_weight * shots["cut"] + dist_weight * (shots["d_cg"] + shots["d_op"])
+
+
 def choose_pocket(shots: dict, cut_weight: float = 1.0, dist_weight: float = 0.35,
                   approach_limit_corner: float = math.radians(CORNER_ACCEPT_DEG),
                   approach_limit_side: float = math.radians(SIDE_ACCEPT_DEG),
@@ -118,7 +125,7 @@ def choose_pocket(shots: dict, cut_weight: float = 1.0, dist_weight: float = 0.3
     """Index [E] of the easiest pocket: smallest cut angle (rad) plus
     ``dist_weight`` x total distance (m), skipping blocked lines and pockets
     approached too steeply; if every pocket is excluded, the smallest cut."""
-    cost = cut_weight * shots["cut"] + dist_weight * (shots["d_cg"] + shots["d_op"])
+    cost = pot_cost(shots, dist_weight, cut_weight)
     bad = ~open_pots(shots, side_mask, approach_limit_corner, approach_limit_side)
     cost_ok = np.where(bad, np.inf, cost)
     best = np.argmin(cost_ok, axis=1)
