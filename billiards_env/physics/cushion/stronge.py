@@ -20,7 +20,7 @@ and the normal impulse per unit mass, in units of the approach speed w,
 p(theta) = 1 - cos(theta), then 1 + e_c sin((theta - pi/2) / e_c).
 
 With eta^2 = k_n / k_t = beta_t / r^2, v0 = the initial slip / w and
-mu = f_c, the regime follows from v0 alone (eqs. 5.29-5.33 of the book):
+mu = f_c, the regime follows from v0 alone (the book, ch. 5):
 
 - gross slip, v0 > mu ((1 + e_c) beta_t - eta^2 / e_c): the slip never
   ends; v_f = v0 - mu beta_t (1 + e_c);
