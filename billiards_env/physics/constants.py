@@ -78,5 +78,5 @@ EVENT_NAMES = ("start", "ball-ball", "cushion", "jaw-tip", "pocket",
                "slide-roll", "roll-stop", "spin-stop")
 
 # --- parameter vector layout (PhysicsParams.as_array) -----------------------
-P_M, P_R, P_G, P_MU_S, P_MU_R, P_MU_SP, P_MU_B, P_E_B, P_E_C, P_F_C, P_H_C = range(11)
-N_PARAMS = 11
+P_M, P_R, P_G, P_MU_S, P_MU_R, P_MU_SP, P_MU_B, P_E_B, P_E_C, P_F_C, P_H_C, P_KT_KN = range(12)
+N_PARAMS = 12

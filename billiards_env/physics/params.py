@@ -8,8 +8,11 @@ Presets:
   specification; felt friction from Alciatore ("The Illustrated Principles of
   Pool and Billiards", technical proofs); ball-ball restitution 0.95 and friction 0.06
   from Alciatore's throw analysis and Marlow; cushion restitution 0.85, friction 0.2 and
-  nose height 7R/5 from Han (2005), "Dynamics in carom and three cushion
-  billiards"; spinning friction 0.0127 as used by pooltool (Kiefl).
+  nose height 0.04 m (about 7R/5, which is 0.040005 m) from Han (2005), "Dynamics in
+  carom and three cushion billiards"; spinning friction 0.0127 as used by pooltool
+  (Kiefl); the cushion's tangential to normal contact stiffness 0.826 (the
+  ``stronge`` model; omega_t / omega_n = sqrt(3.5 kt_kn) = 1.7, pooltool 0.6.0's
+  default, in Stronge's (2018) range 1 to 2).
 """
 from __future__ import annotations
 
@@ -36,7 +39,8 @@ class PhysicsParams:
     e_b: float = 0.95           # ball-ball restitution
     e_c: float = 0.85           # ball-cushion restitution (Han 2005)
     f_c: float = 0.2            # ball-cushion friction (Han 2005)
-    h_c: float = 0.04           # cushion nose height above the felt (m): 7R/5 (Han 2005)
+    h_c: float = 0.04           # cushion nose height above the felt (m), ~7R/5 (Han 2005; 7R/5 is 0.040005 m)
+    kt_kn: float = 0.826        # cushion's tangential / normal contact stiffness (stronge): omega_t/omega_n = 1.7, pooltool 0.6.0's default
     k: float = 5666.7           # cue spring constant (N/m): max draw gives ~10 m/s
     contact_time: float = 0.001  # cue-ball contact time (s)
     max_draw: float = 0.3       # longest cue draw distance (m)
@@ -80,6 +84,9 @@ class PhysicsParams:
                 raise ValueError(f"PhysicsParams.{name} (a restitution) must lie in [0, 1], got {v}")
         if not self.R < self.h_c < 2 * self.R:
             raise ValueError(f"PhysicsParams.h_c must lie between R and 2R (cushion nose above the ball's equator), got {self.h_c}")
+        if not 1.0 / 3.5 < self.kt_kn < 4.0 / 3.5:
+            raise ValueError("PhysicsParams.kt_kn must lie in (1/3.5, 4/3.5) (omega_t / omega_n = sqrt(3.5 kt_kn) "
+                             f"in (1, 2), where Stronge's three regimes hold), got {self.kt_kn}")
         if not 0 < self.miscue_limit < 1:
             raise ValueError(f"PhysicsParams.miscue_limit must lie in (0, 1), got {self.miscue_limit}")
 
@@ -107,6 +114,7 @@ class PhysicsParams:
         out[C.P_E_C] = self.e_c
         out[C.P_F_C] = self.f_c
         out[C.P_H_C] = self.h_c
+        out[C.P_KT_KN] = self.kt_kn
         return out
 
     def to_dict(self) -> dict:

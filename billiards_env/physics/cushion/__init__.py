@@ -14,6 +14,8 @@ from . import reflection
 MODELS = {name: importlib.import_module(f"{__name__}.{name}") for name in (
     "han2005",
     "mathavan2010",
+    "stronge",
+    "impulse_frictional",
 )}
 
 

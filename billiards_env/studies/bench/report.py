@@ -35,6 +35,15 @@ def _effects_table(rows: list[dict], nt: int) -> list[str]:
     return lines + [""]
 
 
+def _impact_table(rows: list[dict]) -> list[str]:
+    """The models section's per-impact cost (``impacts.impact_rows``)."""
+    lines = ["| cushion model | impacts | µs per impact | vs the baseline |", "|---|---:|---:|---:|"]
+    for r in rows:
+        ratio = f"{r['vs_baseline']:.2f}x" if r.get("vs_baseline") else "-"
+        lines.append(f"| {r['effects']} | {r['batch']} | {r['us_per_impact']:.3f} | {ratio} |")
+    return lines + [""]
+
+
 def _env_table(rows: list[dict]) -> list[str]:
     lines = ["| task | tables | autoreset | env steps/s | time in simulator | env overhead |",
              "|---|---:|---|---:|---:|---:|"]
@@ -55,9 +64,13 @@ def markdown(rows: list[dict]) -> str:
     part = {k: [r for r in rows if r["section"] == k] for k in SECTION_NAMES.values()}
     if part["solver"]:
         lines += _solver_table(part["solver"], nt)
+    impacts = [r for r in part["models"] if "us_per_impact" in r]
+    if impacts:
+        lines += _impact_table(impacts)
     for k in ("effects", "models"):
-        if part[k]:
-            lines += _effects_table(part[k], nt)
+        rest = [r for r in part[k] if "us_per_impact" not in r]
+        if rest:
+            lines += _effects_table(rest, nt)
     if part["env"]:
         lines += _env_table(part["env"])
     if part["rllib"]:  # the RLlib backend's section (agents/rllib/bench.py, plugged in by scripts/benchmark.py)

@@ -15,6 +15,7 @@ import numpy as np
 
 from billiards_env.physics import Effects, PhysicsParams, Table, set_num_threads, simulate
 
+from .impacts import impact_rows
 from .options import RunOptions
 from .scenes import SCENES, chosen_scenes
 from .timing import simulator_clock, timeit
@@ -217,7 +218,7 @@ def games_markdown(opts: RunOptions) -> str:
 _SECTIONS = {
     "solver": ("solvers:", lambda o, P, T: solver_rows(o, P, T)),
     "effects": ("effects:", lambda o, P, T: effects_rows(o, P, T)),
-    "models": ("models:", lambda o, P, T: effects_rows(o, P, T, model_sets(), "models")),
+    "models": ("models:", lambda o, P, T: impact_rows(o, P) + effects_rows(o, P, T, model_sets(), "models")),
     "env": ("environments:", lambda o, P, T: env_rows(o)),
     "cold": ("cold start:", lambda o, P, T: cold_start_rows(o)),
     "rllib": ("rllib:", lambda o, P, T: rllib_rows(o)),  # needs the ray extra; not in the default sections
