@@ -39,7 +39,9 @@ Cost per decision: about ``starts x n_pots x variants + n_safe + n_bank + n_kick
 """
 from __future__ import annotations
 
+import dataclasses
 import math
+from typing import NamedTuple
 
 import numba
 import numpy as np
@@ -134,8 +136,9 @@ def _pot(pos, on, b, p, cx, cy, hand, pockets, lim):
 
 
 @_jit
-def _pot_table(pos, on, targets, cue, hand, pockets, lim, prob, phi, dcg, dop, cut):
-    """Every legal ball's pot into every pocket, per table e (cue ball at ``cue[e]``): arrays [n, B, P]."""
+def _pot_table(pos, on, targets, cue, hand, pockets, lim, out):
+    """Every legal ball's pot into every pocket, per table e (cue ball at ``cue[e]``): ``out``, ``PotArrays`` [n, B, P]."""
+    prob, phi, dcg, dop, cut = out
     for e in range(pos.shape[0]):
         for b in range(1, pos.shape[1]):
             for p in range(pockets[0].shape[0]):
@@ -164,26 +167,62 @@ def position_value(ease: np.ndarray, v_none: float = V_NONE, v_full: float = V_F
     return v_none + (v_full - v_none) * ease
 
 
+class PotArrays(NamedTuple):
+    """A pot table's outputs, each [n, B, P]: success probability, aim, cue-ghost and ball-pocket distances, cut."""
+    prob: np.ndarray
+    phi: np.ndarray
+    dcg: np.ndarray
+    dop: np.ndarray
+    cut: np.ndarray
+
+
+@dataclasses.dataclass(frozen=True)
+class Budget:
+    """What ``GameLookahead`` searches: candidate counts (pots tried per
+    table, and with ball in hand; safeties, kicks, one-rail kicks, push-outs),
+    how many candidates are re-judged under noise (pots, safeties) and with
+    how many noise samples, the pots' variants (overcuts against throw, speed
+    factors, tip heights), and the leave model (``sigma_model``; ``v_none``,
+    ``v_full``: see ``position_value``)."""
+
+    n_pots: int = 6
+    hand_pots: int = 3
+    n_safe: int = 16
+    n_kick: int = 8
+    n_bank: int = 16
+    n_push: int = 24
+    n_eval: int = 32
+    n_eval_safe: int = 4
+    n_samples: int = 12
+    throws: tuple = THROW
+    speeds: tuple = SPEEDS
+    heights: tuple = HEIGHTS
+    sigma_model: float = SIGMA_MODEL
+    v_none: float = V_NONE
+    v_full: float = V_FULL
+
+
 # --- the bot ------------------------------------------------------------------------------------------------------
 class GameLookahead:
     """Two-player lookahead: see the module docstring."""
 
     name = "lookahead"
 
-    def __init__(self, seed: int = 0, n_pots: int = 6, hand_pots: int = 3, n_safe: int = 16, n_kick: int = 8,
-                 n_bank: int = 16,
-                 n_push: int = 24, n_eval: int = 32, n_eval_safe: int = 4, n_samples: int = 12,
-                 throws: tuple = THROW, speeds: tuple = SPEEDS, heights: tuple = HEIGHTS,
-                 sigma_model: float = SIGMA_MODEL, v_none: float = V_NONE, v_full: float = V_FULL):
-        if n_safe + n_kick + n_bank < 1:
+    def __init__(self, seed: int = 0, budget: "Budget | None" = None, **changes):
+        """``budget``: the search's sizes and the leave model (``Budget``; the
+        default if None), with ``changes`` to its fields applied."""
+        bud = dataclasses.replace(budget or Budget(), **changes)
+        if bud.n_safe + bud.n_kick + bud.n_bank < 1:
             raise ValueError("GameLookahead needs n_safe + n_kick + n_bank >= 1 (every table keeps a candidate)")
+        self.budget = bud
         self.rng = np.random.default_rng(seed)
         self.ghost = GhostBot(seed=seed)
-        self.n_pots, self.hand_pots, self.n_safe, self.n_kick, self.n_push = n_pots, hand_pots, n_safe, n_kick, n_push
-        self.n_bank = int(n_bank)
-        self.n_eval, self.n_eval_safe, self.n_samples = n_eval, n_eval_safe, n_samples
-        self.throws, self.speeds, self.heights = tuple(throws), tuple(speeds), tuple(heights)
-        self.sigma_model, self.v_none, self.v_full = float(sigma_model), float(v_none), float(v_full)
+        self.n_pots, self.hand_pots, self.n_safe, self.n_kick, self.n_push = (bud.n_pots, bud.hand_pots, bud.n_safe,
+                                                                              bud.n_kick, bud.n_push)
+        self.n_bank = int(bud.n_bank)
+        self.n_eval, self.n_eval_safe, self.n_samples = bud.n_eval, bud.n_eval_safe, bud.n_samples
+        self.throws, self.speeds, self.heights = tuple(bud.throws), tuple(bud.speeds), tuple(bud.heights)
+        self.sigma_model, self.v_none, self.v_full = float(bud.sigma_model), float(bud.v_none), float(bud.v_full)
         self.model: PocketModel | None = None
         self.sims = 0        # shots previewed so far (cost accounting)
         self.last_value = None  # [n] the value of the played shot at the last decision (diagnostics)
@@ -204,11 +243,11 @@ class GameLookahead:
         """``_pot_table`` over tables (cue ball at ``cue`` [n, 2], ``hand`` [n]): dict of [n, B, P] arrays."""
         n, B = pos.shape[:2]
         P = len(self.pockets(view).aims)
-        out = {k: np.zeros((n, B, P)) for k in ("prob", "phi", "dcg", "dop", "cut")}
+        out = PotArrays(*(np.zeros((n, B, P)) for _ in PotArrays._fields))
         _pot_table(np.ascontiguousarray(pos), np.ascontiguousarray(on), np.ascontiguousarray(targets),
                    np.ascontiguousarray(cue, dtype=np.float64), np.ascontiguousarray(hand, dtype=np.bool_),
-                   self.pockets(view).arrays(), self._lim(view), *out.values())
-        return out
+                   self.pockets(view).arrays(), self._lim(view), out)
+        return out._asdict()
 
     def leave_ease(self, view, pos, on, targets, hand) -> np.ndarray:
         """[n] the ease of the shooter's best pot on tables after a shot (``hand``: ball in hand)."""
