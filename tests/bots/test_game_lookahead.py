@@ -5,27 +5,17 @@ import pytest
 from billiards_env.bots import make_bot
 from billiards_env.bots.game_lookahead import GameLookahead
 from billiards_env.bots.plan import ShotPlan
-from billiards_env.envs.games import GameConfig, GameCore
 from billiards_env.physics.strike import Shots
 from billiards_env.rules import records as R
+from billiards_env.testing.positions import game_table
 from billiards_env.studies.matches import play_pairing
 
 SMALL = dict(n_pots=2, n_eval=4, n_eval_safe=1, n_samples=2, n_safe=4, n_kick=2, n_push=4)  # a cheap budget
 
 
 def nine_ball_view(balls: dict):
-    """The view of one 9-ball table in open play with the balls of ``balls`` (ball -> (x, y)), the rest pocketed."""
-    core = GameCore(GameConfig(game="nine_ball"), 1)
-    core.streams.seed([0], [0])
-    core.reset_tables([0], [0])
-    core.state.pocket[0] = 0
-    for b, xy in balls.items():
-        core.state.pos[0, b] = xy
-        core.state.pocket[0, b] = -1
-    core.game.phase[0] = R.PHASE_PLAY
-    core.game.ball_in_hand[0] = R.IN_HAND_NONE
-    core._changed()
-    return core.view([0])
+    """The view of one 9-ball table in open play with the balls of ``balls``, the rest pocketed."""
+    return game_table("nine_ball", balls).view([0])
 
 
 def shot(phi, speed, b=0.0):

@@ -12,6 +12,7 @@ from billiards_env.envs.games import GameConfig, GameCore
 from billiards_env.rules.placement import HEAD_STRING
 from billiards_env.envs.games.vector import GameVectorEnv
 from billiards_env.rules import records as R
+from billiards_env.testing.positions import game_table
 
 GAMES = ["nine_ball", "eight_ball", "ten_ball"]
 IDS = ["Billiards-NineBall2P-v0", "Billiards-EightBall-v0", "Billiards-TenBall-v0"]
@@ -153,19 +154,8 @@ def test_ghost_beats_random(game):
 
 # ------------------------------------------------ rules through the simulator --
 def nine_ball_table(balls: dict):
-    """A 9-ball game core of one table in open play (no ball in hand), with
-    the balls of ``balls`` (ball -> (x, y)) on the table, the others pocketed."""
-    core = GameCore(GameConfig(game="nine_ball"), 1)
-    core.streams.seed([0], [0])
-    core.reset_tables([0], [0])
-    core.state.pocket[0] = 0
-    for b, xy in balls.items():
-        core.state.pos[0, b] = xy
-        core.state.pocket[0, b] = -1
-    core.game.phase[0] = R.PHASE_PLAY
-    core.game.ball_in_hand[0] = R.IN_HAND_NONE
-    core._changed()
-    return core
+    """A 9-ball core of one table in open play with the balls of ``balls`` on the table (``testing.positions``)."""
+    return game_table("nine_ball", balls)
 
 
 def shoot(core, phi, speed):

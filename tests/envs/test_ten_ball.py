@@ -14,6 +14,7 @@ from billiards_env.envs.games import GameConfig, GameCore
 from billiards_env.envs.games.vector import GameVectorEnv
 from billiards_env.physics.strike import Shots
 from billiards_env.rules import records as R
+from billiards_env.testing.positions import game_table
 from billiards_env.rules.placement import FOOT_SPOT
 
 ID = "Billiards-TenBall-v0"
@@ -42,19 +43,8 @@ PARKED = {b: (0.2 + 0.1 * (b - 2), 2.2) for b in range(2, 11)}  # balls 2..10 ou
 
 
 def ten_ball_table(balls: dict, phase=R.PHASE_PLAY, hand=R.IN_HAND_NONE):
-    """A 10-ball core of one table in ``phase``, with the balls of ``balls``
-    (ball -> (x, y)) on the table and the others pocketed."""
-    core = GameCore(GameConfig(game="ten_ball"), 1)
-    core.streams.seed([0], [0])
-    core.reset_tables([0], [0])
-    core.state.pocket[0] = 0
-    for b, xy in balls.items():
-        core.state.pos[0, b] = xy
-        core.state.pocket[0, b] = -1
-    core.game.phase[0] = phase
-    core.game.ball_in_hand[0] = hand
-    core._changed()
-    return core
+    """A 10-ball core of one table in ``phase`` with the balls of ``balls`` on the table (``testing.positions``)."""
+    return game_table("ten_ball", balls, phase, hand)
 
 
 def shoot(core, phi, speed, ball=None, pocket=None, declare=None, placement=None):
