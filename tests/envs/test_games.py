@@ -160,7 +160,7 @@ def nine_ball_table(balls: dict):
 
 def shoot(core, phi, speed):
     from billiards_env.physics.strike import Shots
-    a = core.actions_for(Shots(np.array([phi]), np.array([speed]), np.zeros(1), np.zeros(1)), [0])
+    a = core.codec([0]).encode(Shots(np.array([phi]), np.array([speed]), np.zeros(1), np.zeros(1)))
     return core.step(a, [0])
 
 

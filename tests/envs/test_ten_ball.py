@@ -48,7 +48,7 @@ def ten_ball_table(balls: dict, phase=R.PHASE_PLAY, hand=R.IN_HAND_NONE):
 
 
 def shoot(core, phi, speed, ball=None, pocket=None, declare=None, placement=None):
-    a = core.actions_for(Shots(np.array([phi]), np.array([speed]), np.zeros(1), np.zeros(1)), [0], placement,
+    a = core.codec([0]).encode(Shots(np.array([phi]), np.array([speed]), np.zeros(1), np.zeros(1)), placement,
                          None if declare is None else np.array([declare]),
                          None if pocket is None else np.array([pocket]), None if ball is None else np.array([ball]))
     return core.step(a, [0])

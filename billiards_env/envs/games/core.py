@@ -373,8 +373,3 @@ class GameCore(BilliardsCore):
         if isinstance(plan, np.ndarray):
             return self.validate_actions(plan, len(idx))
         return (codec or self.codec(idx)).encode_plan(plan)
-
-    def actions_for(self, shots, idx, placement=None, declare=None, pocket=None, ball=None) -> np.ndarray:
-        """Actions [n, action_dim] on tables ``idx`` that play ``shots``
-        (absolute aim): ``ActionCodec.encode`` of the tables."""
-        return self.codec(idx).encode(shots, placement, declare, pocket, ball)
