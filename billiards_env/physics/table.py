@@ -6,6 +6,16 @@ must stay R away from (the cushion noses). Pool tables have six pockets; each
 corner pocket mouth is cut at 45 degrees with jaws at 142 degrees to the rail,
 each side pocket with jaws at 104 degrees (WPA equipment specifications). A
 ball whose centre enters a pocket's capture circle is pocketed.
+
+The carom match table (``Table.carom()``) has no pockets: its playing
+surface between the cushion noses is 2.84 x 1.42 m (UMB, "Rules of the
+Game of Three-Cushion", the equipment article: 2.84 m x 1.42 m, +-5 mm; a
+cushion nose 37 mm +-1 mm above the bed, which ``PhysicsParams.carom()``
+holds as ``h_c``). pooltool's ``BilliardTableSpecs`` is a pocketless box of
+the same kind (its default is a 10 ft table, not the match size).
+
+``Table.style`` names the equipment the renderers draw ("pool", "carom"):
+the balls' colours and the table's markings; the physics never reads it.
 """
 from __future__ import annotations
 
@@ -28,6 +38,8 @@ CAPTURE_DEPTH = 0.004  # m a ball centre must pass the mouth line to drop
 # it, and every rail between two pockets is longer than twice this, so rails
 # stay outside every neighbourhood.
 POCKET_GROUP_RADIUS = 0.2
+# UMB match carom table: playing surface between the cushion noses (m).
+CAROM_SIZE = (1.42, 2.84)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -87,6 +99,7 @@ class Table:
     normal ``normals [S, 2]`` pointing into the table; ``tips [V, 2]`` jaw tips
     (vertices a ball can strike); ``pockets [P, 3]`` capture circles (x, y, r).
     ``box_segments`` is the closed box used when pockets are switched off.
+    ``style`` the equipment the renderers draw (module docstring).
     """
 
     width: float
@@ -96,6 +109,7 @@ class Table:
     tips: np.ndarray
     pockets: np.ndarray
     name: str = "custom"
+    style: str = "pool"
 
     @property
     def box_segments(self) -> np.ndarray:
@@ -134,6 +148,16 @@ class Table:
                 name=f"pocketless {width:g}x{length:g}")
         object.__setattr__(t, "segments", t.box_segments)
         object.__setattr__(t, "normals", t.box_normals)
+        return t
+
+    @classmethod
+    def carom(cls) -> "Table":
+        """The UMB match carom table: 2.84 x 1.42 m between the cushion
+        noses, no pockets (module docstring). Use it with
+        ``PhysicsParams.carom()`` (carom balls, cloth and cushion height)."""
+        t = cls.pocketless(*CAROM_SIZE)
+        object.__setattr__(t, "name", "carom match")
+        object.__setattr__(t, "style", "carom")
         return t
 
     @classmethod

@@ -195,7 +195,7 @@ class Replay:
         params = params or PhysicsParams.standard()
         effects = effects or Effects()
         segs, _, tips, pockets = table.geometry(effects.pockets)
-        geo = {"name": table.name, "width": table.width, "length": table.length,
+        geo = {"name": table.name, "style": table.style, "width": table.width, "length": table.length,
                "segments": segs.tolist(), "tips": tips.tolist(), "pockets": pockets.tolist(),
                "outline": table.outline(effects.pockets).tolist()}
         return cls({"format": FORMAT, "version": VERSION, "meta": _jsonable(meta or {}), "n_balls": n_balls,
@@ -339,7 +339,8 @@ class Replay:
         d = segs[:, 2:] - segs[:, :2]
         n = np.stack([-d[:, 1], d[:, 0]], axis=1) / np.hypot(d[:, 0], d[:, 1])[:, None]
         return Table(g["width"], g["length"], segs, n, np.array(g["tips"], dtype=np.float64).reshape(-1, 2),
-                     np.array(g["pockets"], dtype=np.float64).reshape(-1, 3), name=g.get("name", "custom"))
+                     np.array(g["pockets"], dtype=np.float64).reshape(-1, 3), name=g.get("name", "custom"),
+                     style=g.get("style", "pool"))
 
     # --- files ------------------------------------------------------------
     def to_dict(self) -> dict:
