@@ -18,7 +18,7 @@ import numpy as np
 from tqdm import tqdm
 
 from billiards_env.physics import Effects, Models
-from billiards_env.testing import LAYOUTS, case_dict, random_batch, run_batch, save_case
+from billiards_env.testing import CAROM_LAYOUTS, LAYOUTS, case_dict, random_batch, run_batch, save_case
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
@@ -34,6 +34,10 @@ def main(argv=None):
     ap.add_argument("--models", nargs="*", default=[], metavar="KEY=VALUE",
                     help="model choices, e.g. ball_ball_friction=alciatore cushion=mathavan2010 "
                          "(keys and names: billiards_env.physics.models.REGISTRIES; default: Models())")
+    ap.add_argument("--table", choices=("pool", "carom"), default="pool",
+                    help="pool: 9-ball and 8-ball racks and random balls on the 9 ft table (standard and seed "
+                         "physics); carom: three balls on the carom match table with carom equipment, frozen "
+                         "to each other or to a cushion, extreme spin (testing.fuzzing.carom_batch)")
     ap.add_argument("--batch", type=int, default=4096)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--regressions", type=pathlib.Path, default=ROOT / "tests" / "regressions")
@@ -62,7 +66,8 @@ def main(argv=None):
                 stopped_early = True
                 break
             n = min(args.batch, args.shots - done)
-            layout = LAYOUTS[int(rng.integers(len(LAYOUTS)))]
+            layouts = CAROM_LAYOUTS if args.table == "carom" else LAYOUTS
+            layout = layouts[int(rng.integers(len(layouts)))]
             preset = "seed" if rng.random() < 0.2 else "standard"
             name = names[int(rng.integers(len(names)))] if len(names) > 1 else names[0]
             effects = effect_sets[name]
@@ -88,7 +93,7 @@ def main(argv=None):
                    shots_requested=args.shots, stopped_by_time_budget=stopped_early,
                    shots_with_violations=failures, violation_kinds=kinds, events=events,
                    wall_s=round(wall, 1), shots_per_s=round(done / wall, 1), seed=args.seed,
-                   effects=args.effects, shots_per_effect_set=per_set,
+                   effects=args.effects, shots_per_effect_set=per_set, table=args.table,
                    violations_per_effect_set=failures_per_set)
     if args.models:  # runs with the default models keep their summary's keys
         summary["models"] = models.to_dict()
