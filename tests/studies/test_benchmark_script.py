@@ -84,7 +84,9 @@ SECTION_TABLES = {
     "models": lambda: ["9-ball break (8 m/s)", "two-ball cut (2 m/s, top+side)", *_model_labels(),
                        "speed-up vs all"],
     "cold": lambda: ["cold (empty numba cache)", "warm (numba cache on disk)"],
-    "games": lambda: ["games/s, ghost vs ghost", "vector env steps/s, random actions", "nine_ball", "ten_ball"],
+    "games": lambda: ["games/s, ghost vs ghost", "vector env steps/s, random actions", "nine_ball", "ten_ball",
+                      "games/s, carom vs carom", "three_cushion", "three-cushion shot (carom table, contacts kept)",
+                      "9-ball break (8 m/s)", "us per event"],
     "rllib": lambda: ["sampling: bare env", "sampling: sb3 rollout", "sampling: rllib 1 runner",
                       "sampling: rllib 2 runners", "training: sb3 (default config)", "one EnvRunner, CPU per env step"],
 }
