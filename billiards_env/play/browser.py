@@ -50,14 +50,20 @@ class PagePerson:
                                        "document.getElementById('pl-msg').textContent;")))
 
     def px(self, x: float, y: float) -> tuple[int, int]:
-        """Viewport CSS pixel of the table point (x, y) m."""
+        """Viewport CSS pixel of the table point (x, y) m (the page scrolled to show it)."""
+        self.js("const q = window.billiardsReplay.toPx(arguments[0], arguments[1]),"
+                "b = document.getElementById('table').getBoundingClientRect(), v = b.top + q[1];"
+                "if (v < 10 || v > innerHeight - 10) window.scrollBy(0, v - innerHeight / 2);", x, y)
         u, v = self.js("const q = window.billiardsReplay.toPx(arguments[0], arguments[1]),"
                        "b = document.getElementById('table').getBoundingClientRect(); return [b.left + q[0], b.top + q[1]];",
                        x, y)
         return round(u), round(v)
 
     def centre(self, element_id: str) -> tuple[float, float, float, float]:
-        return tuple(self.js("const b = document.getElementById(arguments[0]).getBoundingClientRect();"
+        """The element's box in the viewport (scrolled into view first)."""
+        return tuple(self.js("const e = document.getElementById(arguments[0]), r = e.getBoundingClientRect();"
+                             "if (r.top < 0 || r.bottom > innerHeight) e.scrollIntoView({block: 'center'});"
+                             "const b = e.getBoundingClientRect();"
                              "return [b.left, b.top, b.width, b.height];", element_id))
 
     # --- the mouse ----------------------------------------------------------------------
