@@ -27,7 +27,7 @@ def main(argv=None) -> int:
     else:
         res = run(args.bots, args.shots, args.out, ROOT / "docs" / "play.md" if args.docs else None)
     from billiards_env.play.latency import table_md
-    print(table_md(res["rows"], res["fps"]))
+    print(table_md(res["rows"], res["fps"], res["load"]))
     return 0
 
 

@@ -113,7 +113,7 @@ def phone_fps(driver, client, seconds: float = FPS_SECONDS) -> dict:
             "still_playing": bool(playing), "portrait": bool(lay["portrait"]), "ball_px": float(lay["scale"] * 0.028575)}
 
 
-def table_md(rows: list[dict], fps: dict | None) -> str:
+def table_md(rows: list[dict], fps: dict | None, load: float | None = None) -> str:
     out = ["| bot | person's shot: click to first frame p50 / p95 (ms) | bot's reply: request to first frame p50 / p95 "
            "(ms) | bot thinking p50 / p95 (ms) | shots / replies |", "|---|---|---|---|---|"]
     for r in rows:
@@ -126,6 +126,8 @@ def table_md(rows: list[dict], fps: dict | None) -> str:
                     f"{fps['fps_median']:.1f} frames per second (median interval {fps['interval_p50']:.2f} ms, p95 "
                     f"{fps['interval_p95']:.2f} ms, {100 * fps['late_frames']:.1f}% of frames over 25 ms); drawing a "
                     f"frame {fps['draw_p50']:.2f} ms median, {fps['draw_p95']:.2f} ms p95."]
+    if load is not None:
+        out += ["", f"Load average of the machine during the run: {load:.1f} on {os.cpu_count()} cores."]
     return "\n".join(out)
 
 
@@ -167,8 +169,9 @@ def run(bots, shots: int, out: Path | None, docs: Path | None = None, fps: bool 
         driver.quit()
         shutil.rmtree(profile, ignore_errors=True)
         server.should_exit = True
-    md = table_md(rows, phone)
-    result = {"rows": rows, "fps": phone, "shots": shots, "cpus": os.cpu_count(), "load": os.getloadavg()[0]}
+    load = os.getloadavg()[1]  # the 5-minute average
+    md = table_md(rows, phone, load)
+    result = {"rows": rows, "fps": phone, "shots": shots, "cpus": os.cpu_count(), "load": load}
     if out is not None:
         out.mkdir(parents=True, exist_ok=True)
         (out / "latency.json").write_text(json.dumps(result, indent=1))
