@@ -60,17 +60,22 @@ def test_latency_script_quick(browser):
 
 
 def test_saved_game_opens_at_a_linked_moment(server, browser, tmp_path):
-    st, g = server("POST", "/api/games", {"game": "nine_ball", "opponent": "ghost", "seed": 6})
+    st, g = server("POST", "/api/games", {"game": "nine_ball", "opponent": "ghost", "seed": 4})
     gid = g["id"]
-    server("POST", f"/api/games/{gid}/shot", {"player": 0, "aim": 1.5707963267948966, "speed": 8.0})
-    while server("GET", f"/api/games/{gid}")[1]["state"]["to_move"] == 1:
-        server("POST", f"/api/games/{gid}/bot")
+    while len(server("GET", f"/api/games/{gid}")[1]["shots"]) < 2:
+        st = server("GET", f"/api/games/{gid}")[1]["state"]
+        assert not st["over"]
+        if st["human_to_move"]:
+            assert server("POST", f"/api/games/{gid}/shot", {"player": st["to_move"], "aim": 1.5707963267948966,
+                                                             "speed": 8.0})[0] == 200
+        else:
+            assert server("POST", f"/api/games/{gid}/bot")[0] == 200
     status, page = server.raw("GET", f"/api/games/{gid}/replay.html")
+    assert status == 200
     path = tmp_path / "game.html"
     path.write_bytes(page)
-    rep = Replay.from_dict(server("GET", f"/api/games/{gid}")[1] and
-                           json.loads(re.search(rb'id="replay-data">(.*?)</script>', page, re.S).group(1)
-                                      .decode().replace("<\\/", "</")))
+    data = re.search(rb'id="replay-data">(.*?)</script>', page, re.S).group(1).decode().replace("<\\/", "</")
+    rep = Replay.from_dict(json.loads(data))
     shot, t = 2, 0.75 * rep.duration(1)
     browser.get(path.as_uri() + f"#shot={shot}&t={t!r}")
     got = browser.execute_script("return window.billiardsReplay.positions()")
