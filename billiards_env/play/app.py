@@ -29,7 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..bots.registry import BOT_NAMES, is_bot_name
+from ..bots.registry import BOT_NAMES, DEFAULT_SEARCH_K, is_bot_name
+from ..bots.registry import make_bot
 from ..envs.games import GAMES
 from ..envs.games.core import NOISE_LEVELS
 from ..rendering.game_words import game_words
@@ -39,7 +40,10 @@ from .session import HUMAN, PlayError, Session, placement_problem
 MAX_GAMES = 32            # games kept in memory; the least recently used is dropped beyond this
 MAX_BODY = 16 * 1024      # bytes: the largest request body read (a shot is ~200)
 MAX_SEED = 2 ** 63 - 1    # seeds are taken modulo 2**64 by the streams; larger ones are refused as typos
-OFFERED_BOTS = ("ghost", "ghost-safety", "search64", "lookahead", "random")  # the lobby's list (any bot name works)
+# the lobby's list: the bot registry's names (search<K> at its default K; a module:factory bot only when the
+# server is started with it, ``--bot``: a request never makes the server import code)
+OFFERED_BOTS = tuple(sorted((f"search{DEFAULT_SEARCH_K}" if n == "search<K>" else n for n in BOT_NAMES
+                             if "<" not in n or n == "search<K>"), key=lambda n: n != "ghost"))  # ghost first
 HERE = Path(__file__).resolve().parent
 DECLARATIONS = ("push_out", "pass")
 SHOT_FIELDS = {"player", "aim", "speed", "side", "height", "placement", "declare", "pocket", "ball"}
@@ -101,7 +105,8 @@ def shot_request(req, lim: dict) -> dict:
     return out
 
 
-def new_request(req) -> dict:
+def new_request(req, extra_bots=()) -> dict:
+    """A new game's request checked; ``extra_bots``: bot specs the server was started with (``--bot``)."""
     _fields(req, NEW_FIELDS)
     game = req.get("game", "nine_ball")
     if game not in GAMES:
@@ -113,6 +118,8 @@ def new_request(req) -> dict:
     else:
         players = [HUMAN, req.get("opponent", "ghost")]
     for p in players:
+        if p in extra_bots:
+            continue
         if not isinstance(p, str) or not (p == HUMAN or is_bot_name(p)) or ":" in p:
             raise PlayError(400, f"unknown player {json.dumps(p)[:40]}: '{HUMAN}' or a bot name "
                                  f"({', '.join(n for n in BOT_NAMES if ':' not in n)})")
@@ -148,8 +155,9 @@ class Store:
             return s
 
 
-def create_app(max_games: int = MAX_GAMES, bot_names=None):
-    """The Starlette app. ``max_games``: games kept in memory (``MAX_GAMES``)."""
+def create_app(max_games: int = MAX_GAMES, extra_bots=()):
+    """The Starlette app. ``max_games``: games kept in memory (``MAX_GAMES``); ``extra_bots``: more
+    bot specs to offer (``module:factory`` bots of your own, docs/bots.md)."""
     from starlette.applications import Starlette
     from starlette.exceptions import HTTPException
     from starlette.requests import Request
@@ -157,6 +165,9 @@ def create_app(max_games: int = MAX_GAMES, bot_names=None):
     from starlette.routing import Route
 
     store = Store(max_games)
+    extra_bots = tuple(extra_bots)
+    for spec in extra_bots:
+        make_bot(spec)  # a bad spec fails here, at start, with the registry's message
 
     def error(status, message):
         return JSONResponse({"error": message}, status_code=status)
@@ -193,11 +204,11 @@ def create_app(max_games: int = MAX_GAMES, bot_names=None):
 
     async def options(request):
         return JSONResponse({"games": [{"id": g, "title": game_words(g)} for g in GAMES],
-                             "bots": list(OFFERED_BOTS), "bot_names": list(BOT_NAMES), "human": HUMAN,
+                             "bots": list(OFFERED_BOTS) + list(extra_bots), "bot_names": list(BOT_NAMES), "human": HUMAN,
                              "noise": list(NOISE_LEVELS), "max_games": store.limit})
 
     async def new_game(request):
-        req = new_request(await body(request))
+        req = new_request(await body(request), extra_bots)
         s = await run(lambda: Session(secrets.token_hex(8), req["game"], req["players"], req["seed"],
                                       req["breaker"], req["noise"]))
         store.add(s)

@@ -31,16 +31,19 @@ def parser() -> argparse.ArgumentParser:
     ap.add_argument("--port", type=int, default=DEFAULT_PORT, help=f"port (default {DEFAULT_PORT}; 0: any free port)")
     ap.add_argument("--no-browser", action="store_true", help="do not open the page in a browser")
     ap.add_argument("--max-games", type=int, default=None, help="games kept in memory (default play.app.MAX_GAMES)")
+    ap.add_argument("--bot", action="append", default=[], metavar="MODULE:FACTORY",
+                    help="offer a bot of your own as well (docs/bots.md); repeatable")
     ap.add_argument("--no-warm-up", action="store_true", help="skip compiling the kernels before serving")
     return ap
 
 
-def serve(host: str = LOOPBACK, port: int = DEFAULT_PORT, max_games: int | None = None, log_level: str = "warning"):
+def serve(host: str = LOOPBACK, port: int = DEFAULT_PORT, max_games: int | None = None, log_level: str = "warning",
+          extra_bots=()):
     """A started uvicorn server in a background thread: (server, url). ``server.should_exit = True`` stops it."""
     import uvicorn
 
     from .app import MAX_GAMES, create_app
-    app = create_app(MAX_GAMES if max_games is None else max_games)
+    app = create_app(MAX_GAMES if max_games is None else max_games, extra_bots)
     trusted = None if host not in (LOOPBACK, "localhost") else ["127.0.0.1", "localhost"]
     if trusted:  # a page on another site cannot reach this server through a rebound name
         from starlette.middleware.trustedhost import TrustedHostMiddleware
@@ -68,7 +71,11 @@ def main(argv=None) -> int:
     if not args.no_warm_up:
         print("compiling the simulator and the bots (fast after the first run)...", flush=True)
         print(f"ready in {warm_up():.1f} s", flush=True)
-    server, url = serve(args.host, args.port, args.max_games)
+    try:
+        server, url = serve(args.host, args.port, args.max_games, extra_bots=args.bot)
+    except (ValueError, TypeError, RuntimeError) as exc:
+        print(f"billiards-play: {exc}", file=sys.stderr)
+        return 2
     print(f"billiards_env play server at {url} (Ctrl-C stops it)", flush=True)
     if not args.no_browser:
         webbrowser.open(url)

@@ -37,4 +37,6 @@ def test_make_vec_bad_render_mode():
         gym.make_vec("Billiards-NineBall2P-v0", num_envs=2, render_mode="human")
     env = gym.make_vec("Billiards-NineBall2P-v0", num_envs=2)
     env.reset(seed=0)
-    assert env.render() is None and env.render_mode is None
+    with pytest.warns(UserWarning, match="without a render_mode"):
+        assert env.render() is None
+    assert env.render_mode is None

@@ -162,3 +162,35 @@ def test_saved_game_is_the_recorded_replay(server, tmp_path):
     data = json.loads(page[start:page.index(b"</script>", start)].decode().replace("<\\/", "</"))
     assert Replay.from_dict(data).shots == shots and len(shots) >= 1
     assert np.isfinite(Replay.from_dict(data).positions_at(0.5)[0]).all()
+
+
+def test_ten_ball_calls_are_checked(server):
+    """10-ball: after the break every shot needs a called pocket; the called ball must be on the table."""
+    g = new_game(server, game="ten_ball", opponent="human", seed=2)
+    gid = g["id"]
+    assert g["title"] == "10-ball" and not g["call_needed"]
+    r = server("POST", f"/api/games/{gid}/shot", {"player": 0, "aim": math.pi / 2, "speed": 8.0})[1]
+    st = r["state"]
+    if st["over"]:
+        pytest.fail("the 10 went down on the break: pick another seed")
+    assert st["call_needed"] and st["calls_ball"]
+    body = {"player": st["to_move"], "aim": 0.3, "speed": 1.0}
+    if st["ball_in_hand"] != "none":
+        body["placement"] = server("POST", f"/api/games/{gid}/place", {"x": 0.6, "y": 0.3})[1]["nearest"]
+    status, r = server("POST", f"/api/games/{gid}/shot", body)
+    assert status == 400 and "needs a called pocket" in r["error"]
+    gone = [b for b in range(1, 11) if not st["on_table"][b]]
+    if gone:
+        status, r = server("POST", f"/api/games/{gid}/shot", {**body, "pocket": 1, "ball": gone[0]})
+        assert status == 400 and "not on the table" in r["error"]
+    assert server("POST", f"/api/games/{gid}/shot", {**body, "pocket": 1, "ball": 11})[0] == 400
+    status, r = server("POST", f"/api/games/{gid}/shot", {**body, "pocket": 1, "ball": st["targets"][0]})
+    assert status == 200 and r["shots"][-1]["info"]["game"]["called_pocket"] is not None
+
+
+def test_a_bot_of_your_own_only_when_the_server_offers_it():
+    from billiards_env.play.app import PlayError, new_request
+    spec = "billiards_env.bots.registry:make_bot"
+    with pytest.raises(PlayError, match="unknown player"):
+        new_request({"opponent": spec})
+    assert new_request({"opponent": spec}, extra_bots=(spec,))["players"] == ["human", spec]
