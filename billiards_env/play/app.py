@@ -228,15 +228,17 @@ def create_app(max_games: int = MAX_GAMES, extra_bots=()):
         s = store.get(request.path_params["gid"])
         req = await body(request)
         _fields(req, {"x", "y"})
-        lim = s.state()["limits"]
-        xy = [_number(req, "x", -1.0, lim["width"] + 1.0), _number(req, "y", -1.0, lim["length"] + 1.0)]
 
         def check():
+            lim = s.state()["limits"]
+            xy = [_number(req, "x", -1.0, lim["width"] + 1.0), _number(req, "y", -1.0, lim["length"] + 1.0)]
+            if s.core.game.over[0]:
+                raise PlayError(409, "the game is over: start a new one")
             if s.core.constraints().ball_in_hand[0] == 0:
                 raise PlayError(409, "the cue ball is not in hand")
             spot, _ = s.core.legal_placement(np.array([xy]), [0])
-            return {"legal": placement_problem(s.core, xy) is None, "problem": placement_problem(s.core, xy),
-                    "nearest": spot[0].tolist()}
+            problem = placement_problem(s.core, xy)
+            return {"legal": problem is None, "problem": problem, "nearest": spot[0].tolist()}
         return JSONResponse(await run(locked, s, check))
 
     async def shot(request):
