@@ -194,3 +194,15 @@ def test_a_bot_of_your_own_only_when_the_server_offers_it():
     with pytest.raises(PlayError, match="unknown player"):
         new_request({"opponent": spec})
     assert new_request({"opponent": spec}, extra_bots=(spec,))["players"] == ["human", spec]
+
+
+def test_every_game_of_the_library_plays(server):
+    """Each game the lobby offers (read from envs.games.GAMES): a break by the person, then a bot's turn."""
+    games = [g["id"] for g in server("GET", "/api/options")[1]["games"]]
+    from billiards_env.envs.games import GAMES
+    assert games == list(GAMES)
+    for game in games:
+        g = new_game(server, game=game, seed=12, breaker=1)
+        status, r = server("POST", f"/api/games/{g['id']}/bot")
+        assert status == 200 and r["shots"][0]["info"]["game"]["before"]["break"], r
+        assert server("GET", f"/api/games/{g['id']}/hint")[0] in (200, 409)
