@@ -159,7 +159,7 @@ class PagePerson:
             self.place(st, spot)
             if st["break"]:
                 c = self.js("return window.billiardsPlay.choice.placement;")
-                foot = (st["limits"]["width"] / 2, 0.75 * st["limits"]["length"])
+                foot = st["limits"]["foot_spot"]
                 h["phi"], h["speed"] = math.atan2(foot[1] - c[1], foot[0] - c[0]), st["limits"]["speed_max"] * 0.9
         if st["push_out_allowed"] and self.push_out:
             self.click("pl-push")

@@ -24,7 +24,7 @@ from ..rendering.game_replay import GameRecorder, state_words
 from ..rendering.game_words import game_words, pocket_names
 from ..rendering.replay import Replay
 from ..rules import records as R
-from ..rules.placement import KITCHEN_GAP
+from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP
 from ..physics.params import draw_to_speed
 from ..physics.state import SPOT_CLEAR, SPOT_EDGE
 
@@ -52,8 +52,8 @@ def placement_problem(core: GameCore, xy) -> str | None:
     where = f"({x:.4f}, {y:.4f}) m"
     if not (edge <= x <= t.width - edge and edge <= y <= t.length - edge):
         return f"the cue ball at {where} is off the bed or touches a cushion (its centre must keep {edge:.4f} m inside)"
-    if core.constraints().ball_in_hand[0] == R.IN_HAND_KITCHEN and y > core.table.length * 0.25 - KITCHEN_GAP:
-        return f"the cue ball at {where} is beyond the head string (y must be below {t.length * 0.25:.4f} m)"
+    if core.constraints().ball_in_hand[0] == R.IN_HAND_KITCHEN and y > HEAD_STRING * t.length - KITCHEN_GAP:
+        return f"the cue ball at {where} is beyond the head string (y must be below {HEAD_STRING * t.length:.4f} m)"
     d = np.hypot(s.pos[0, 1:, 0] - x, s.pos[0, 1:, 1] - y)
     on = s.pocket[0, 1:] < 0
     hit = np.nonzero(on & (d < 2 * Rb + SPOT_CLEAR))[0]
@@ -124,7 +124,7 @@ class Session:
             rep.data["game"] = dict(recorded.data["game"])
         else:
             rep.data["game"] = {"name": self.game, "title": game_words(self.game), "players": self.names,
-                                "labels": ["Player 1", "Player 2"], "head_string": 0.25 * c.table.length,
+                                "labels": ["Player 1", "Player 2"], "head_string": HEAD_STRING * c.table.length,
                                 "pocket_names": pocket_names(c.pockets), "start": self.start}
         self.rack_entry(rep)
         rep.data["shots"].extend(self.shots())
@@ -146,8 +146,9 @@ class Session:
             "pos": c.state.pos[k].tolist(), "on_table": (c.state.pocket[k] < 0).tolist(),
             "limits": {"speed_min": float(draw_to_speed(c.cfg.min_draw, p)), "speed_max": float(p.max_speed),
                        "tip_max": float(p.miscue_limit), "R": float(p.R), "width": float(t.width),
-                       "length": float(t.length), "head_string": 0.25 * t.length,
-                       "kitchen_y_max": 0.25 * t.length - KITCHEN_GAP, "edge": float(p.R + SPOT_EDGE),
+                       "length": float(t.length), "head_string": HEAD_STRING * t.length,
+                       "foot_spot": [t.width / 2, FOOT_SPOT * t.length],
+                       "kitchen_y_max": HEAD_STRING * t.length - KITCHEN_GAP, "edge": float(p.R + SPOT_EDGE),
                        "clear": float(2 * p.R + SPOT_CLEAR)},
             "pockets": c.pockets.tolist(), "pocket_names": pocket_names(c.pockets),
         })
