@@ -202,7 +202,8 @@ def test_every_game_of_the_library_plays(server):
     from billiards_env.envs.games import GAMES
     assert games == list(GAMES)
     for game in games:
-        g = new_game(server, game=game, seed=12, breaker=1)
+        from billiards_env.bots.registry import default_bot  # the pool bots cannot play three-cushion
+        g = new_game(server, game=game, seed=12, breaker=1, opponent=default_bot(game))
         status, r = server("POST", f"/api/games/{g['id']}/bot")
         assert status == 200 and r["shots"][0]["info"]["game"]["before"]["break"], r
         assert server("GET", f"/api/games/{g['id']}/hint")[0] in (200, 409)
