@@ -36,7 +36,8 @@ def test_play_script_serves_on_loopback_and_stops():
             assert line or proc.poll() is None, "the server exited"
         url = re.search(r"(http://127\.0\.0\.1:\d+/)", line).group(1)
         opts = json.loads(urllib.request.urlopen(url + "api/options", timeout=30).read())
-        assert {g["id"] for g in opts["games"]} == {"nine_ball", "eight_ball", "ten_ball"}
+        from billiards_env.envs.games import GAMES
+        assert {g["id"] for g in opts["games"]} == set(GAMES)  # 9-ball, 8-ball, 10-ball, three-cushion
         assert "ghost" in opts["bots"] and "lookahead" in opts["bots"]
         assert b"Start the game" in urllib.request.urlopen(url, timeout=30).read()
         req = urllib.request.Request(url + "api/options", headers={"Host": "evil.example"})  # a rebound name
