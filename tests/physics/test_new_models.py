@@ -31,7 +31,7 @@ ROUND = 1e-12
 # move a contact across the sticking test of one impulse step: agreement to
 # well within the discretisation error (see test_mathavan_converges).
 ROT_TOL = 1e-7
-# Largest discretisation error allowed at IMPULSE_STEPS in the closed-form
+# Largest integration error allowed at STEP_TOL in the closed-form
 # case below, as a fraction of the incoming speed: a slip reversal on the
 # felt, landed on exactly (tests/physics/test_mathavan_convergence.py
 # measures the general case).
@@ -329,6 +329,6 @@ def test_mathavan_integration_dissipates(u, vn, spin, e, f_c, mu_s, s_t):
     term with a wrong sign fails here even where the guard would hide it."""
     c_t = math.sqrt(1.0 - s_t * s_t)
     v = (u, vn, *spin)
-    out = mathavan2010._integrate(mathavan2010.Ball(*v), mathavan2010.Contact(R, P.m, s_t, c_t, f_c, mu_s),
-                                  e, mathavan2010.IMPULSE_STEPS)
+    out = mathavan2010._integrate(mathavan2010.Ball(*v, 0.0), mathavan2010.Contact(R, P.m, s_t, c_t, f_c, mu_s),
+                                  e, mathavan2010.STEP_TOL)
     assert _energy2(out) <= _energy2(v) * (1 + ROUND)

@@ -127,6 +127,10 @@ APPROACH = 0.5
 # zero with about that amplitude. Setting it to zero moves the state by
 # less than that.
 SNAP = 30.0
+# A slip closing within the threshold's velocity change is set to zero
+# only if it is below CLOSE times the threshold (setting it to zero moves
+# the state by the slip: a weak friction's slip may still be large).
+CLOSE = 10.0
 # A held contact whose friction is cut to its cone lets its slip grow; it
 # slides once its slip exceeds RELEASE times the snapping threshold (a
 # hysteresis, so that a slip just released is not snapped back).
@@ -352,13 +356,15 @@ def _closing(b, c, g, k, j, thr):
         rx, ry = _slip_c(k, c)
         lim = c.mu_s * (c.st + c.ct * c.mu_w)  # the felt's largest limit
     ss = x * x + y * y
+    if not (lim > 0.0):  # a frictionless contact: its slip does not matter
+        return math.inf, False
     if ss <= thr * thr:
         return 0.0, True
     a = -(x * rx + y * ry)  # |s| times the rate at which |s| falls
     if not (a > 0.0):
         return math.inf, False
     tau = ss / a
-    return tau, 7.0 * lim * tau / c.M <= thr
+    return tau, 7.0 * lim * tau / c.M <= thr and ss <= (CLOSE * thr) ** 2
 
 
 @njit
