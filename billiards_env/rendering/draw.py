@@ -43,6 +43,36 @@ _DIGITS = ("111101101101111", "010110010010111", "111001111100111", "11100111100
            "111100111001111", "111100111101111", "111001010010010", "111101111101111", "111101111001111")
 
 
+# Snooker: the white, 15 reds (balls 1..15), then yellow, green, brown, blue, pink, black (16..21).
+SNOOKER_COLORS = ((255, 255, 255),) + ((200, 20, 20),) * 15 + (
+    (250, 215, 0), (0, 130, 60), (120, 70, 30), (0, 70, 200), (250, 130, 170), (15, 15, 15))
+MARK_COLOR = (225, 225, 225)
+
+
+def ball_colors(table, n_balls: int) -> list:
+    """Each ball's colour on ``table``: snooker's set on a table with snooker marks, else pool's (``ball_color``)."""
+    if getattr(table, "marks", None) is not None:
+        return [SNOOKER_COLORS[i] for i in range(n_balls)]
+    return [ball_color(i) for i in range(n_balls)]
+
+
+def draw_marks(d, table, ppm: float, border: float) -> None:
+    """A snooker table's baulk line, D and colour spots (nothing on other tables)."""
+    m = getattr(table, "marks", None)
+    if m is None:
+        return
+    P = lambda xy: [tuple(p) for p in world_to_pixel(table, xy, ppm, border)]
+    w = max(1, int(ppm * 0.003))
+    d.line(P([(0.0, m.baulk), (table.width, m.baulk)]), fill=MARK_COLOR, width=w)
+    (cx, cy), r = m.d_centre, m.d_radius
+    a = np.linspace(np.pi, 2 * np.pi, 49)
+    d.line(P(np.stack([cx + r * np.cos(a), cy + r * np.sin(a)], axis=1)), fill=MARK_COLOR, width=w)
+    sr = max(1.0, 0.004 * ppm)
+    for x, y in m.spots:
+        c = world_to_pixel(table, (x, y), ppm, border)
+        d.ellipse([c[0] - sr, c[1] - sr, c[0] + sr, c[1] + sr], fill=MARK_COLOR)
+
+
 def ball_color(i: int) -> tuple:
     """Colour of ball i: cue white, 1-8 solids, 9-15 stripes of 1-7's colours."""
     return BALL_COLORS[i] if i <= 8 else BALL_COLORS[(i - 9) % 7 + 1]
@@ -133,21 +163,26 @@ def render_table(table, params, pos, pocket=None, paths=None, ppm: float = PPM,
         d.ellipse([c[0] - rr, c[1] - rr, c[0] + rr, c[1] + rr], fill=POCKET_COLOR)
     for x0, y0, x1, y1 in table.segments:
         d.line(P([(x0, y0), (x1, y1)]), fill=CUSHION_COLOR, width=max(1, int(ppm * 0.01)))
+    draw_marks(d, table, ppm, border)
     pos = np.asarray(pos, dtype=np.float64)
+    colors = ball_colors(table, len(pos))
+    snooker = table.marks is not None  # snooker balls carry no stripes or numbers
     pocket = np.full(len(pos), -1) if pocket is None else np.asarray(pocket)
     if paths is not None:
         for i in reversed(range(len(paths))):  # cue-ball path on top
             pth = paths[i]
             if len(pth) > 1:
-                d.line(P(pth), fill=ball_color(i), width=max(1, int(ppm * 0.006)))
+                d.line(P(pth), fill=colors[i], width=max(1, int(ppm * 0.006)))
     rp = R * ppm
     for i in range(len(pos)):
         if pocket[i] >= 0:
             continue
         cx, cy = world_to_pixel(table, pos[i], ppm, border)
         box = [cx - rp, cy - rp, cx + rp, cy + rp]
-        col = ball_color(i)
+        col = colors[i]
         d.ellipse(box, fill=col, outline=(0, 0, 0))
+        if snooker:
+            continue
         if i >= 9:  # stripe: white caps above and below a coloured band of 1.3 R
             d.chord(box, 180 + STRIPE_ANGLE, 360 - STRIPE_ANGLE, fill=(255, 255, 255))
             d.chord(box, STRIPE_ANGLE, 180 - STRIPE_ANGLE, fill=(255, 255, 255))

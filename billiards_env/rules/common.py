@@ -109,6 +109,12 @@ class Rules:
     name: str = ""
     n_balls: int = 0
     calls_ball: bool = False  # the shooter calls a ball as well as a pocket (``ShotInput.called_ball``; 10-ball)
+    scored: bool = False      # a game of points (``GameState.score``, ``ShotRecord.points``; snooker)
+    reads_position: bool = False  # ``constraints`` and ``judge`` read where the balls lie (snooker's free ball)
+
+    def new_game(self, breaker) -> GameState:
+        """Fresh games before the break; ``breaker`` [E] (0 or 1) breaks."""
+        return GameState.new(breaker)
 
     def judge(self, game: GameState, shot: ShotInput) -> tuple[ShotRecord, GameState]:
         raise NotImplementedError
