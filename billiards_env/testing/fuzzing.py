@@ -29,10 +29,15 @@ def random_batch(rng, n_envs, layout, preset, n_balls=None, pockets=True, table_
     R = params.R
     if layout in ("nine", "eight", "snooker"):
         s = rack(table, params, layout, n_envs, gap=0.0, seed=rng)
-        if layout == "snooker":  # the cue ball anywhere in the D
+        if layout == "snooker":  # the cue ball anywhere in the D, clear of the yellow, brown and green
             m = table.marks
-            r, a = m.d_radius * np.sqrt(rng.uniform(0, 1, n_envs)), rng.uniform(np.pi, 2 * np.pi, n_envs)
-            s.pos[:, 0] = np.stack([m.d_centre[0] + r * np.cos(a), m.d_centre[1] + r * np.sin(a)], 1)
+            todo = np.arange(n_envs)
+            while len(todo):
+                r, a = m.d_radius * np.sqrt(rng.uniform(0, 1, len(todo))), rng.uniform(np.pi, 2 * np.pi, len(todo))
+                p = np.stack([m.d_centre[0] + r * np.cos(a), m.d_centre[1] + r * np.sin(a)], 1)
+                ok = (np.hypot(*(s.pos[todo, 1:] - p[:, None]).transpose(2, 0, 1)) >= 2 * R).all(1)
+                s.pos[todo[ok], 0] = p[ok]
+                todo = todo[~ok]
     else:
         B = n_balls or int(rng.integers(2, 17))
         pos = np.empty((n_envs, B, 2))
