@@ -6,6 +6,8 @@ games benchmark accept.
   their leave under sampled noise): the built-in bots of the games (the
   one-player tasks' ``lookahead`` is ``bots.lookahead.LookaheadPolicy``,
   named by the tasks' own policy registry);
+- ``snooker`` (``bots.snooker.SnookerBot``): pots on the ball on with its
+  nomination, safeties and a break-off chosen in the preview (snooker only);
 - ``module:factory`` (for example ``my_bots:planner``): a bot of your own;
   ``factory(seed=...)`` must return an object with ``name`` and
   ``act(view: GameView) -> ShotPlan`` (docs/bots.md);
@@ -15,13 +17,13 @@ from __future__ import annotations
 
 import importlib
 
-BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "<module>:<factory>")
+BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "snooker", "<module>:<factory>")
 DEFAULT_SEARCH_K = 64
 
 
 def is_bot_name(name) -> bool:
     """Whether ``name`` names a built-in bot or a ``module:factory``."""
-    return isinstance(name, str) and (name in ("random", "ghost", "ghost-safety", "lookahead") or ":" in name
+    return isinstance(name, str) and (name in ("random", "ghost", "ghost-safety", "lookahead", "snooker") or ":" in name
                                       or (name.startswith("search") and (name[6:].isdigit() or name == "search")))
 
 
@@ -37,6 +39,9 @@ def make_bot(spec, seed: int = 0):
     if spec in ("ghost", "ghost-safety"):
         from .ghost import GhostBot
         return GhostBot(seed=seed, safety=spec == "ghost-safety")
+    if spec == "snooker":
+        from .snooker import SnookerBot
+        return SnookerBot(seed=seed)
     if spec == "lookahead":
         from .game_lookahead import GameLookahead
         return GameLookahead(seed=seed)

@@ -8,7 +8,8 @@ y = HEAD_STRING * length, the foot spot (width / 2, FOOT_SPOT * length).
 A legal spot keeps the cue ball's centre R + SPOT_EDGE inside the cushions,
 clear of every ball by SPOT_CLEAR beyond 2R and outside every pocket's
 capture circle (``physics.state.spot_free``), and, in the kitchen, behind
-the head string by KITCHEN_GAP.
+the head string by KITCHEN_GAP. Snooker's ball in hand is in the D
+(``place_cue_in_d``).
 """
 from __future__ import annotations
 
@@ -62,6 +63,50 @@ def place_cue(want, pos, pocket, kitchen, width, length, R, pockets, out, moved)
         on[0] = False  # the cue ball is in hand
         y_hi = HEAD_STRING * length - KITCHEN_GAP if kitchen[e] else length - R - SPOT_EDGE
         x, y, found = _legal_spot(want[e, 0], want[e, 1], pos[e], on, width, y_hi, R, pockets)
+        ok &= found
+        out[e, 0], out[e, 1] = x, y
+        moved[e] = x != want[e, 0] or y != want[e, 1]
+    return ok
+
+
+@_jit
+def _in_d(x, y, cx, cy, r):
+    return y <= cy - KITCHEN_GAP and math.hypot(x - cx, y - cy) <= r
+
+
+@_jit
+def place_cue_in_d(want, pos, pocket, d_centre, d_radius, width, length, R, pockets, out, moved):
+    """Snooker's ball in hand (WPBSA Section 2: "in-hand" means in the D):
+    per table the cue ball at the point of the D nearest to ``want`` [n, 2]
+    (the D's line and arc count, its centre kept KITCHEN_GAP behind the
+    baulk line), then, if that overlaps a ball, the first free point of the
+    rings of ``_legal_spot`` that lies in the D. Writes ``out``, ``moved``;
+    returns False if some table has no free spot."""
+    cx, cy = d_centre[0], d_centre[1]
+    r = d_radius - SPOT_EDGE
+    md = 2 * R + SPOT_CLEAR
+    edge = R + SPOT_EDGE
+    ok = True
+    for e in range(want.shape[0]):
+        on = pocket[e] < 0
+        on[0] = False
+        x, y = want[e, 0], min(want[e, 1], cy - KITCHEN_GAP)
+        d = math.hypot(x - cx, y - cy)
+        if d > r:
+            x, y = cx + (x - cx) * r / d, cy + (y - cy) * r / d
+        found = spot_free(x, y, pos[e], on, width, length, edge, pockets, md)
+        if not found:
+            for k in range(1, PLACE_RINGS):
+                rr = 0.25 * R * k
+                m = 8 * k
+                for j in range(m):
+                    a = 2.0 * math.pi * j / m
+                    qx, qy = x + rr * math.cos(a), y + rr * math.sin(a)
+                    if _in_d(qx, qy, cx, cy, r) and spot_free(qx, qy, pos[e], on, width, length, edge, pockets, md):
+                        x, y, found = qx, qy, True
+                        break
+                if found or rr > 2 * r:
+                    break
         ok &= found
         out[e, 0], out[e, 1] = x, y
         moved[e] = x != want[e, 0] or y != want[e, 1]

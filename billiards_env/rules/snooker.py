@@ -174,6 +174,15 @@ class SnookerRules(Rules):
             out[r] = snookered(pos[r], before[r], balls_on(game.phase[r], before[r]), self.R)
         return out
 
+    def check(self, game: GameState, shot: ShotInput) -> None:
+        """``Rules.check``, except that a pass (the offender put back in) needs no cue ball on the table."""
+        passed = np.asarray(shot.passed, dtype=bool) & (game.phase == PHASE_OPTION)
+        if passed.any():
+            pb = np.array(shot.pocket_before, copy=True)
+            pb[passed, 0] = -1
+            shot = ShotInput(pb, shot.pocket_after, shot.first_contact, shot.rails)
+        super().check(game, shot)
+
     def judge(self, game: GameState, shot: ShotInput) -> tuple[ShotRecord, GameState]:
         self.check(game, shot)
         E, s = game.n, game.shooter

@@ -123,3 +123,10 @@ class TenBallAECEnv(GameAECEnv):
     __doc__ = "10-ball for two agents (a 9-component action: a8 the called ball).\n\n    " + GameAECEnv.__doc__
     metadata = {**GameAECEnv.metadata, "name": "billiards_ten_ball_v0"}
     game = "ten_ball"
+
+
+class SnookerAECEnv(GameAECEnv):
+    __doc__ = ("A frame of snooker for two agents (a 9-component action: a8 the nominated ball; rewards +1 / -1 "
+               "by the frame's result).\n\n    " + GameAECEnv.__doc__)
+    metadata = {**GameAECEnv.metadata, "name": "billiards_snooker_v0"}
+    game = "snooker"

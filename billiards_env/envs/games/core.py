@@ -26,8 +26,14 @@ a7   the called pocket when a call is needed (8-ball, on the 8; 10-ball,
      every shot but the break and a push-out): pocket
      floor((a7 + 1) / 2 * 6), in the order of ``Table.pockets``
 a8   10-ball only, the called ball when a call is needed: ball
-     floor((a8 + 1) / 2 * 11) (1..10; 0, a8 < -9/11, calls a safety)
+     floor((a8 + 1) / 2 * 11) (1..10; 0, a8 < -9/11, calls a safety).
+     Snooker: the nominated ball (a colour after a red, or the free ball):
+     ball floor((a8 + 1) / 2 * 22) (16..21 the colours yellow .. black)
 ===  ========================================================================
+
+Snooker (``game="snooker"``): the 12 ft table and snooker balls; a4, a5
+place the cue ball in the D (the nearest point of it, ``placement_moved``);
+a6 > 0 after a foul puts the offender back in (``may_pass``).
 
 Components outside [-1, 1] are clipped (``info["action_clipped"]``);
 components the constraints do not use are ignored.
@@ -48,19 +54,23 @@ from ..config import NoiseConfig, _number
 from ..core import BilliardsCore, ShotContext, _context, _observe
 from ..streams import TableStreams
 from .codec import ACTION_DIM, N_POCKETS, ActionCodec, placement_to_actions
-from ...rules.placement import FOOT_SPOT, HEAD_STRING, place_cue
+from ...rules.placement import FOOT_SPOT, HEAD_STRING, place_cue, place_cue_in_d
+from ...rules.snooker import VALUE as SNOOKER_VALUE, respot_colours
 from .setup import rack, respot
 
 EXTRA_OBS = 13  # observation entries after the one-player layout (see ``observation_doc``)
-GAMES = ("nine_ball", "eight_ball", "ten_ball")
+GAMES = ("nine_ball", "eight_ball", "ten_ball", "snooker")
+SCORE_SCALE = 147.0  # snooker's observed scores and points left are divided by the maximum break
 NOISE_LEVELS = ("none", "tournament", "high", "variable")
 VARIABLE_NOISE_MAX = 5.0  # "variable" noise: the tournament deviations times a factor uniform in [0, 5] per game
 
 
 @dataclasses.dataclass(frozen=True)
 class GameConfig:
-    """A two-player game instance: ``game`` (``nine_ball``, ``eight_ball``
-    or ``ten_ball``), the table (``table_size_ft``), ``physics`` preset,
+    """A two-player game instance: ``game`` (``nine_ball``, ``eight_ball``,
+    ``ten_ball`` or ``snooker``), the pool table (``table_size_ft``; snooker
+    is played on the 12 ft snooker table), ``physics`` preset (snooker's
+    ``standard`` is ``PhysicsParams.snooker()``, its balls),
     ``solver`` (and ``dt``), ``min_draw`` (m, the draw at a1 = -1),
     ``max_shots`` (a game not over after this many shots is truncated, a
     draw), ``noise`` (``none``, ``tournament``, ``high`` = 5x tournament,
@@ -130,12 +140,14 @@ class GameCore(BilliardsCore):
         self.cfg = _CoreConfig(cfg.shot_noise, cfg.min_draw, cfg.solver, cfg.dt)
         self.rules = get_rules(cfg.game)
         self.n_envs = int(n_envs)
-        self.table = Table.pool(cfg.table_size_ft)
-        self.params = PhysicsParams.preset(cfg.physics)
+        snooker = cfg.game == "snooker"
+        self.table = Table.snooker() if snooker else Table.pool(cfg.table_size_ft)
+        self.params = PhysicsParams.preset("snooker" if snooker and cfg.physics == "standard" else cfg.physics)
         self.effects, self.models, self.record = cfg.effects, cfg.models, record
         self.n_balls = self.rules.n_balls + 1
         self.action_dim = ACTION_DIM + int(self.rules.calls_ball)  # a8: the called ball (10-ball)
-        self.obs_dim = 4 * self.n_balls + 1 + EXTRA_OBS
+        self.extra_obs = 4 if self.rules.scored else 0  # snooker: both scores, the points left, a free ball
+        self.obs_dim = 4 * self.n_balls + 1 + EXTRA_OBS + self.extra_obs
         self.diag = math.hypot(self.table.width, self.table.length)
         self.state: BallState | None = None
         self.game: GameState | None = None
@@ -156,7 +168,8 @@ class GameCore(BilliardsCore):
     def constraints(self) -> R.Constraints:
         """The ``Constraints`` of every table's next shooter (cached until the state changes)."""
         if self._constraints is None:
-            self._constraints = self.rules.constraints(self.game, self.state.pocket)
+            pos = {"pos": self.state.pos} if self.rules.reads_position else {}  # snooker: the free ball
+            self._constraints = self.rules.constraints(self.game, self.state.pocket, **pos)
         return self._constraints
 
     def shot_context(self) -> ShotContext:
@@ -189,11 +202,17 @@ class GameCore(BilliardsCore):
         x = obs[:, 4 * B + 1:]
         ar = np.arange(self.n_envs)
         x[:, 0] = g.shooter
-        x[ar, 1 + c.ball_in_hand] = 1.0
+        x[ar, 1 + np.minimum(c.ball_in_hand, R.IN_HAND_KITCHEN)] = 1.0  # snooker's D as "behind the head string"
         x[:, 4], x[:, 5], x[:, 6], x[:, 7] = c.push_out_allowed, c.may_pass, c.call_needed, c.is_break
         x[ar, 8 + g.group[ar, g.shooter]] = 1.0
         x[:, 11] = np.minimum(g.fouls[ar, g.shooter] / 3.0, 1.0)
         x[:, 12] = np.minimum(g.fouls[ar, 1 - g.shooter] / 3.0, 1.0)
+        if self.extra_obs:
+            left = ((s.pocket < 0) * SNOOKER_VALUE[None, :B]).sum(axis=1)  # face values of the balls on the table
+            x[:, 13] = np.minimum(g.score[ar, g.shooter] / SCORE_SCALE, 1.0)
+            x[:, 14] = np.minimum(g.score[ar, 1 - g.shooter] / SCORE_SCALE, 1.0)
+            x[:, 15] = np.minimum(left / SCORE_SCALE, 1.0)
+            x[:, 16] = c.call_needed & c.may_pass  # a free ball (a nomination right after a foul)
         return obs
 
     # --- new games --------------------------------------------------------------
@@ -205,17 +224,18 @@ class GameCore(BilliardsCore):
         n, B, t = len(idx), self.n_balls, self.table
         u = self.streams.uniform(idx, 16)  # 14 rack, breaker, noise factor
         pos = rack(self.config.game, t, self.params.R, u)
-        pos[:, 0] = (t.width / 2, HEAD_STRING * t.length)
+        if t.marks is None:
+            pos[:, 0] = (t.width / 2, HEAD_STRING * t.length)
         brk = (u[:, 14] < 0.5).astype(np.int64) if breaker is None else np.broadcast_to(breaker, (n,))
         lo, hi = self.config.noise_range
         if self.state is None:
             E = self.n_envs
             self.state = BallState(np.zeros((E, B, 2)), np.zeros((E, B, 2)), np.zeros((E, B, 3)),
                                    np.full((E, B), -1, dtype=np.int64))
-            self.game = GameState.new(np.zeros(E, dtype=np.int64))
+            self.game = self.rules.new_game(np.zeros(E, dtype=np.int64))
         self.state.pos[idx] = pos
         self.state.pocket[idx] = -1
-        self.game.put(idx, GameState.new(brk))
+        self.game.put(idx, self.rules.new_game(brk))
         self.noise_scale[idx] = lo + (hi - lo) * u[:, 15]
         self._changed()
         self._forget_last_shot(idx)
@@ -245,8 +265,14 @@ class GameCore(BilliardsCore):
         s = self.state
         kitchen = self.constraints().ball_in_hand[idx] == R.IN_HAND_KITCHEN
         out, moved = np.empty((len(idx), 2)), np.zeros(len(idx), dtype=bool)
-        ok = place_cue(np.ascontiguousarray(xy, dtype=np.float64), s.pos[idx], s.pocket[idx], kitchen,
-                       self.table.width, self.table.length, self.params.R, self.pockets, out, moved)
+        want = np.ascontiguousarray(xy, dtype=np.float64)
+        t = self.table
+        if t.marks is not None:  # snooker: in hand means in the D
+            ok = place_cue_in_d(want, s.pos[idx], s.pocket[idx], np.array(t.marks.d_centre), t.marks.d_radius,
+                                t.width, t.length, self.params.R, self.pockets, out, moved)
+        else:
+            ok = place_cue(want, s.pos[idx], s.pocket[idx], kitchen, t.width, t.length, self.params.R,
+                           self.pockets, out, moved)
         if not ok:
             raise RuntimeError("no free spot for the cue ball")
         return out, moved
@@ -313,10 +339,12 @@ class GameCore(BilliardsCore):
                     self.last_start[k] = start.take([shoot[j]])
                     self.last_events[k] = res.events[j]
         t0 = time.perf_counter()
-        shot = ShotInput(start.pocket, pocket_after, first, rails, object_rails, push, called, passed, ball)
+        shot = ShotInput(start.pocket, pocket_after, first, rails, object_rails, push, called, passed, ball,
+                         pos_before=start.pos if self.rules.reads_position else None)
         rec, game = self.rules.judge(self.game.take(idx), shot)
         self.timers["rules"] += time.perf_counter() - t0
-        respot(pos_after, pocket_after, rec.respot, self.table, self.params.R, self.pockets)
+        (respot_colours if self.table.marks is not None else respot)(pos_after, pocket_after, rec.respot, self.table,
+                                                                     self.params.R, self.pockets)
         self.state.pos[idx], self.state.pocket[idx] = pos_after, pocket_after
         self.game.put(idx, game)
         self._changed()
@@ -328,6 +356,8 @@ class GameCore(BilliardsCore):
                     called_pocket=called, called_ball=ball,
                     placement=placed, placement_moved=moved, action_clipped=clipped, n_events=n_events,
                     sim_time=sim_time, shot=game.shots.copy())
+        if self.rules.scored:  # snooker: the points of the shot, a foul's penalty and the scores after it
+            info.update(points=rec.points, penalty=rec.penalty, score=game.score.copy())
         out = dict(record=rec, reward=reward, terminated=game.over.copy(), truncated=truncated, info=info)
         for listener in self.listeners:
             listener.after_step(self, idx, out)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...physics.state import _triangle, free_spot
+from ...physics.state import _triangle, free_spot, snooker_rack
 from ...rules.placement import FOOT_SPOT
 from ..tasks.nine_ball import nine_ball_rack
 
@@ -52,7 +52,9 @@ def ten_ball_rack(table, R: float, u: np.ndarray) -> np.ndarray:
 
 def rack(game: str, table, R: float, u: np.ndarray) -> np.ndarray:
     """The rack of ``game`` from uniforms ``u`` [n, >= 14] (9-ball takes the
-    first 7, 10-ball the first 8)."""
+    first 7, 10-ball the first 8; snooker's opening has nothing to draw)."""
+    if game == "snooker":
+        return np.repeat(snooker_rack(table, R)[None], len(u), axis=0)
     if game == "ten_ball":
         return ten_ball_rack(table, R, u[:, :8])
     return nine_ball_rack(table, R, u[:, :7]) if game == "nine_ball" else eight_ball_rack(table, R, u[:, :14])

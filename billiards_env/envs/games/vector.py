@@ -115,3 +115,7 @@ def eight_ball_vector(num_envs: int = 1, **kwargs):
 
 def ten_ball_vector(num_envs: int = 1, **kwargs):
     return game_vector(num_envs, "ten_ball", **kwargs)
+
+
+def snooker_vector(num_envs: int = 1, **kwargs):
+    return game_vector(num_envs, "snooker", **kwargs)
