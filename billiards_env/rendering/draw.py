@@ -18,6 +18,7 @@ from PIL import Image, ImageDraw
 
 from ..physics import constants as C
 from ..physics.effects import Effects
+from .palette import snooker_colors
 from .replay import evolve_state
 
 FELT_COLOR = (35, 100, 155)
@@ -43,17 +44,12 @@ _DIGITS = ("111101101101111", "010110010010111", "111001111100111", "11100111100
            "111100111001111", "111100111101111", "111001010010010", "111101111101111", "111101111001111")
 
 
-# Snooker: the white, 15 reds (balls 1..15), then yellow, green, brown, blue, pink, black (16..21).
-SNOOKER_COLORS = ((255, 255, 255),) + ((200, 20, 20),) * 15 + (
-    (250, 215, 0), (0, 130, 60), (120, 70, 30), (0, 70, 200), (250, 130, 170), (15, 15, 15))
 MARK_COLOR = (225, 225, 225)
 
 
 def ball_colors(table, n_balls: int) -> list:
     """Each ball's colour on ``table``: snooker's set on a table with snooker marks, else pool's (``ball_color``)."""
-    if getattr(table, "marks", None) is not None:
-        return [SNOOKER_COLORS[i] for i in range(n_balls)]
-    return [ball_color(i) for i in range(n_balls)]
+    return snooker_colors(table, n_balls) or [ball_color(i) for i in range(n_balls)]
 
 
 def draw_marks(d, table, ppm: float, border: float) -> None:

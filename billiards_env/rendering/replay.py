@@ -199,11 +199,11 @@ class Replay:
                "segments": segs.tolist(), "tips": tips.tolist(), "pockets": pockets.tolist(),
                "outline": table.outline(effects.pockets).tolist()}
         if table.marks is not None:  # snooker: the markings and the balls' colours for the viewer
-            from .draw import ball_colors
+            from .palette import snooker_colors
             m = table.marks
             geo["marks"] = {"baulk": m.baulk, "d_centre": list(m.d_centre), "d_radius": m.d_radius,
                             "spots": m.spots.tolist()}
-            geo["ball_colors"] = [list(c) for c in ball_colors(table, n_balls or 22)]
+            geo["ball_colors"] = [list(c) for c in snooker_colors(table, n_balls or 22)]
         return cls({"format": FORMAT, "version": VERSION, "meta": _jsonable(meta or {}), "n_balls": n_balls,
                     "table": geo, "params": params.to_dict(), "effects": effects.to_dict(), "shots": []})
 

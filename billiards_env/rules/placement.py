@@ -75,15 +75,16 @@ def _in_d(x, y, cx, cy, r):
 
 
 @_jit
-def place_cue_in_d(want, pos, pocket, d_centre, d_radius, width, length, R, pockets, out, moved):
+def place_cue_in_d(want, pos, pocket, d, width, length, R, pockets, out, moved):
     """Snooker's ball in hand (WPBSA Section 2: "in-hand" means in the D):
     per table the cue ball at the point of the D nearest to ``want`` [n, 2]
     (the D's line and arc count, its centre kept KITCHEN_GAP behind the
     baulk line), then, if that overlaps a ball, the first free point of the
-    rings of ``_legal_spot`` that lies in the D. Writes ``out``, ``moved``;
-    returns False if some table has no free spot."""
-    cx, cy = d_centre[0], d_centre[1]
-    r = d_radius - SPOT_EDGE
+    rings of ``_legal_spot`` that lies in the D. ``d``: the D's centre and
+    radius (cx, cy, r). Writes ``out``, ``moved``; returns False if some
+    table has no free spot."""
+    cx, cy = d[0], d[1]
+    r = d[2] - SPOT_EDGE
     md = 2 * R + SPOT_CLEAR
     edge = R + SPOT_EDGE
     ok = True

@@ -268,8 +268,9 @@ class GameCore(BilliardsCore):
         want = np.ascontiguousarray(xy, dtype=np.float64)
         t = self.table
         if t.marks is not None:  # snooker: in hand means in the D
-            ok = place_cue_in_d(want, s.pos[idx], s.pocket[idx], np.array(t.marks.d_centre), t.marks.d_radius,
-                                t.width, t.length, self.params.R, self.pockets, out, moved)
+            d = np.array([*t.marks.d_centre, t.marks.d_radius])
+            ok = place_cue_in_d(want, s.pos[idx], s.pocket[idx], d, t.width, t.length, self.params.R, self.pockets,
+                                out, moved)
         else:
             ok = place_cue(want, s.pos[idx], s.pocket[idx], kitchen, t.width, t.length, self.params.R,
                            self.pockets, out, moved)
