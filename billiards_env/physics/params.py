@@ -19,6 +19,17 @@ Presets:
   fraction of the ball's diameter as ``standard``'s (0.04 / 0.05715, an
   assumption: no source gives it); felt, cushion and cue constants are
   ``standard``'s (docs/rules.md, snooker's simplifications).
+- ``carom``: three-cushion equipment on the carom match table (``Table.carom()``).
+  Balls per the UMB equipment article: diameter 61-61.5 mm (61.5 mm here, as
+  pooltool's ``BILLIARD_GENERIC`` ball), mass 205-220 g (0.210 kg, pooltool's
+  value, inside the range); cushion nose 37 mm above the bed (UMB). Cloth:
+  sliding friction 0.2 and rolling resistance 0.01, cushion friction 0.15, as
+  pooltool's ``BILLIARD_GENERIC`` ball parameters (its three-cushion default);
+  pooltool says of them that they are not well researched, and no measured
+  value for a heated carom cloth was found, so they are the pool cloth's
+  sliding and rolling values (Alciatore) - a simplification (docs/rules.md).
+  The rest as ``standard``; the cue's spring scaled by the mass ratio so a
+  full draw still gives ~10 m/s.
 """
 from __future__ import annotations
 
@@ -70,8 +81,14 @@ class PhysicsParams:
         return cls(m=0.140, R=R, h_c=0.04 * R / 0.028575)
 
     @classmethod
+    def carom(cls) -> "PhysicsParams":
+        """Carom balls, cloth and cushion height (module docstring)."""
+        m = 0.210
+        return cls(m=m, R=0.0615 / 2, mu_s=0.2, mu_r=0.01, f_c=0.15, h_c=0.037, k=cls.k * m / cls.m)
+
+    @classmethod
     def preset(cls, name: str) -> "PhysicsParams":
-        presets = {"standard": cls.standard, "seed": cls.seed, "snooker": cls.snooker}
+        presets = {"standard": cls.standard, "seed": cls.seed, "carom": cls.carom, "snooker": cls.snooker}
         if name not in presets:
             raise ValueError(f"unknown physics preset {name!r}; choose one of {sorted(presets)}")
         return presets[name]()

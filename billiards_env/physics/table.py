@@ -16,6 +16,15 @@ i.e. jaws running straight into the pocket, jaw depths 36 mm and 24 mm),
 and its markings (``SnookerMarks``: baulk line, D, the six colour spots,
 WPBSA Section 1). pooltool rounds the snooker jaws (radii 91 and 64 mm);
 here they stay straight segments with a sharp tip (docs/rules.md says so).
+The carom match table (``Table.carom()``) has no pockets: its playing
+surface between the cushion noses is 2.84 x 1.42 m (UMB, "Rules of the
+Game of Three-Cushion", the equipment article: 2.84 m x 1.42 m, +-5 mm; a
+cushion nose 37 mm +-1 mm above the bed, which ``PhysicsParams.carom()``
+holds as ``h_c``). pooltool's ``BilliardTableSpecs`` is a pocketless box of
+the same kind (its default is a 10 ft table, not the match size).
+
+``Table.style`` names the equipment the renderers draw ("pool", "carom", "snooker"):
+the balls' colours and the table's markings; the physics never reads it.
 """
 from __future__ import annotations
 
@@ -43,6 +52,8 @@ SNOOKER_BLACK = 0.324     # m, the black spot from the top cushion's face (12.75
 # it, and every rail between two pockets is longer than twice this, so rails
 # stay outside every neighbourhood.
 POCKET_GROUP_RADIUS = 0.2
+# UMB match carom table: playing surface between the cushion noses (m).
+CAROM_SIZE = (1.42, 2.84)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -155,6 +166,7 @@ class Table:
     normal ``normals [S, 2]`` pointing into the table; ``tips [V, 2]`` jaw tips
     (vertices a ball can strike); ``pockets [P, 3]`` capture circles (x, y, r).
     ``box_segments`` is the closed box used when pockets are switched off.
+    ``style`` the equipment the renderers draw (module docstring).
     """
 
     width: float
@@ -164,7 +176,8 @@ class Table:
     tips: np.ndarray
     pockets: np.ndarray
     name: str = "custom"
-    marks: SnookerMarks | None = None  # a snooker table's baulk line, D and spots (None on other tables)
+    style: str = "pool"
+    marks: "SnookerMarks | None" = None  # a snooker table's baulk line, D and spots (None on other tables)
 
     @property
     def box_segments(self) -> np.ndarray:
@@ -206,6 +219,16 @@ class Table:
         return t
 
     @classmethod
+    def carom(cls) -> "Table":
+        """The UMB match carom table: 2.84 x 1.42 m between the cushion
+        noses, no pockets (module docstring). Use it with
+        ``PhysicsParams.carom()`` (carom balls, cloth and cushion height)."""
+        t = cls.pocketless(*CAROM_SIZE)
+        object.__setattr__(t, "name", "carom match")
+        object.__setattr__(t, "style", "carom")
+        return t
+
+    @classmethod
     def pool(cls, size_ft: int = 9) -> "Table":
         """A pool table of 7, 8 or 9 ft with six pockets."""
         if size_ft not in _POOL_SIZES:
@@ -219,6 +242,7 @@ class Table:
         w, l = SNOOKER_SIZE
         t = cls._six_pockets(w, l, SNOOKER_POCKETS, "snooker 12 ft")
         object.__setattr__(t, "marks", SnookerMarks.wpbsa(w, l))
+        object.__setattr__(t, "style", "snooker")
         return t
 
     @classmethod

@@ -41,10 +41,13 @@ END_EIGHT_EARLY = 4      # the 8 pocketed before the shooter's group was cleared
 END_EIGHT_FOUL = 5       # the 8 pocketed on a foul: the shooter loses
 END_EIGHT_POCKET = 6     # the 8 pocketed in another pocket than the one called: the shooter loses
 END_TEN = 7              # 10-ball: the 10 called and pocketed in the called pocket on a legal shot: the shooter wins
-END_LAST_BLACK = 8       # snooker: the first score or foul with only the black left ended the frame on points
+END_TARGET = 8           # games to a score: a player reached the target score (winner -1: a draw, as equal innings allow)
+END_INNINGS = 9          # games to a score: the innings limit was reached; the higher score wins (winner -1: a draw)
+END_LAST_BLACK = 10      # snooker: the first score or foul with only the black left ended the frame on points
 END_NAMES = {END_NONE: "none", END_NINE: "9 pocketed", END_THREE_FOULS: "three consecutive fouls",
              END_EIGHT: "8 pocketed", END_EIGHT_EARLY: "8 pocketed early", END_EIGHT_FOUL: "8 pocketed on a foul",
              END_EIGHT_POCKET: "8 in an uncalled pocket", END_TEN: "10 pocketed as called",
+             END_TARGET: "target score reached", END_INNINGS: "innings limit reached",
              END_LAST_BLACK: "the last black decided the frame"}
 
 # --- called ball (ShotInput.called_ball, 10-ball) ----------------------------------
@@ -65,7 +68,9 @@ PHASE_PLAY = 3           # any other shot
 PHASE_OPTION = 4         # 10-ball: the last shot pocketed a ball illegally (not the called ball in the called
                          # pocket) without a foul; the next player may shoot or pass the shot back.
                          # Snooker: the last shot was a foul; the incoming player may play or put the offender back in
-PHASE_COLOUR = 5         # snooker: a red (or a free ball taken as a red) was potted; a nominated colour is on
+PHASE_FINAL = 5          # games to a score with equal innings: the starting player reached the target; the
+                         # opponent plays a last inning
+PHASE_COLOUR = 6         # snooker: a red (or a free ball taken as a red) was potted; a nominated colour is on
 
 # --- 8-ball groups (GameState.group) ------------------------------------------------
 GROUP_OPEN = 0
@@ -78,9 +83,10 @@ class GameState:
     """Per table [E]: ``shooter`` (0 or 1), ``breaker`` (who broke),
     ``phase`` (PHASE_*), ``ball_in_hand`` (IN_HAND_*), ``fouls`` [E, 2]
     consecutive fouls per player, ``group`` [E, 2] each player's 8-ball
-    group (GROUP_*), ``shots`` taken, ``over`` and ``winner`` (-1 none),
-    ``score`` [E, 2] each player's points (games scored by points: snooker;
-    zeros elsewhere)."""
+    group (GROUP_*), ``shots`` taken, ``over`` and ``winner`` (-1 none);
+    games to a score (three-cushion, snooker) also keep ``score`` [E, 2] each
+    player's points and ``innings`` [E, 2] the innings (turns at the table)
+    each player has begun (zeros in the games won by a ball)."""
 
     shooter: np.ndarray
     breaker: np.ndarray
@@ -91,11 +97,8 @@ class GameState:
     shots: np.ndarray
     over: np.ndarray
     winner: np.ndarray
-    score: np.ndarray | None = None
-
-    def __post_init__(self):
-        if self.score is None:
-            self.score = np.zeros((len(self.shooter), 2), dtype=np.int64)
+    score: np.ndarray
+    innings: np.ndarray
 
     @classmethod
     def new(cls, breaker) -> "GameState":
@@ -107,7 +110,8 @@ class GameState:
         return cls(shooter=b.copy(), breaker=b, phase=np.full(E, PHASE_BREAK, dtype=np.int64),
                    ball_in_hand=np.full(E, IN_HAND_KITCHEN, dtype=np.int64), fouls=np.zeros((E, 2), dtype=np.int64),
                    group=np.zeros((E, 2), dtype=np.int64), shots=np.zeros(E, dtype=np.int64),
-                   over=np.zeros(E, dtype=bool), winner=np.full(E, -1, dtype=np.int64))
+                   over=np.zeros(E, dtype=bool), winner=np.full(E, -1, dtype=np.int64),
+                   score=np.zeros((E, 2), dtype=np.int64), innings=np.zeros((E, 2), dtype=np.int64))
 
     @property
     def n(self) -> int:
@@ -140,7 +144,9 @@ class ShotInput:
     safety, CALL_NONE none; snooker: the nominated ball, a colour or a free
     ball); ``pos_before`` (optional) the positions the shot was played from. From a ``physics.SimResult``: ``state.pocket``,
     ``first_contact``, ``cushion_hits_after_contact`` (``rails``) and
-    ``cushion_hits`` (``object_rails``)."""
+    ``cushion_hits`` (``object_rails``); games judged on the order of the
+    cue ball's contacts (three-cushion) also take ``contacts`` [E, K, 2] and
+    ``n_contacts`` [E] (``SimResult.contacts``, ``n_contacts``)."""
 
     pocket_before: np.ndarray
     pocket_after: np.ndarray
@@ -151,6 +157,8 @@ class ShotInput:
     called_pocket: np.ndarray | None = None
     passed: np.ndarray | None = None
     called_ball: np.ndarray | None = None
+    contacts: np.ndarray | None = None
+    n_contacts: np.ndarray | None = None
     pos_before: np.ndarray | None = None  # [E, B, 2] the balls where the shot was played from (snooker's free ball)
 
     def __post_init__(self):
@@ -187,9 +195,9 @@ class ShotRecord:
     ``shooter`` (who played it), ``option`` (10-ball: the shot pocketed a
     ball illegally without a foul, so the next player may shoot or pass the
     shot back; snooker: the shot was a foul, so the incoming player may put
-    the offender back in; all False in the other games), ``points`` (what the
-    shooter scored) and ``penalty`` (what a foul gave the opponent; both
-    snooker's, zeros elsewhere)."""
+    the offender back in; all False in the other games), ``points`` (the
+    points the shot scored for its shooter; games to a score, else zeros)
+    and ``penalty`` (what a foul gave the opponent; snooker, else zeros)."""
 
     legal: np.ndarray
     foul: np.ndarray

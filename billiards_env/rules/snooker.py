@@ -39,6 +39,7 @@ BLACK = FIRST_COLOUR + 5
 N_BALLS = BLACK                    # object balls
 VALUE = np.array([0] + [1] * N_REDS + [2, 3, 4, 5, 6, 7], dtype=np.int64)  # points of each ball
 MIN_FOUL = 4                       # the least penalty of a foul (WPBSA Section 3, rule 12)
+SCORE_SCALE = 147.0                # observed scores and points left are divided by the maximum break
 SNOOKER_R = 0.02625                # m, the ball radius of PhysicsParams.snooker() (the default for ``snookered``)
 # A grazing path is obstructed if a ball not on comes nearer to it than 2R less this (m): balls touching the
 # path at exactly 2R (a frozen neighbour) do not obstruct, as the rules' "wholly or partially obstructed" reads.
@@ -153,6 +154,9 @@ class SnookerRules(Rules):
     calls_ball = True   # the nominated colour, or the free ball, in ``ShotInput.called_ball``
     scored = True       # a game of points: ``GameState.score``
     reads_position = True
+    table_style = "snooker"   # Table.snooker()
+    physics = "snooker"       # PhysicsParams.snooker(): snooker balls
+    extra_obs = 4             # observation: both scores, the points left, a free ball (``observe_extra``)
 
     def __init__(self, R: float = SNOOKER_R):
         self.R = R
@@ -161,6 +165,20 @@ class SnookerRules(Rules):
         g = GameState.new(breaker)
         g.ball_in_hand[:] = IN_HAND_D
         return g
+
+    def observe_extra(self, game: GameState, pocket=None, constraints=None) -> np.ndarray:
+        """[E, 4] in [0, 1]: the shooter's score, the opponent's, the face value of the balls on the
+        table (each / SCORE_SCALE, clipped), and 1 where a free ball may be nominated."""
+        E = game.n
+        ar = np.arange(E)
+        out = np.zeros((E, 4), dtype=np.float32)
+        out[:, 0] = np.minimum(game.score[ar, game.shooter] / SCORE_SCALE, 1.0)
+        out[:, 1] = np.minimum(game.score[ar, 1 - game.shooter] / SCORE_SCALE, 1.0)
+        if pocket is not None:
+            out[:, 2] = np.minimum(((np.asarray(pocket) < 0) * VALUE[None, :]).sum(axis=1) / SCORE_SCALE, 1.0)
+        if constraints is not None:
+            out[:, 3] = constraints.call_needed & constraints.may_pass  # a nomination right after a foul
+        return out
 
     def free_ball(self, game: GameState, pos: np.ndarray | None, before: np.ndarray) -> np.ndarray:
         """[E] a free ball is awarded: after a foul, the cue ball on the table (not in hand) and snookered."""

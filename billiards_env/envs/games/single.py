@@ -8,7 +8,7 @@ import gymnasium as gym
 import numpy as np
 
 from .core import GameCore
-from .spaces import OBSERVATION_DOC, action_space, info_row, make_config, observation_space
+from .spaces import OBSERVATION_DOC, THREE_CUSHION_DOC, action_space, info_row, make_config, observation_space
 from .versus import AGENT, check_opponent, make_opponent, new_games, opponent_turns
 
 
@@ -113,6 +113,16 @@ class TenBallEnv(GameEnv):
     __doc__ = ("Billiards-TenBall-v0: 10-ball against a fixed opponent (a 9-component action: a8 the called "
                "ball).\n\n    " + GameEnv.__doc__)
     game = "ten_ball"
+
+
+class ThreeCushionEnv(GameEnv):
+    __doc__ = ("Billiards-ThreeCushion-v0: three-cushion against a fixed opponent (default the ``carom`` bot).\n\n    "
+               + GameEnv.__doc__ + THREE_CUSHION_DOC)
+    game = "three_cushion"
+
+    def __init__(self, opponent="carom", config=None, opponent_seed: int = 0, render_mode: str | None = None,
+                 **overrides: Any):
+        super().__init__(opponent, config, opponent_seed, render_mode, **overrides)
 
 
 class SnookerEnv(GameEnv):

@@ -1,0 +1,47 @@
+"""The carom match table and carom equipment (physics.table.Table.carom, PhysicsParams.carom)."""
+import numpy as np
+
+from billiards_env.physics.params import PhysicsParams
+from billiards_env.physics.simulate import simulate
+from billiards_env.physics.state import BallState
+from billiards_env.physics.strike import strike_velocity
+from billiards_env.physics.table import Table
+from billiards_env.rendering import ball_color, render_table
+from billiards_env.rendering.draw import world_to_pixel
+
+
+def test_carom_table_is_the_umb_match_table_without_pockets():
+    t, p = Table.carom(), PhysicsParams.carom()
+    assert (t.width, t.length) == (1.42, 2.84) and not t.has_pockets and t.style == "carom"
+    assert len(t.segments) == 4 and len(t.tips) == 0
+    assert 0.0605 / 2 < p.R <= 0.0615 / 2 and 0.205 <= p.m <= 0.220 and p.h_c == 0.037
+    assert PhysicsParams.preset("carom") == p
+    assert abs(p.max_speed - PhysicsParams.standard().max_speed) < 1e-3  # the cue still reaches ~10 m/s
+
+
+def test_a_hard_shot_on_the_carom_table_stays_on_it():
+    t, p = Table.carom(), PhysicsParams.carom()
+    s = BallState.from_positions([[0.71, 0.7], [0.4, 1.5], [1.0, 2.2]])
+    s = strike_velocity(s, 0.3, 6.0, 0.0, 0.3, params=p)
+    r = simulate(s, t, p)
+    assert not r.truncated[0] and r.cushion_hits[0].sum() > 3
+    assert (r.state.pocket == -1).all()
+    x, y = r.state.pos[0, :, 0], r.state.pos[0, :, 1]
+    assert (x >= p.R - 1e-9).all() and (x <= t.width - p.R + 1e-9).all()
+    assert (y >= p.R - 1e-9).all() and (y <= t.length - p.R + 1e-9).all()
+
+
+def test_render_draws_carom_balls_without_numbers_and_the_diamonds():
+    t, p = Table.carom(), PhysicsParams.carom()
+    pos = np.array([[0.3, 0.5], [0.7, 1.4], [1.1, 2.3]])
+    img = render_table(t, p, pos, ppm=300)
+    for i in range(3):
+        c, r = world_to_pixel(t, pos[i], 300).round().astype(int)
+        assert tuple(img[r, c]) == ball_color(i, "carom")  # a plain ball: its centre is its colour, no number disc
+    assert ball_color(2, "carom")[0] > 150 and ball_color(2, "carom")[1] < 60  # red
+    # a sight on the long rail, halfway across the drawn rail at 1/8 of the length
+    c, r = world_to_pixel(t, (-0.04, t.length / 8), 300).round().astype(int)
+    assert tuple(img[r, c]) == (232, 220, 192)
+    pool = render_table(Table.pool(9), PhysicsParams.standard(), pos[:2], ppm=300)
+    c, r = world_to_pixel(Table.pool(9), pos[1], 300).round().astype(int)
+    assert tuple(pool[r, c]) == (255, 255, 255)  # a pool ball keeps its number on a white disc
