@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 
 import numba
+import numpy as np
 
 from ..physics.state import SPOT_CLEAR, SPOT_EDGE, spot_free
 
@@ -69,6 +70,30 @@ def place_cue(want, pos, pocket, kitchen, width, length, R, pockets, out, moved)
     return ok
 
 
+def legal_spots(xy, pos, pocket, kitchen, width: float, length: float, R: float, pockets, d=None):
+    """``place_cue`` for arrays from Python: the legal cue-ball spots nearest
+    to ``xy`` [n, 2] on tables ``pos`` [n, B, 2] / ``pocket`` [n, B], behind
+    the head string where ``kitchen`` [n]; on a snooker table (``d``, the
+    D's centre and radius: ``d_of``) in the D (``place_cue_in_d``):
+    (spots [n, 2], moved [n]). Raises RuntimeError if some table has no free spot."""
+    xy = np.ascontiguousarray(np.asarray(xy, dtype=np.float64).reshape(len(kitchen), 2))
+    out, moved = np.empty((len(kitchen), 2)), np.zeros(len(kitchen), dtype=bool)
+    pos, pocket = np.ascontiguousarray(pos), np.ascontiguousarray(pocket)
+    if d is not None:
+        ok = place_cue_in_d(xy, pos, pocket, np.asarray(d, dtype=np.float64), width, length, R, pockets, out, moved)
+    else:
+        ok = place_cue(xy, pos, pocket, np.ascontiguousarray(kitchen), width, length, R, pockets, out, moved)
+    if not ok:
+        raise RuntimeError("no free spot for the cue ball")
+    return out, moved
+
+
+def d_of(table):
+    """A snooker table's D as (cx, cy, r) for ``legal_spots``; None on a table without one."""
+    m = getattr(table, "marks", None)
+    return None if m is None else np.array([m.d_centre[0], m.d_centre[1], m.d_radius])
+
+
 @_jit
 def _in_d(x, y, cx, cy, r):
     return y <= cy - KITCHEN_GAP and math.hypot(x - cx, y - cy) <= r
@@ -92,9 +117,9 @@ def place_cue_in_d(want, pos, pocket, d, width, length, R, pockets, out, moved):
         on = pocket[e] < 0
         on[0] = False
         x, y = want[e, 0], min(want[e, 1], cy - KITCHEN_GAP)
-        d = math.hypot(x - cx, y - cy)
-        if d > r:
-            x, y = cx + (x - cx) * r / d, cy + (y - cy) * r / d
+        dist = math.hypot(x - cx, y - cy)
+        if dist > r:
+            x, y = cx + (x - cx) * r / dist, cy + (y - cy) * r / dist
         found = spot_free(x, y, pos[e], on, width, length, edge, pockets, md)
         if not found:
             for k in range(1, PLACE_RINGS):

@@ -45,3 +45,16 @@ def test_render_draws_carom_balls_without_numbers_and_the_diamonds():
     pool = render_table(Table.pool(9), PhysicsParams.standard(), pos[:2], ppm=300)
     c, r = world_to_pixel(Table.pool(9), pos[1], 300).round().astype(int)
     assert tuple(pool[r, c]) == (255, 255, 255)  # a pool ball keeps its number on a white disc
+
+
+def test_carom_hard_cases_keep_every_invariant():
+    """The fuzzer's carom tables (frozen pairs, cushion-frozen balls, extreme spin), with the contact order
+    kept: every invariant of billiards_env.testing holds."""
+    from billiards_env.testing import carom_batch, run_batch
+    rng = np.random.default_rng(5)
+    s, t, p = carom_batch(rng, 256)
+    d = np.linalg.norm(s.pos[:, :, None] - s.pos[:, None], axis=-1) + np.eye(3) * 9
+    assert (np.abs(d - 2 * p.R) < 1e-9).any()  # some balls are frozen together
+    assert (np.isclose(s.pos, p.R) | np.isclose(s.pos[..., 0:1], t.width - p.R)).any()  # some on a cushion
+    res, viol = run_batch(s, t, p, "event")
+    assert res.contacts is not None and not any(viol), [v for v in viol if v][:3]
