@@ -127,3 +127,26 @@ def test_random_games_end_and_scores_follow_the_shot_records():
     won = g.winner >= 0
     assert (g.score[won, g.winner[won]] >= g.score[won, 1 - g.winner[won]]).all()
     assert ((g.score.max(axis=1) >= 2) | (g.innings.min(axis=1) == 8)).all()
+
+
+def test_point_task_success_and_shaped_reward():
+    """Billiards-ThreeCushionPoint-v0: success is the point read from the contact order, and the reward is
+    the sum of its spec's terms (success 1.0, both balls 0.2, 0.3 x cushions before the second / 3, foul -0.1)."""
+    from gymnasium.utils.env_checker import check_env
+    from billiards_env.rules.three_cushion import point_made
+    check_env(gym.make("Billiards-ThreeCushionPoint-v0").unwrapped, skip_render_check=True)
+    n = 1024
+    v = gym.make_vec("Billiards-ThreeCushionPoint-v0", num_envs=n, vectorization_mode="vector_entry_point")
+    obs, _ = v.reset(seed=2)
+    assert obs.shape == (n, 13) and v.unwrapped._core.table.style == "carom"
+    rng = np.random.default_rng(4)
+    _, r, term, trunc, info = v.step(rng.uniform(-1, 1, (n, 4)).astype(np.float32))
+    assert term.all() and not trunc.any()
+    terms = info["reward_terms"]
+    np.testing.assert_allclose(r, sum(terms[k] for k in terms), atol=1e-12)
+    assert (terms["success"] == 1.0 * info["success"]).all() and (terms["foul"] == -0.1 * info["foul"]).all()
+    assert info["success"].sum() >= 1 and (terms["contact"] > 0).sum() > info["success"].sum()
+    # a point always reached both balls with the full shaping term
+    s = info["success"]
+    assert (terms["contact"][s] == 0.2).all() and np.allclose(terms["shaping"][s], 0.3)
+    assert (terms["pocket"] == 0).all() and (terms["scratch"] == 0).all()
