@@ -22,6 +22,14 @@ import importlib
 
 BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "carom<K>", "snooker", "<module>:<factory>")
 DEFAULT_SEARCH_K = 64
+# The bot a game is played by when none is named (the play app's opponent and hint): ``ghost``, but the pool
+# bots pot balls, so a game without pockets has its own.
+DEFAULT_BOTS = {"three_cushion": "carom"}
+
+
+def default_bot(game: str) -> str:
+    """The name of the bot that plays ``game`` by default (``DEFAULT_BOTS``, else ``ghost``)."""
+    return DEFAULT_BOTS.get(game, "ghost")
 
 
 def is_bot_name(name) -> bool:

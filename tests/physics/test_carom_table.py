@@ -58,3 +58,18 @@ def test_carom_hard_cases_keep_every_invariant():
     assert (np.isclose(s.pos, p.R) | np.isclose(s.pos[..., 0:1], t.width - p.R)).any()  # some on a cushion
     res, viol = run_batch(s, t, p, "event")
     assert res.contacts is not None and not any(viol), [v for v in viol if v][:3]
+
+
+def test_fuzz_script_quick_on_the_carom_table(tmp_path):
+    """scripts/fuzz.py --table carom at a tiny size: runs, fuzzes the carom table, finds nothing."""
+    import json
+    import pathlib
+    import subprocess
+    import sys
+    root = pathlib.Path(__file__).resolve().parents[2]
+    out = subprocess.run([sys.executable, str(root / "scripts" / "fuzz.py"), "--table", "carom", "--shots", "64",
+                          "--batch", "32", "--seed", "3", "--summary", str(tmp_path / "s.json"), "--regressions",
+                          str(tmp_path / "reg")], capture_output=True, text=True, timeout=900, cwd=root)
+    assert out.returncode == 0, out.stderr[-2000:]
+    s = json.loads((tmp_path / "s.json").read_text())
+    assert s["table"] == "carom" and s["shots"] == 64 and s["shots_with_violations"] == 0 and s["events"] > 64
