@@ -24,7 +24,7 @@ BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "carom
 DEFAULT_SEARCH_K = 64
 # The bot a game is played by when none is named (the play app's opponent and hint): ``ghost``, but the pool
 # bots pot balls, so a game without pockets has its own.
-DEFAULT_BOTS = {"three_cushion": "carom"}
+DEFAULT_BOTS = {"three_cushion": "carom", "snooker": "snooker"}
 
 
 def default_bot(game: str) -> str:
