@@ -450,6 +450,9 @@ class GameLookahead:
 
     # --- acting ---------------------------------------------------------------------------------------------------
     def act(self, view) -> ShotPlan:
+        if not view.table.has_pockets:
+            raise ValueError(f"the lookahead bot pots balls: it cannot play {view.game} on a table without pockets "
+                             "(three-cushion: the carom bot, make_bot('carom'))")
         n = view.n
         phi, speed, a, b = np.zeros(n), np.ones(n), np.zeros(n), np.zeros(n)
         placement, declare, pocket = np.full((n, 2), np.nan), np.zeros(n, bool), np.zeros(n, dtype=np.int64)

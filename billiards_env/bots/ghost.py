@@ -200,6 +200,9 @@ class GhostBot:
 
     # --- acting ------------------------------------------------------------------
     def act(self, view) -> ShotPlan:
+        if not view.table.has_pockets:
+            raise ValueError(f"the {self.name} bot pots balls: it cannot play {view.game} on a table without "
+                             "pockets (three-cushion: the carom bot, make_bot('carom'))")
         geo = self.geometry(view)
         n = view.n
         t, p = view.table, view.params

@@ -31,14 +31,18 @@ from ..rules import Constraints, ShotInput, ShotRecord
 class Preview:
     """The outcome of previewed shots, one row per shot: ``record`` (the
     rules' ``ShotRecord``: legal, foul, turn over, winner, ...), ``pos`` [k,
-    B, 2] and ``pocket`` [k, B] after the shot, ``first_contact`` [k] and
-    ``next`` (the next shooter's ``Constraints``)."""
+    B, 2] and ``pocket`` [k, B] after the shot, ``first_contact`` [k],
+    ``next`` (the next shooter's ``Constraints``) and, where the rules read
+    them (three-cushion), the cue ball's ``contacts`` [k, K, 2] in order and
+    ``n_contacts`` [k] (``physics.SimResult``'s)."""
 
     record: ShotRecord
     pos: np.ndarray
     pocket: np.ndarray
     first_contact: np.ndarray
     next: Constraints
+    contacts: np.ndarray | None = None
+    n_contacts: np.ndarray | None = None
 
     @property
     def on_table(self) -> np.ndarray:
@@ -93,8 +97,9 @@ def play_shots(view, start: BallState, shots, noise=None, rng=None, rows=None):
             z *= scale[:, None]
         shots = perturb(shots, z, cfg, view.params)
     struck = strike_velocity(start, *shots, view.params)
+    # the cue ball's contacts in order where the rules read them (three-cushion)
     return simulate(struck, view.table, view.params, effects=view.effects, models=view.models,
-                    options=SimOptions(validate=False))
+                    options=SimOptions(validate=False, contacts=getattr(view.rules, "contacts", 0)))
 
 
 def preview(view, plan, rows=None, noise=None, rng=None, start: BallState | None = None):
@@ -118,9 +123,12 @@ def preview(view, plan, rows=None, noise=None, rng=None, start: BallState | None
     if getattr(view.rules, "calls_ball", False):  # 10-ball: the called ball (-1: the nominal target)
         ball = np.where(plan.ball < 0, np.maximum(view.nominal_target()[rows], 0), plan.ball)
         ball = np.where(view.call_needed[rows], ball, -1)
-    shot = ShotInput(start.pocket, pocket, first, rails, object_rails, called_pocket=called, called_ball=ball)
+    where = getattr(view.rules, "reads_position", False)  # snooker's free ball reads the position
+    shot = ShotInput(start.pocket, pocket, first, rails, object_rails, called_pocket=called, called_ball=ball,
+                     contacts=res.contacts, n_contacts=res.n_contacts, pos_before=start.pos if where else None)
     rec, after = view.rules.judge(view.state.take(rows), shot)
-    return Preview(rec, pos, pocket, first, view.rules.constraints(after, pocket))
+    return Preview(rec, pos, pocket, first, view.rules.constraints(after, pocket, **({"pos": pos} if where else {})),
+                   res.contacts, res.n_contacts)
 
 
 def _task_preview(view, plan, rows, noise_rng, start) -> TaskPreview:

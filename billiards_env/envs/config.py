@@ -70,8 +70,9 @@ class TaskConfig:
     """Everything that defines a task instance.
 
     - ``task``: a registered task name (``pot_one``, ``run_out``, ``nine_ball``, ...);
-    - ``table``: ``pool`` (with ``table_size_ft`` 7, 8 or 9) or ``pocketless``;
-    - ``physics``: a ``PhysicsParams`` preset name (``standard``, ``seed``);
+    - ``table``: ``pool`` (with ``table_size_ft`` 7, 8 or 9), ``pocketless`` or
+      ``carom`` (the carom match table, ``Table.carom()``);
+    - ``physics``: a ``PhysicsParams`` preset name (``standard``, ``seed``, ``carom``);
     - ``solver``: ``event`` (exact) or ``step`` (fixed step ``dt`` seconds);
     - ``n_balls``: object balls (pot_one: 1, nine_ball: 9);
     - ``max_shots``: shots per episode before truncation;
@@ -117,8 +118,8 @@ class TaskConfig:
         if self.version != CONFIG_VERSION:
             raise ValueError(f"config version {self.version!r} is not supported (expected {CONFIG_VERSION})")
         task = get_task(self.task)  # ValueError naming the registered tasks
-        if self.table not in ("pool", "pocketless"):
-            raise ValueError(f"table must be 'pool' or 'pocketless', got {self.table!r}")
+        if self.table not in ("pool", "pocketless", "carom"):
+            raise ValueError(f"table must be 'pool', 'pocketless' or 'carom', got {self.table!r}")
         if self.solver not in ("event", "step"):
             raise ValueError(f"solver must be 'event' or 'step', got {self.solver!r}")
         if self.solver == "step":
@@ -197,6 +198,8 @@ class TaskConfig:
         return PhysicsParams.preset(self.physics)
 
     def make_table(self) -> Table:
+        if self.table == "carom":
+            return Table.carom()
         return Table.pool(self.table_size_ft) if self.table == "pool" else Table.pocketless()
 
 

@@ -266,9 +266,10 @@ class BilliardsCore:
     def simulate(self, state: BallState):
         """Simulate struck tables to rest with this env's table, physics, solver, effects and models."""
         c = self.cfg
+        k = getattr(getattr(self, "task", None), "contacts", 0)  # the contact order, where the task reads it
         return simulate(state, self.table, self.params, solver=c.solver, dt=c.dt,
                         record=self.record, effects=self.effects, models=self.models,
-                        options=SimOptions(validate=False))  # states are ours, already checked
+                        options=SimOptions(validate=False, contacts=k))  # states are ours, already checked
 
     @staticmethod
     def at_rest(s: BallState) -> BallState:
@@ -357,7 +358,8 @@ class BilliardsCore:
         end = BallState(rest.pos, np.zeros_like(rest.vel), np.zeros_like(rest.omega), rest.pocket)
 
         shot = ShotOutcome(pocketed=(end.pocket >= 0) & (start.pocket < 0), pocket_after=end.pocket,
-                           first_contact=res.first_contact, target=tgt)
+                           first_contact=res.first_contact, target=tgt, contacts=res.contacts,
+                           n_contacts=res.n_contacts)
         judged = self.task.judge(shot)
         self.shots[sel] += 1
         n_shots = self.shots[sel].copy()

@@ -73,10 +73,25 @@ def _impact_sums(balls, e, imp, nb, p):
     return en, px, py
 
 
-def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion):
+@njit
+def note_contact(out, e, kind, index):
+    """Append a cue-ball contact (event kind, ball or boundary index) to
+    table e's contact order; past its capacity only the count grows."""
+    n = out.norder[e]
+    if n < out.order.shape[1]:
+        out.order[e, n, 0] = kind
+        out.order[e, n, 1] = index
+    out.norder[e] = n + 1
+
+
+def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion, order_on=False):
     """The impact functions for one effect set, with ball-ball model
-    ``ball_ball`` and cushion model ``cushion`` (see their packages)."""
+    ``ball_ball`` and cushion model ``cushion`` (see their packages);
+    ``order_on``: the cue ball's contacts are noted in order (``note_contact``;
+    a compile-time constant, so a kernel without it has none of that code)."""
     choices = (spin_on, slide_on, zspin_on, diag_on, name_of(ball_ball), name_of(cushion))
+    if order_on:  # the default kernels keep their variant names
+        choices = choices + ("order",)
     variant = variant_njit("impacts", *choices)
     resolve_cushion = make_cushion(cushion, spin_on)
 
@@ -124,6 +139,8 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion):
         out.cush[e, a] += 1
         if out.first[e] >= 0:
             out.cush_after[e, a] += 1
+        if order_on and a == 0:
+            note_contact(out, e, kind, b)
 
     @variant
     def impulses(balls, e, imp, ns, nb, p):
@@ -181,6 +198,8 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion):
             i, j = sim_i[s], sim_j[s]
             if out.first[e] == -1 and (i == 0 or j == 0):
                 out.first[e] = j if i == 0 else i
+            if order_on and (i == 0 or j == 0):
+                note_contact(out, e, C.EV_BALL_BALL, j if i == 0 else i)
             if log.on:
                 event_log.record(log, balls, e, t, C.EV_BALL_BALL, i, j)
         return nb

@@ -66,17 +66,21 @@ def _code_tag(*functions) -> str:
     return h.hexdigest()[:16]
 
 
-def make_kernel(kind: str, effects: Effects, models: Models, diagnostics: bool = False):
-    """The compiled kernel of solver ``kind`` ("event" or "step")."""
+def make_kernel(kind: str, effects: Effects, models: Models, diagnostics: bool = False, contacts: bool = False):
+    """The compiled kernel of solver ``kind`` ("event" or "step");
+    ``contacts``: it notes the cue ball's contacts in order
+    (``impacts.note_contact``, ``SimOptions.contacts``)."""
     if kind not in KINDS:
         raise ValueError(f"unknown solver {kind!r}; choose one of {KINDS}")
     n = effects.normalized()
     bb_name, cu_name = models.resolved(n)
     key = (kind, n.spin, n.sliding, n.vertical_spin, bb_name, cu_name, bool(diagnostics))
+    if contacts:  # the default kernels keep their keys
+        key = key + ("contacts",)
     if key not in _kernels:
         bb = ball_ball.resolver(n.ball_friction, models.ball_ball_friction)
         cu = cushion.resolver(n.cushion_friction, models.cushion)
-        impacts = make_impacts(n.spin, n.sliding, n.vertical_spin, bool(diagnostics), bb, cu)
+        impacts = make_impacts(n.spin, n.sliding, n.vertical_spin, bool(diagnostics), bb, cu, bool(contacts))
         solver = event_solver if kind == "event" else step_solver
         run = solver.make_run(n.spin, n.vertical_spin, bool(diagnostics), impacts)
         tag = f"{SOURCE_TAG}/{'/'.join(map(str, key))}/{_code_tag(bb, cu)}"

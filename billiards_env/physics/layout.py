@@ -28,8 +28,11 @@ Geometry = namedtuple("Geometry", "segs norms tips pockets width length rails fr
 EventScratch = namedtuple("EventScratch", "tt tb bkind bidx tpair paths tlast")
 # Per table: simulated time, events, first ball the cue ball touched (-1),
 # cushion hits per ball [E, B] (all, and those after the cue ball's first
-# contact), truncated flag, diagnostics [E, 4] (simulate.SimResult.diagnostics)
-Outputs = namedtuple("Outputs", "time nev first cush cush_after trunc diag")
+# contact), truncated flag, diagnostics [E, 4] (simulate.SimResult.diagnostics),
+# the cue ball's contacts in order (order [E, K, 2]: event kind, ball or
+# boundary index; norder [E] how many there were, K or more; written only by
+# a kernel compiled with the contact order on, SimOptions.contacts)
+Outputs = namedtuple("Outputs", "time nev first cush cush_after trunc diag order norder")
 # Event log buffers: on (record at all), n [E] events so far, t [E, N],
 # kind [E, N], ij [E, N, 2], state [E, N, 2, 8] (simulate.EventLog)
 LogBuffers = namedtuple("LogBuffers", "on n t kind ij state")

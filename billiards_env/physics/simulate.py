@@ -35,6 +35,10 @@ class SimOptions(NamedTuple):
     ``validate``: check the input state (array shapes, finite values, no
     ball overlapping another or off the table); ``False`` skips the checks
     for a caller whose states are already known to be valid.
+    ``contacts``: keep the cue ball's first ``contacts`` contacts, balls and
+    cushions, in the order they happen (``SimResult.contacts``; the carom
+    rules read it); 0 (the default) keeps none, and the kernel then has none
+    of that code (a separate compiled variant).
 
     A named tuple, not a frozen dataclass: callers that simulate one table
     at a time build one per call, and a tuple is built 5x faster (0.5 us
@@ -42,6 +46,7 @@ class SimOptions(NamedTuple):
 
     max_events: int = C.MAX_EVENTS
     validate: bool = True
+    contacts: int = 0
 
 
 def _check_options(options) -> None:
@@ -52,6 +57,9 @@ def _check_options(options) -> None:
         raise ValueError(f"SimOptions.max_events must be a non-negative integer, got {m!r}")
     if not isinstance(options.validate, (bool, np.bool_)):
         raise TypeError(f"SimOptions.validate must be True or False, got {options.validate!r}")
+    k = options.contacts
+    if isinstance(k, (bool, np.bool_)) or not isinstance(k, numbers.Integral) or k < 0:
+        raise ValueError(f"SimOptions.contacts must be a non-negative integer (contacts kept), got {k!r}")
 
 
 DEFAULT_OPTIONS = SimOptions()
@@ -87,6 +95,8 @@ class SimResult:
     cushion_hits_after_contact: np.ndarray  # [E, B] cushion hits once the cue ball has touched a ball (the rules' "rail after contact")
     events: list | None = None  # [E] EventLog with record=True
     diagnostics: np.ndarray | None = None  # [E, 4]: max energy gain (J) of any impact or of the total from one event (step) to the next, max momentum error of a ball-ball impact (kg m/s), min gap (m), max off-table (m)
+    contacts: np.ndarray | None = None  # [E, K, 2] with SimOptions(contacts=K): the cue ball's contacts in order, (constants.EV_BALL_BALL, other ball) or (EV_CUSHION / EV_JAW_TIP, segment / tip index); rows past n_contacts are -1
+    n_contacts: np.ndarray | None = None  # [E] the cue ball's contacts in all (more than K: the rest were not kept)
 
     @property
     def pocketed(self) -> np.ndarray:
@@ -166,11 +176,13 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
         raise ValueError("state arrays must be pos and vel [E, B, 2], omega [E, B, 3] and pocket [E, B], got "
                          f"{s.pos.shape}, {s.vel.shape}, {s.omega.shape} and {s.pocket.shape}")
     E, B = s.pos.shape[:2]
-    geo, p, kernel = kernel_geometry(table, effects.pockets), params.as_array(), make_kernel(solver, effects, models,
-                                                                                             diagnostics)
+    n_contacts = int(options.contacts)
+    geo, p = kernel_geometry(table, effects.pockets), params.as_array()
+    kernel = make_kernel(solver, effects, models, diagnostics, n_contacts > 0)
+    flags = (int(max_events), bool(diagnostics), n_contacts)
     if not record and E * B * (B + 12) * 8 <= MAX_SCRATCH_BYTES:  # the common case: one call (chunk_rows' count)
-        return _simulate_chunk(s, geo, p, kernel, solver, dt, False, int(max_events), bool(diagnostics))
-    run = (geo, p, kernel, solver, dt, bool(record), int(max_events), bool(diagnostics))
+        return _simulate_chunk(s, geo, p, kernel, solver, dt, False, flags)
+    run = (geo, p, kernel, solver, dt, bool(record), flags)
     rows = chunk_rows(B, record)
     parts = [_simulate_chunk(s.take(slice(e0, min(E, e0 + rows))), *run) for e0 in range(0, E, rows)]
     return _concatenate(parts)
@@ -188,19 +200,26 @@ def _concatenate(parts: list) -> SimResult:
                    cat([r.state.omega for r in parts]), cat([r.state.pocket for r in parts]))
     events = None if parts[0].events is None else [e for r in parts for e in r.events]
     diag = None if parts[0].diagnostics is None else cat([r.diagnostics for r in parts])
+    order = None if parts[0].contacts is None else cat([r.contacts for r in parts])
+    norder = None if parts[0].n_contacts is None else cat([r.n_contacts for r in parts])
     return SimResult(st, cat([r.time for r in parts]), cat([r.n_events for r in parts]),
                      cat([r.first_contact for r in parts]), cat([r.cushion_hits for r in parts]),
-                     cat([r.truncated for r in parts]), cat([r.cushion_hits_after_contact for r in parts]), events, diag)
+                     cat([r.truncated for r in parts]), cat([r.cushion_hits_after_contact for r in parts]), events, diag,
+                     order, norder)
 
 
 def _simulate_chunk(s: BallState, geo: Geometry, p: np.ndarray, kernel, solver: str, dt, record: bool,
-                    max_events: int, diagnostics: bool) -> SimResult:
-    """One kernel call over the tables of ``s`` (contiguous float64 / int64 arrays, modified in place)."""
+                    flags: tuple) -> SimResult:
+    """One kernel call over the tables of ``s`` (contiguous float64 / int64 arrays, modified in place);
+    ``flags``: (max_events, diagnostics, contacts kept)."""
+    max_events, diagnostics, n_contacts = flags
     E, B = s.pos.shape[:2]
     balls = Balls(s.pos, s.vel, s.omega, np.zeros((E, B), dtype=np.int64), s.pocket)
     out = Outputs(time=np.zeros(E), nev=np.zeros(E, dtype=np.int64), first=np.full(E, -1, dtype=np.int64),
                   cush=np.zeros((E, B), dtype=np.int64), cush_after=np.zeros((E, B), dtype=np.int64),
-                  trunc=np.zeros(E, dtype=np.bool_), diag=np.zeros((E, 4)))
+                  trunc=np.zeros(E, dtype=np.bool_), diag=np.zeros((E, 4)),
+                  order=np.full((E if n_contacts else 1, n_contacts, 2), -1, dtype=np.int64),
+                  norder=np.zeros(E if n_contacts else 1, dtype=np.int64))
     cap = RECORD_CAPACITY if record else 1
     rows = E if record else 1
     log = LogBuffers(on=bool(record), n=np.zeros(E, dtype=np.int64), t=np.zeros((rows, cap)),
@@ -235,7 +254,8 @@ def _simulate_chunk(s: BallState, geo: Geometry, p: np.ndarray, kernel, solver: 
         events = [EventLog(log.t[e, :log.n[e]].copy(), log.kind[e, :log.n[e]].copy(),
                            log.ij[e, :log.n[e]].copy(), log.state[e, :log.n[e]].copy()) for e in range(E)]
     return SimResult(s, out.time, out.nev, out.first, out.cush, out.trunc, out.cush_after, events,
-                     out.diag if diagnostics else None)
+                     out.diag if diagnostics else None, out.order if n_contacts else None,
+                     out.norder if n_contacts else None)
 
 
 def set_num_threads(n: int) -> None:

@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from ..bots.registry import BOT_NAMES, DEFAULT_SEARCH_K, is_bot_name
-from ..bots.registry import make_bot
+from ..bots.registry import default_bot, make_bot
 from ..envs.games import GAMES
 from ..envs.games.core import NOISE_LEVELS
 from ..rendering.game_words import game_words
@@ -116,7 +116,7 @@ def new_request(req, extra_bots=()) -> dict:
         if not (isinstance(players, list) and len(players) == 2):
             raise PlayError(400, "'players' must name two players: [\"human\" or a bot name, ...]")
     else:
-        players = [HUMAN, req.get("opponent", "ghost")]
+        players = [HUMAN, req.get("opponent", default_bot(game))]
     for p in players:
         if p in extra_bots:
             continue

@@ -17,7 +17,7 @@ import time
 
 import numpy as np
 
-from ..bots.registry import make_bot
+from ..bots.registry import default_bot, make_bot
 from ..envs.games import GameConfig, GameCore
 from ..envs.games.play import bot_actions
 from ..rendering.game_replay import GameRecorder, state_words
@@ -230,9 +230,10 @@ class Session:
         return self.shots(n0)
 
     def hint(self) -> dict:
-        """The ``ghost`` bot's shot for the player to move, in the page's terms (aim, speed, tip, placement, call)."""
+        """The game's default bot's shot (``ghost``; three-cushion ``carom``: ``bots.registry.default_bot``) for
+        the player to move, in the page's terms (aim, speed, tip, placement, call)."""
         self._check_turn(None)
-        plan = make_bot("ghost", seed=self.seed).act(self.core.view([0]))
+        plan = make_bot(default_bot(self.core.config.game), seed=self.seed).act(self.core.view([0]))
         out = {"aim": float(plan.phi[0]) % (2 * math.pi), "speed": float(plan.speed[0]), "side": float(plan.a[0]),
                "height": float(plan.b[0])}
         if not np.isnan(plan.placement[0, 0]):

@@ -28,6 +28,14 @@ BALL_COLORS = {
     0: (255, 255, 255), 1: (250, 200, 0), 2: (0, 50, 210), 3: (220, 20, 20), 4: (110, 40, 150),
     5: (255, 120, 0), 6: (0, 150, 60), 7: (130, 20, 30), 8: (20, 20, 20),
 }
+# Balls of other equipment (``Table.style``): carom's white and yellow cue
+# balls and the red, drawn without numbers.
+# Snooker: the white, 15 reds (balls 1..15), then yellow, green, brown, blue, pink, black (16..21).
+SNOOKER_COLORS = ((255, 255, 255),) + ((200, 20, 20),) * 15 + (
+    (250, 215, 0), (0, 130, 60), (120, 70, 30), (0, 70, 200), (250, 130, 170), (15, 15, 15))
+STYLE_BALL_COLORS = {"carom": {0: (255, 255, 255), 1: (250, 200, 0), 2: (200, 20, 20)},
+                     "snooker": dict(enumerate(SNOOKER_COLORS))}
+DIAMOND_COLOR = (232, 220, 192)
 BORDER = 0.08  # m of rail drawn around the playing surface
 # Default pixels per metre: a ball is 17 px across, its number legible.
 PPM = 300
@@ -43,9 +51,42 @@ _DIGITS = ("111101101101111", "010110010010111", "111001111100111", "11100111100
            "111100111001111", "111100111101111", "111001010010010", "111101111101111", "111101111001111")
 
 
-def ball_color(i: int) -> tuple:
-    """Colour of ball i: cue white, 1-8 solids, 9-15 stripes of 1-7's colours."""
+MARK_COLOR = (225, 225, 225)
+
+
+def draw_marks(d, table, ppm: float, border: float) -> None:
+    """A snooker table's baulk line, D and colour spots (nothing on other tables)."""
+    m = getattr(table, "marks", None)
+    if m is None:
+        return
+    P = lambda xy: [tuple(p) for p in world_to_pixel(table, xy, ppm, border)]
+    w = max(1, int(ppm * 0.003))
+    d.line(P([(0.0, m.baulk), (table.width, m.baulk)]), fill=MARK_COLOR, width=w)
+    (cx, cy), r = m.d_centre, m.d_radius
+    a = np.linspace(np.pi, 2 * np.pi, 49)
+    d.line(P(np.stack([cx + r * np.cos(a), cy + r * np.sin(a)], axis=1)), fill=MARK_COLOR, width=w)
+    sr = max(1.0, 0.004 * ppm)
+    for x, y in m.spots:
+        c = world_to_pixel(table, (x, y), ppm, border)
+        d.ellipse([c[0] - sr, c[1] - sr, c[0] + sr, c[1] + sr], fill=MARK_COLOR)
+
+
+def ball_color(i: int, style: str = "pool") -> tuple:
+    """Colour of ball i: cue white, 1-8 solids, 9-15 stripes of 1-7's
+    colours; on a table of another ``style`` its own (STYLE_BALL_COLORS)."""
+    if style in STYLE_BALL_COLORS:
+        return STYLE_BALL_COLORS[style][i]
     return BALL_COLORS[i] if i <= 8 else BALL_COLORS[(i - 9) % 7 + 1]
+
+
+def diamonds(table, border: float = BORDER) -> np.ndarray:
+    """Centres [N, 2] of the sights on the rails (halfway across the drawn
+    rail): eighths of the length on the long rails, quarters of the width on
+    the short ones, as the replay viewer draws them."""
+    hb = border / 2
+    pts = [(x, table.length * k / 8) for k in range(1, 8) if k != 4 for x in (-hb, table.width + hb)]
+    pts += [(table.width * k / 4, y) for k in range(1, 4) for y in (-hb, table.length + hb)]
+    return np.array(pts)
 
 
 def image_size(table, ppm: float = PPM, border: float = BORDER) -> tuple[int, int]:
@@ -133,25 +174,35 @@ def render_table(table, params, pos, pocket=None, paths=None, ppm: float = PPM,
         d.ellipse([c[0] - rr, c[1] - rr, c[0] + rr, c[1] + rr], fill=POCKET_COLOR)
     for x0, y0, x1, y1 in table.segments:
         d.line(P([(x0, y0), (x1, y1)]), fill=CUSHION_COLOR, width=max(1, int(ppm * 0.01)))
+    draw_marks(d, table, ppm, border)
+    style = getattr(table, "style", "pool")
+    if style == "carom":  # the sights carom players aim by, and the three spots
+        for c in world_to_pixel(table, diamonds(table, border), ppm, border):
+            rd = max(1.0, 0.006 * ppm)
+            d.ellipse([c[0] - rd, c[1] - rd, c[0] + rd, c[1] + rd], fill=DIAMOND_COLOR)
+        for fy in (0.25, 0.5, 0.75):
+            c, rd = world_to_pixel(table, (table.width / 2, fy * table.length), ppm, border), max(1.0, 0.004 * ppm)
+            d.ellipse([c[0] - rd, c[1] - rd, c[0] + rd, c[1] + rd], fill=DIAMOND_COLOR)
+    numbered = style not in STYLE_BALL_COLORS
     pos = np.asarray(pos, dtype=np.float64)
     pocket = np.full(len(pos), -1) if pocket is None else np.asarray(pocket)
     if paths is not None:
         for i in reversed(range(len(paths))):  # cue-ball path on top
             pth = paths[i]
             if len(pth) > 1:
-                d.line(P(pth), fill=ball_color(i), width=max(1, int(ppm * 0.006)))
+                d.line(P(pth), fill=ball_color(i, style), width=max(1, int(ppm * 0.006)))
     rp = R * ppm
     for i in range(len(pos)):
         if pocket[i] >= 0:
             continue
         cx, cy = world_to_pixel(table, pos[i], ppm, border)
         box = [cx - rp, cy - rp, cx + rp, cy + rp]
-        col = ball_color(i)
+        col = ball_color(i, style)
         d.ellipse(box, fill=col, outline=(0, 0, 0))
-        if i >= 9:  # stripe: white caps above and below a coloured band of 1.3 R
+        if i >= 9 and numbered:  # stripe: white caps above and below a coloured band of 1.3 R
             d.chord(box, 180 + STRIPE_ANGLE, 360 - STRIPE_ANGLE, fill=(255, 255, 255))
             d.chord(box, STRIPE_ANGLE, 180 - STRIPE_ANGLE, fill=(255, 255, 255))
-        if i > 0 and rp >= NUMBER_MIN_RADIUS:
+        if i > 0 and numbered and rp >= NUMBER_MIN_RADIUS:
             _draw_number(d, i, cx, cy, rp, col)
     return np.asarray(img, dtype=np.uint8).copy()
 

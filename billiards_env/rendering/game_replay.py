@@ -139,6 +139,11 @@ class GameRecorder:
             game["ruling"] = ruling_words(game, self.labels)
             rep = self._games[k][-1]
             shot_info = {"action": action.tolist(), "game": game}
+            if core.rules.own_cue_balls:  # the ball in each slot: slot 0 is the shooter's (the starter's is white)
+                shot_info["ball_ids"] = [0, 1, 2] if s == int(core.game.breaker[k]) else [1, 0, 2]
+            if "score" in info and core.rules.extra_obs:  # games to a score: the shot's points, the score after it
+                game["points"] = int(info["points"][j])
+                game["score"] = np.asarray(info["score"][j]).astype(int).tolist()
             if info["passed"][j]:
                 rep.add_still(pos, pocket, info=shot_info)
             else:

@@ -10,9 +10,9 @@ from ..rules import END_NAMES, FOUL_NAMES
 from ..rules import records as R
 
 IN_HAND_WORDS = {R.IN_HAND_NONE: "none", R.IN_HAND_ANYWHERE: "anywhere",
-                 R.IN_HAND_KITCHEN: "behind the head string"}
+                 R.IN_HAND_KITCHEN: "behind the head string", R.IN_HAND_D: "in the D"}
 GROUP_WORDS = {R.GROUP_OPEN: "open", R.GROUP_SOLIDS: "solids", R.GROUP_STRIPES: "stripes"}
-GAME_WORDS = {"nine_ball": "9-ball", "eight_ball": "8-ball", "ten_ball": "10-ball"}
+GAME_WORDS = {"nine_ball": "9-ball", "eight_ball": "8-ball", "ten_ball": "10-ball", "three_cushion": "three-cushion"}
 
 
 def _word(table: dict, code, what: str) -> str:
@@ -44,8 +44,10 @@ def game_words(name: str) -> str:
 def pocket_names(pockets) -> list[str]:
     """Names of a table's pockets [P, 3] (x, y, r) by where they lie: the
     head (y = 0, the breaking end) or foot end, left (x < width / 2) or
-    right, corner or side."""
-    p = np.asarray(pockets, dtype=np.float64)
+    right, corner or side (a carom table has none)."""
+    p = np.asarray(pockets, dtype=np.float64).reshape(-1, 3)
+    if len(p) == 0:
+        return []
     lo, hi = p[:, 1].min(), p[:, 1].max()
     mid_x = (p[:, 0].min() + p[:, 0].max()) / 2
     out = []

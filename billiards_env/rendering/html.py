@@ -8,7 +8,7 @@ import json
 from pathlib import Path
 
 from ..rules import END_NAMES, FOUL_NAMES
-from .draw import BALL_COLORS, CUSHION_COLOR, FELT_COLOR, POCKET_COLOR, RAIL_COLOR
+from .draw import BALL_COLORS, CUSHION_COLOR, FELT_COLOR, POCKET_COLOR, RAIL_COLOR, STYLE_BALL_COLORS
 from .game_words import IN_HAND_WORDS
 from .replay import Replay
 
@@ -31,6 +31,7 @@ def replay_html(replay: Replay, title: str | None = None) -> str:
         replay.data.setdefault("meta", {})["title"] = title
     page = TEMPLATE.read_text()
     colors = json.dumps({"balls": {str(k): list(v) for k, v in BALL_COLORS.items()}, "felt": FELT_COLOR,
+                         "styles": {s: {str(k): list(v) for k, v in c.items()} for s, c in STYLE_BALL_COLORS.items()},
                          "rail": RAIL_COLOR, "cushion": CUSHION_COLOR, "pocket": POCKET_COLOR})
     words = json.dumps({"foul": FOUL_NAMES, "end": END_NAMES, "in_hand": IN_HAND_WORDS})
     title = (replay.data.get("meta") or {}).get("title", "billiards_env replay")

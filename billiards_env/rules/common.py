@@ -109,6 +109,26 @@ class Rules:
     name: str = ""
     n_balls: int = 0
     calls_ball: bool = False  # the shooter calls a ball as well as a pocket (``ShotInput.called_ball``; 10-ball)
+    # The equipment and what the game reads beyond the pool games (three-cushion sets them): the table
+    # (``Table.style``: "pool" is ``Table.pool``), the physics preset the config's "standard" stands for
+    # (None: "standard" itself), the cue-ball contacts kept in order (``SimOptions.contacts``; 0 none),
+    # whether each player has their own cue ball (the envs keep the shooter's in slot 0), and the
+    # observation entries the game adds (``observe_extra``).
+    table_style: str = "pool"
+    physics: str | None = None
+    contacts: int = 0
+    own_cue_balls: bool = False
+    extra_obs: int = 0
+    scored: bool = False      # a game of points (``GameState.score``, ``ShotRecord.points``; snooker)
+    reads_position: bool = False  # ``constraints`` and ``judge`` read where the balls lie (snooker's free ball)
+
+    def new_game(self, breaker) -> GameState:
+        """Fresh games before the opening shot (``GameState.new``)."""
+        return GameState.new(breaker)
+
+    def observe_extra(self, game: GameState) -> np.ndarray:
+        """The game's own observation entries [E, extra_obs] in [0, 1] (none by default)."""
+        return np.zeros((game.n, 0), dtype=np.float32)
 
     def judge(self, game: GameState, shot: ShotInput) -> tuple[ShotRecord, GameState]:
         raise NotImplementedError

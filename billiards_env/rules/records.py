@@ -27,8 +27,10 @@ FOUL_WRONG_BALL = 2      # the first ball touched was not a legal target
 FOUL_NO_RAIL = 3         # nothing pocketed and no ball touched a rail after the contact
 FOUL_SCRATCH = 4         # the cue ball was pocketed
 FOUL_BAD_BREAK = 5       # break: no ball pocketed and fewer than four object balls reached a rail
+FOUL_WRONG_POT = 6       # snooker: a ball not on was pocketed
 FOUL_NAMES = {FOUL_NONE: "none", FOUL_NO_CONTACT: "no contact", FOUL_WRONG_BALL: "wrong ball first",
-              FOUL_NO_RAIL: "no rail after contact", FOUL_SCRATCH: "scratch", FOUL_BAD_BREAK: "illegal break"}
+              FOUL_NO_RAIL: "no rail after contact", FOUL_SCRATCH: "scratch", FOUL_BAD_BREAK: "illegal break",
+              FOUL_WRONG_POT: "a ball not on pocketed"}
 
 # --- how a game ended (ShotRecord.end) ----------------------------------------
 END_NONE = 0
@@ -39,9 +41,14 @@ END_EIGHT_EARLY = 4      # the 8 pocketed before the shooter's group was cleared
 END_EIGHT_FOUL = 5       # the 8 pocketed on a foul: the shooter loses
 END_EIGHT_POCKET = 6     # the 8 pocketed in another pocket than the one called: the shooter loses
 END_TEN = 7              # 10-ball: the 10 called and pocketed in the called pocket on a legal shot: the shooter wins
+END_TARGET = 8           # games to a score: a player reached the target score (winner -1: a draw, as equal innings allow)
+END_INNINGS = 9          # games to a score: the innings limit was reached; the higher score wins (winner -1: a draw)
+END_LAST_BLACK = 10      # snooker: the first score or foul with only the black left ended the frame on points
 END_NAMES = {END_NONE: "none", END_NINE: "9 pocketed", END_THREE_FOULS: "three consecutive fouls",
              END_EIGHT: "8 pocketed", END_EIGHT_EARLY: "8 pocketed early", END_EIGHT_FOUL: "8 pocketed on a foul",
-             END_EIGHT_POCKET: "8 in an uncalled pocket", END_TEN: "10 pocketed as called"}
+             END_EIGHT_POCKET: "8 in an uncalled pocket", END_TEN: "10 pocketed as called",
+             END_TARGET: "target score reached", END_INNINGS: "innings limit reached",
+             END_LAST_BLACK: "the last black decided the frame"}
 
 # --- called ball (ShotInput.called_ball, 10-ball) ----------------------------------
 CALL_NONE = -1           # no ball called (the break, a push-out, a game without ball calls)
@@ -51,6 +58,7 @@ CALL_SAFETY = 0          # a called safety: no ball is called, every ball the sh
 IN_HAND_NONE = 0         # the cue ball is played from where it lies
 IN_HAND_ANYWHERE = 1     # anywhere on the table
 IN_HAND_KITCHEN = 2      # behind the head string (the break, and after a scratch on the 8-ball break)
+IN_HAND_D = 3            # snooker: in the D (the break-off, and after an in-off)
 
 # --- phases (GameState.phase) ---------------------------------------------------
 PHASE_BREAK = 0          # the next shot is the opening break
@@ -58,7 +66,11 @@ PHASE_AFTER_BREAK = 1    # the first shot after the break (9-ball: push-out allo
 PHASE_PUSHED = 2         # 9-ball, 10-ball: a push-out was played; the next player may pass the shot back
 PHASE_PLAY = 3           # any other shot
 PHASE_OPTION = 4         # 10-ball: the last shot pocketed a ball illegally (not the called ball in the called
-                         # pocket) without a foul; the next player may shoot or pass the shot back
+                         # pocket) without a foul; the next player may shoot or pass the shot back.
+                         # Snooker: the last shot was a foul; the incoming player may play or put the offender back in
+PHASE_FINAL = 5          # games to a score with equal innings: the starting player reached the target; the
+                         # opponent plays a last inning
+PHASE_COLOUR = 6         # snooker: a red (or a free ball taken as a red) was potted; a nominated colour is on
 
 # --- 8-ball groups (GameState.group) ------------------------------------------------
 GROUP_OPEN = 0
@@ -71,7 +83,10 @@ class GameState:
     """Per table [E]: ``shooter`` (0 or 1), ``breaker`` (who broke),
     ``phase`` (PHASE_*), ``ball_in_hand`` (IN_HAND_*), ``fouls`` [E, 2]
     consecutive fouls per player, ``group`` [E, 2] each player's 8-ball
-    group (GROUP_*), ``shots`` taken, ``over`` and ``winner`` (-1 none)."""
+    group (GROUP_*), ``shots`` taken, ``over`` and ``winner`` (-1 none);
+    games to a score (three-cushion, snooker) also keep ``score`` [E, 2] each
+    player's points and ``innings`` [E, 2] the innings (turns at the table)
+    each player has begun (zeros in the games won by a ball)."""
 
     shooter: np.ndarray
     breaker: np.ndarray
@@ -82,6 +97,8 @@ class GameState:
     shots: np.ndarray
     over: np.ndarray
     winner: np.ndarray
+    score: np.ndarray
+    innings: np.ndarray
 
     @classmethod
     def new(cls, breaker) -> "GameState":
@@ -93,7 +110,8 @@ class GameState:
         return cls(shooter=b.copy(), breaker=b, phase=np.full(E, PHASE_BREAK, dtype=np.int64),
                    ball_in_hand=np.full(E, IN_HAND_KITCHEN, dtype=np.int64), fouls=np.zeros((E, 2), dtype=np.int64),
                    group=np.zeros((E, 2), dtype=np.int64), shots=np.zeros(E, dtype=np.int64),
-                   over=np.zeros(E, dtype=bool), winner=np.full(E, -1, dtype=np.int64))
+                   over=np.zeros(E, dtype=bool), winner=np.full(E, -1, dtype=np.int64),
+                   score=np.zeros((E, 2), dtype=np.int64), innings=np.zeros((E, 2), dtype=np.int64))
 
     @property
     def n(self) -> int:
@@ -123,9 +141,12 @@ class ShotInput:
     ``passed`` (bool: after a push-out, or in 10-ball after an illegally
     pocketed ball, the player handed the shot back and no shot was played)
     and ``called_ball`` (10-ball: the ball called, CALL_SAFETY for a called
-    safety, CALL_NONE none). From a ``physics.SimResult``: ``state.pocket``,
+    safety, CALL_NONE none; snooker: the nominated ball, a colour or a free
+    ball); ``pos_before`` (optional) the positions the shot was played from. From a ``physics.SimResult``: ``state.pocket``,
     ``first_contact``, ``cushion_hits_after_contact`` (``rails``) and
-    ``cushion_hits`` (``object_rails``)."""
+    ``cushion_hits`` (``object_rails``); games judged on the order of the
+    cue ball's contacts (three-cushion) also take ``contacts`` [E, K, 2] and
+    ``n_contacts`` [E] (``SimResult.contacts``, ``n_contacts``)."""
 
     pocket_before: np.ndarray
     pocket_after: np.ndarray
@@ -136,6 +157,9 @@ class ShotInput:
     called_pocket: np.ndarray | None = None
     passed: np.ndarray | None = None
     called_ball: np.ndarray | None = None
+    contacts: np.ndarray | None = None
+    n_contacts: np.ndarray | None = None
+    pos_before: np.ndarray | None = None  # [E, B, 2] the balls where the shot was played from (snooker's free ball)
 
     def __post_init__(self):
         E, B = np.shape(self.pocket_before)
@@ -168,9 +192,12 @@ class ShotRecord:
     ``winner`` (-1 none), ``end`` (END_*), ``push_out`` (this shot was a
     push-out), ``passed`` (no shot: the shot was handed back),
     ``respot`` [E, B] balls the table must put back on the foot spot,
-    ``shooter`` (who played it) and ``option`` (10-ball: the shot pocketed a
+    ``shooter`` (who played it), ``option`` (10-ball: the shot pocketed a
     ball illegally without a foul, so the next player may shoot or pass the
-    shot back; all False in the other games)."""
+    shot back; snooker: the shot was a foul, so the incoming player may put
+    the offender back in; all False in the other games), ``points`` (the
+    points the shot scored for its shooter; games to a score, else zeros)
+    and ``penalty`` (what a foul gave the opponent; snooker, else zeros)."""
 
     legal: np.ndarray
     foul: np.ndarray
@@ -183,10 +210,15 @@ class ShotRecord:
     respot: np.ndarray
     shooter: np.ndarray
     option: np.ndarray | None = None
+    points: np.ndarray | None = None
+    penalty: np.ndarray | None = None
 
     def __post_init__(self):
         if self.option is None:
             object.__setattr__(self, "option", np.zeros(len(self.legal), dtype=bool))
+        for name in ("points", "penalty"):
+            if getattr(self, name) is None:
+                object.__setattr__(self, name, np.zeros(len(self.legal), dtype=np.int64))
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

@@ -12,7 +12,14 @@ finished. The split: ``simulate`` is the simulator time of the env's shots,
 ``rules`` the rulings (``rules.judge``), ``policies`` the time in the
 bots' ``act`` (which includes the simulator calls of their previews,
 reported as ``policy_simulate``); ``other`` is the rest of the env step
-(placement, respots, bookkeeping, re-racks).
+(placement, respots, bookkeeping, re-racks). Each game is played by its
+own bots (``DEFAULT_POLICIES``: the ghost bot, three-cushion's ``carom``).
+
+``carom_shots``: three-cushion shots per second per thread (random strikes
+from random three-ball positions on the carom table with carom equipment,
+the contact order kept as the game keeps it, one numba thread), and the
+cost per simulated event beside the pool scenes' (the 9-ball break and
+two-ball cuts, measured in the same run, interleaved).
 """
 from __future__ import annotations
 
@@ -44,10 +51,17 @@ def _timed_simulate(calls: dict):
     return lambda: setattr(pv, "simulate", inner)
 
 
-def games_per_second(game: str = "nine_ball", n_tables: int = 1024, n_games: int = 3072, policies=("ghost", "ghost"),
-                     noise: str = "tournament", seed: int = 0, max_shots: int = 200) -> dict:
-    """Complete games per second (see the module docstring) and the time split."""
-    core = GameCore(GameConfig(game=game, noise=noise, max_shots=max_shots), n_tables)
+DEFAULT_POLICIES = {"three_cushion": ("carom", "carom")}  # every other game: ("ghost", "ghost")
+
+
+def games_per_second(game: str = "nine_ball", n_tables: int = 1024, n_games: int = 3072, policies=None,
+                     noise: str = "tournament", seed: int = 0, max_shots: int = 200,
+                     rule_options: dict | None = None) -> dict:
+    """Complete games per second (see the module docstring) and the time split;
+    ``rule_options``: the ruleset's settings (a quick run's short three-cushion games)."""
+    policies = policies or DEFAULT_POLICIES.get(game, ("ghost", "ghost"))
+    core = GameCore(GameConfig(game=game, noise=noise, max_shots=max_shots, rule_options=rule_options or {}),
+                    n_tables)
     all_ = np.arange(n_tables)
     core.streams.seed(all_, seed * 1_000_003 + all_)
     core.reset_tables(all_)
@@ -96,17 +110,72 @@ def vector_steps_per_second(game: str = "nine_ball", n_tables: int = 1024, n_ste
                 split=dict(simulate=c["simulate"], rules=c["rules"], other=wall - c["simulate"] - c["rules"]))
 
 
+def carom_shots(n: int = 1024, repeats: int = 5, seed: int = 0) -> list[dict]:
+    """Shots/s on one thread and the cost per event (us) of three-cushion
+    shots beside two pool scenes, timed in turn ``repeats`` times (medians);
+    see the module docstring."""
+    import numba
+
+    from ..physics import PhysicsParams, SimOptions, Table, simulate
+    from ..physics.state import random_placement
+    from ..physics.strike import strike_velocity
+    from .bench.scenes import SCENES
+    rng = np.random.default_rng(seed)
+    cp, ct = PhysicsParams.carom(), Table.carom()
+    carom = strike_velocity(random_placement(ct, cp, 3, n, seed=rng), rng.uniform(0, 2 * np.pi, n),
+                            rng.uniform(1.5, 7.0, n), rng.uniform(-0.4, 0.4, n), rng.uniform(-0.3, 0.3, n), cp)
+    P, T = PhysicsParams.standard(), Table.pool(9)
+    cases = {"three-cushion shot (carom table, contacts kept)": (carom, ct, cp, SimOptions(contacts=64)),
+             "three-cushion shot (carom table, contacts off)": (carom, ct, cp, SimOptions())}
+    for name in ("9-ball break (8 m/s)", "two-ball cut (2 m/s, top+side)"):
+        cases[name] = (SCENES[name](n, P, T, np.random.default_rng(seed)), T, P, SimOptions())
+    threads = numba.get_num_threads()
+    numba.set_num_threads(1)
+    times = {k: [] for k in cases}
+    events = {}
+    try:
+        for k, (s, t, p, o) in cases.items():  # compile, count events
+            events[k] = float(simulate(s, t, p, options=o).n_events.mean())
+        for _ in range(repeats):
+            for k, (s, t, p, o) in cases.items():
+                t0 = time.perf_counter()
+                simulate(s, t, p, options=o)
+                times[k].append(time.perf_counter() - t0)
+    finally:
+        numba.set_num_threads(threads)
+    out = []
+    for k in cases:
+        sec = float(np.median(times[k]))
+        out.append(dict(scene=k, shots=n, shots_per_s_1t=n / sec, events_per_shot=events[k],
+                        us_per_event=1e6 * sec / (n * events[k])))
+    return out
+
+
+def carom_markdown(rows_: list[dict]) -> str:
+    base = rows_[-1]["us_per_event"]
+    lines = ["| scene (1 thread) | shots | shots/s | events per shot | us per event | per event / two-ball cut |",
+             "|---|---|---|---|---|---|"]
+    for r in rows_:
+        lines.append(f"| {r['scene']} | {r['shots']} | **{r['shots_per_s_1t']:,.0f}** | {r['events_per_shot']:.1f} | "
+                     f"{r['us_per_event']:.2f} | {r['us_per_event'] / base:.2f} |")
+    return "\n".join(lines) + "\n"
+
+
 def warm(game: str) -> None:
     """Compile (or load) every kernel the measurements use."""
-    games_per_second(game, 8, 4)
+    games_per_second(game, 8, 4, rule_options=QUICK_RULES.get(game))
     vector_steps_per_second(game, 8, 2)
 
 
-def rows(games=("nine_ball",), n_tables: int = 1024, n_games: int = 3072, n_steps: int = 30) -> list[dict]:
+QUICK_RULES = {"three_cushion": {"max_innings": 3}}  # a quick run's games: three innings each
+
+
+def rows(games=("nine_ball",), n_tables: int = 1024, n_games: int = 3072, n_steps: int = 30,
+         quick: bool = False) -> list[dict]:
     out = []
     for g in games:
         warm(g)
-        out.append(games_per_second(g, n_tables, n_games))
+        out.append(games_per_second(g, n_tables, n_games, rule_options=QUICK_RULES.get(g) if quick else None))
         out.append(vector_steps_per_second(g, n_tables, n_steps))
     return out
 
@@ -136,9 +205,13 @@ def main(argv=None) -> int:
     ap.add_argument("--n-games", type=int, default=3072)
     ap.add_argument("--steps", type=int, default=30)
     ap.add_argument("--json", default=None, help="also write the rows to this JSON file")
+    ap.add_argument("--carom-shots", type=int, default=0, help="also time this many three-cushion shots "
+                    "per thread beside the pool scenes (carom_shots)")
     args = ap.parse_args(argv)
     res = rows(args.games, args.tables, args.n_games, args.steps)
     print(markdown(res))
+    if args.carom_shots:
+        print(carom_markdown(carom_shots(args.carom_shots)))
     if args.json:
         with open(args.json, "w") as f:
             json.dump(res, f, indent=2)

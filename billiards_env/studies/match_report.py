@@ -19,6 +19,12 @@ def markdown(title: str, command: str, results: list, table: list, seconds: floa
         lines.append(f"| {s['a']} | {s['b']} | {s['games']} | {s['a_wins']} | {s['b_wins']} | {s['draws']} | "
                      f"{s['a_win_rate']:.3f} [{s['ci95'][0]:.3f}, {s['ci95'][1]:.3f}] | "
                      f"{s['a_win_rate_breaking']:.3f} / {s['a_win_rate_not_breaking']:.3f} | {s['mean_shots']:.1f} |")
+    per = [r.summary() for r in results]
+    if per and "a_points_per_inning" in per[0]:  # games to a score (three-cushion)
+        lines += ["", "Points per inning (all of a side's points over all its innings):", "",
+                  "| a | b | a points / inning | b points / inning |", "|---|---|---|---|"]
+        lines += [f"| {s['a']} | {s['b']} | {s['a_points_per_inning']:.3f} | {s['b_points_per_inning']:.3f} |"
+                  for s in per]
     lines += ["", "Bradley-Terry ratings (Elo scale, mean 0; 95% bootstrap intervals):", "",
               "| entrant | rating | 95% interval |", "|---|---|---|"]
     for t in table:

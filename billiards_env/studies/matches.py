@@ -47,6 +47,8 @@ class PairingResult:
     a_broke: np.ndarray   # [2n] bool
     shots: np.ndarray     # [2n] shots in the game
     replays: list = dataclasses.field(default_factory=list)  # whole games as Replays (``save_replays``)
+    score: np.ndarray | None = None    # [2n, 2] points of a and b (games to a score: three-cushion)
+    innings: np.ndarray | None = None  # [2n, 2] innings a and b began
 
     @property
     def score_a(self) -> float:
@@ -64,7 +66,14 @@ class PairingResult:
                     draws=int((self.winner < 0).sum()), a_win_rate=self.score_a / self.n, ci95=[lo, hi],
                     a_win_rate_breaking=float((self.winner[self.a_broke] == 0).mean()),
                     a_win_rate_not_breaking=float((self.winner[~self.a_broke] == 0).mean()),
-                    mean_shots=float(self.shots.mean()))
+                    mean_shots=float(self.shots.mean()), **self._per_inning())
+
+    def _per_inning(self) -> dict:
+        """Games to a score: each side's points per inning (all its points over all its innings)."""
+        if self.score is None or not self.innings.any():
+            return {}
+        return dict(a_points_per_inning=float(self.score[:, 0].sum() / max(1, self.innings[:, 0].sum())),
+                    b_points_per_inning=float(self.score[:, 1].sum() / max(1, self.innings[:, 1].sum())))
 
 
 def play_pairing(a, b, game: str = "nine_ball", n_racks: int = 100, seed: int = 0,
@@ -91,7 +100,8 @@ def play_pairing(a, b, game: str = "nine_ball", n_racks: int = 100, seed: int = 
         rep = recorder.games(int(k))[0]
         rep.data["meta"].update(rack=int(k % n_racks), seed=int(seeds[k]), breaker=names[int(breaker[k])])
         replays.append(rep)
-    return PairingResult(*names, game, noise, core.game.winner.copy(), breaker == 0, core.game.shots.copy(), replays)
+    return PairingResult(*names, game, noise, core.game.winner.copy(), breaker == 0, core.game.shots.copy(), replays,
+                         core.game.score.copy(), core.game.innings.copy())
 
 
 def _name(spec, bot) -> str:
@@ -128,7 +138,9 @@ def ratings(names: list, results: list, n_boot: int = 200, seed: int = 0) -> lis
         res = []
         for r in results:
             pick = rng.integers(0, r.n, r.n)
-            res.append(dataclasses.replace(r, winner=r.winner[pick], a_broke=r.a_broke[pick], shots=r.shots[pick]))
+            res.append(dataclasses.replace(r, winner=r.winner[pick], a_broke=r.a_broke[pick], shots=r.shots[pick],
+                                           score=None if r.score is None else r.score[pick],
+                                           innings=None if r.innings is None else r.innings[pick]))
         boot[t] = bradley_terry(names, res) * ELO
     lo, hi = np.percentile(boot, [2.5, 97.5], axis=0)
     order = np.argsort(-est)

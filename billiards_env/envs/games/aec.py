@@ -8,7 +8,7 @@ import numpy as np
 from pettingzoo import AECEnv
 
 from .core import GameCore
-from .spaces import OBSERVATION_DOC, action_space, info_row, make_config, observation_space
+from .spaces import OBSERVATION_DOC, THREE_CUSHION_DOC, action_space, info_row, make_config, observation_space
 
 AGENTS = ("player_0", "player_1")
 
@@ -123,3 +123,16 @@ class TenBallAECEnv(GameAECEnv):
     __doc__ = "10-ball for two agents (a 9-component action: a8 the called ball).\n\n    " + GameAECEnv.__doc__
     metadata = {**GameAECEnv.metadata, "name": "billiards_ten_ball_v0"}
     game = "ten_ball"
+
+
+class ThreeCushionAECEnv(GameAECEnv):
+    __doc__ = "Three-cushion for two agents.\n\n    " + GameAECEnv.__doc__ + THREE_CUSHION_DOC
+    metadata = {**GameAECEnv.metadata, "name": "billiards_three_cushion_v0"}
+    game = "three_cushion"
+
+
+class SnookerAECEnv(GameAECEnv):
+    __doc__ = ("A frame of snooker for two agents (a 9-component action: a8 the nominated ball; rewards +1 / -1 "
+               "by the frame's result).\n\n    " + GameAECEnv.__doc__)
+    metadata = {**GameAECEnv.metadata, "name": "billiards_snooker_v0"}
+    game = "snooker"

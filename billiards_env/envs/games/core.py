@@ -26,8 +26,14 @@ a7   the called pocket when a call is needed (8-ball, on the 8; 10-ball,
      every shot but the break and a push-out): pocket
      floor((a7 + 1) / 2 * 6), in the order of ``Table.pockets``
 a8   10-ball only, the called ball when a call is needed: ball
-     floor((a8 + 1) / 2 * 11) (1..10; 0, a8 < -9/11, calls a safety)
+     floor((a8 + 1) / 2 * 11) (1..10; 0, a8 < -9/11, calls a safety).
+     Snooker: the nominated ball (a colour after a red, or the free ball):
+     ball floor((a8 + 1) / 2 * 22) (16..21 the colours yellow .. black)
 ===  ========================================================================
+
+Snooker (``game="snooker"``): the 12 ft table and snooker balls; a4, a5
+place the cue ball in the D (the nearest point of it, ``placement_moved``);
+a6 > 0 after a foul puts the offender back in (``may_pass``).
 
 Components outside [-1, 1] are clipped (``info["action_clipped"]``);
 components the constraints do not use are ignored.
@@ -41,26 +47,33 @@ import time
 import numpy as np
 
 from ...bots.view import GameView
-from ...physics import BallState, Effects, Models, PhysicsParams, Table, strike_velocity
+from ...physics import BallState, Effects, Models, PhysicsParams, SimOptions, Table, simulate, strike_velocity
 from ...rules import GameState, ShotInput, get_rules
 from ...rules import records as R
 from ..config import NoiseConfig, _number
 from ..core import BilliardsCore, ShotContext, _context, _observe
 from ..streams import TableStreams
 from .codec import ACTION_DIM, N_POCKETS, ActionCodec, placement_to_actions
-from ...rules.placement import FOOT_SPOT, HEAD_STRING, legal_spots
-from .setup import rack, respot
+from ...rules.placement import FOOT_SPOT, HEAD_STRING, d_of, legal_spots
+from ...rules.snooker import respot_colours
+from .setup import hand_over, rack, respot, respot_frozen
 
 EXTRA_OBS = 13  # observation entries after the one-player layout (see ``observation_doc``)
-GAMES = ("nine_ball", "eight_ball", "ten_ball")
+GAMES = ("nine_ball", "eight_ball", "ten_ball", "three_cushion", "snooker")
 NOISE_LEVELS = ("none", "tournament", "high", "variable")
 VARIABLE_NOISE_MAX = 5.0  # "variable" noise: the tournament deviations times a factor uniform in [0, 5] per game
 
 
 @dataclasses.dataclass(frozen=True)
 class GameConfig:
-    """A two-player game instance: ``game`` (``nine_ball``, ``eight_ball``
-    or ``ten_ball``), the table (``table_size_ft``), ``physics`` preset,
+    """A two-player game instance: ``game`` (``nine_ball``, ``eight_ball``,
+    ``ten_ball``, ``three_cushion`` or ``snooker``), the table (``table_size_ft``;
+    three-cushion: the carom match table; snooker: the 12 ft snooker table),
+    ``physics`` preset ("standard": the game's own equipment, carom balls and
+    cloth in three-cushion, snooker balls in snooker),
+    ``rule_options`` (the ruleset's own settings, ``rules.get_rules(game,
+    **rule_options)``: three-cushion's ``target``, ``max_innings``,
+    ``equal_innings``),
     ``solver`` (and ``dt``), ``min_draw`` (m, the draw at a1 = -1),
     ``max_shots`` (a game not over after this many shots is truncated, a
     draw), ``noise`` (``none``, ``tournament``, ``high`` = 5x tournament,
@@ -77,10 +90,15 @@ class GameConfig:
     noise: object = "none"
     effects: Effects = dataclasses.field(default_factory=Effects)
     models: Models = dataclasses.field(default_factory=Models)
+    rule_options: dict = dataclasses.field(default_factory=dict)
 
     def __post_init__(self):
         if self.game not in GAMES:
             raise ValueError(f"game must be one of {GAMES}, got {self.game!r}")
+        if not isinstance(self.rule_options, dict):
+            raise TypeError(f"rule_options must be a dict, got {type(self.rule_options).__name__}")
+        if self.rule_options:
+            get_rules(self.game, **self.rule_options)  # unknown or bad settings fail here
         if self.solver not in ("event", "step") or (self.solver == "step" and not self.dt):
             raise ValueError(f"solver must be 'event' or 'step' (with a positive dt), "
                              f"got {self.solver!r}, dt={self.dt}")
@@ -128,14 +146,17 @@ class GameCore(BilliardsCore):
             raise ValueError(f"num_envs must be a positive integer, got {n_envs!r}")
         self.config = cfg
         self.cfg = _CoreConfig(cfg.shot_noise, cfg.min_draw, cfg.solver, cfg.dt)
-        self.rules = get_rules(cfg.game)
+        self.rules = get_rules(cfg.game, **cfg.rule_options)
         self.n_envs = int(n_envs)
-        self.table = Table.pool(cfg.table_size_ft)
-        self.params = PhysicsParams.preset(cfg.physics)
+        style = self.rules.table_style
+        self.table = (Table.carom() if style == "carom" else Table.snooker() if style == "snooker"
+                      else Table.pool(cfg.table_size_ft))
+        self.params = PhysicsParams.preset(self.rules.physics if cfg.physics == "standard" and self.rules.physics
+                                           else cfg.physics)
         self.effects, self.models, self.record = cfg.effects, cfg.models, record
         self.n_balls = self.rules.n_balls + 1
         self.action_dim = ACTION_DIM + int(self.rules.calls_ball)  # a8: the called ball (10-ball)
-        self.obs_dim = 4 * self.n_balls + 1 + EXTRA_OBS
+        self.obs_dim = 4 * self.n_balls + 1 + EXTRA_OBS + self.rules.extra_obs
         self.diag = math.hypot(self.table.width, self.table.length)
         self.state: BallState | None = None
         self.game: GameState | None = None
@@ -156,7 +177,8 @@ class GameCore(BilliardsCore):
     def constraints(self) -> R.Constraints:
         """The ``Constraints`` of every table's next shooter (cached until the state changes)."""
         if self._constraints is None:
-            self._constraints = self.rules.constraints(self.game, self.state.pocket)
+            pos = {"pos": self.state.pos} if self.rules.reads_position else {}  # snooker: the free ball
+            self._constraints = self.rules.constraints(self.game, self.state.pocket, **pos)
         return self._constraints
 
     def shot_context(self) -> ShotContext:
@@ -189,11 +211,15 @@ class GameCore(BilliardsCore):
         x = obs[:, 4 * B + 1:]
         ar = np.arange(self.n_envs)
         x[:, 0] = g.shooter
-        x[ar, 1 + c.ball_in_hand] = 1.0
+        x[ar, 1 + np.minimum(c.ball_in_hand, R.IN_HAND_KITCHEN)] = 1.0  # snooker's D as "behind the head string"
         x[:, 4], x[:, 5], x[:, 6], x[:, 7] = c.push_out_allowed, c.may_pass, c.call_needed, c.is_break
         x[ar, 8 + g.group[ar, g.shooter]] = 1.0
         x[:, 11] = np.minimum(g.fouls[ar, g.shooter] / 3.0, 1.0)
         x[:, 12] = np.minimum(g.fouls[ar, 1 - g.shooter] / 3.0, 1.0)
+        if self.rules.extra_obs:  # the game's own entries (three-cushion: scores, innings; snooker: scores,
+            # points left, free ball: it reads the table and the constraints too)
+            more = {"pocket": s.pocket, "constraints": c} if self.rules.reads_position else {}
+            x[:, EXTRA_OBS:] = self.rules.observe_extra(g, **more)
         return obs
 
     # --- new games --------------------------------------------------------------
@@ -205,17 +231,19 @@ class GameCore(BilliardsCore):
         n, B, t = len(idx), self.n_balls, self.table
         u = self.streams.uniform(idx, 16)  # 14 rack, breaker, noise factor
         pos = rack(self.config.game, t, self.params.R, u)
-        pos[:, 0] = (t.width / 2, HEAD_STRING * t.length)
+        if not self.rules.own_cue_balls and t.marks is None:  # three-cushion's rack places each player's ball
+            # itself, snooker's puts the cue ball in the D
+            pos[:, 0] = (t.width / 2, HEAD_STRING * t.length)
         brk = (u[:, 14] < 0.5).astype(np.int64) if breaker is None else np.broadcast_to(breaker, (n,))
         lo, hi = self.config.noise_range
         if self.state is None:
             E = self.n_envs
             self.state = BallState(np.zeros((E, B, 2)), np.zeros((E, B, 2)), np.zeros((E, B, 3)),
                                    np.full((E, B), -1, dtype=np.int64))
-            self.game = GameState.new(np.zeros(E, dtype=np.int64))
+            self.game = self.rules.new_game(np.zeros(E, dtype=np.int64))
         self.state.pos[idx] = pos
         self.state.pocket[idx] = -1
-        self.game.put(idx, GameState.new(brk))
+        self.game.put(idx, self.rules.new_game(brk))
         self.noise_scale[idx] = lo + (hi - lo) * u[:, 15]
         self._changed()
         self._forget_last_shot(idx)
@@ -246,7 +274,8 @@ class GameCore(BilliardsCore):
         return self._place(xy, self.state.pos[idx], self.state.pocket[idx], kitchen)
 
     def _place(self, xy, pos, pocket, kitchen):
-        return legal_spots(xy, pos, pocket, kitchen, self.table.width, self.table.length, self.params.R, self.pockets)
+        return legal_spots(xy, pos, pocket, kitchen, self.table.width, self.table.length, self.params.R, self.pockets,
+                           d_of(self.table))  # snooker: in hand means in the D
 
     def called_pocket(self, a: np.ndarray) -> np.ndarray:
         return np.minimum(np.floor((a[:, 7] + 1.0) / 2.0 * N_POCKETS), N_POCKETS - 1).astype(np.int64)
@@ -293,6 +322,9 @@ class GameCore(BilliardsCore):
         rails = np.zeros((n, B), dtype=np.int64)
         object_rails = np.zeros((n, B), dtype=np.int64)
         n_events, sim_time = np.zeros(n, dtype=np.int64), np.zeros(n)
+        K = self.rules.contacts
+        contacts = np.full((n, K, 2), -1, dtype=np.int64) if K else None
+        n_contacts = np.zeros(n, dtype=np.int64) if K else None
         if len(shoot):
             sel = idx[shoot]
             shots = self.apply_noise(self.actions_to_shots(np.ascontiguousarray(a[shoot, :4]), sel), sel,
@@ -305,15 +337,22 @@ class GameCore(BilliardsCore):
             rails[shoot] = res.cushion_hits_after_contact
             object_rails[shoot] = res.cushion_hits
             n_events[shoot], sim_time[shoot] = res.n_events, res.time
+            if K:
+                contacts[shoot], n_contacts[shoot] = res.contacts, res.n_contacts
             if res.events is not None:
                 for j, k in enumerate(sel):
                     self.last_start[k] = start.take([shoot[j]])
                     self.last_events[k] = res.events[j]
         t0 = time.perf_counter()
-        shot = ShotInput(start.pocket, pocket_after, first, rails, object_rails, push, called, passed, ball)
+        shot = ShotInput(start.pocket, pocket_after, first, rails, object_rails, push, called, passed, ball,
+                         contacts, n_contacts, pos_before=start.pos if self.rules.reads_position else None)
         rec, game = self.rules.judge(self.game.take(idx), shot)
         self.timers["rules"] += time.perf_counter() - t0
-        respot(pos_after, pocket_after, rec.respot, self.table, self.params.R, self.pockets)
+        (respot_colours if self.table.marks is not None else respot)(pos_after, pocket_after, rec.respot, self.table,
+                                                                     self.params.R, self.pockets)
+        if self.rules.own_cue_balls:  # the incoming player's ball to slot 0; a frozen cue ball respotted
+            hand_over(pos_after, rec.turn_over & ~rec.game_over)
+            respot_frozen(pos_after, self.table, self.params.R)
         self.state.pos[idx], self.state.pocket[idx] = pos_after, pocket_after
         self.game.put(idx, game)
         self._changed()
@@ -322,13 +361,24 @@ class GameCore(BilliardsCore):
         info = dict(legal=rec.legal, foul=rec.foul, turn_over=rec.turn_over, game_over=rec.game_over,
                     winner=rec.winner, end=rec.end, push_out=rec.push_out, passed=rec.passed, shooter=rec.shooter,
                     respotted=rec.respot, option=rec.option, pocketed=shot.pocketed, first_contact=first,
-                    called_pocket=called, called_ball=ball,
+                    called_pocket=called, called_ball=ball, points=rec.points, score=game.score.copy(),
                     placement=placed, placement_moved=moved, action_clipped=clipped, n_events=n_events,
                     sim_time=sim_time, shot=game.shots.copy())
+        if self.rules.scored:  # snooker: a foul's points to the opponent
+            info["penalty"] = rec.penalty
         out = dict(record=rec, reward=reward, terminated=game.over.copy(), truncated=truncated, info=info)
         for listener in self.listeners:
             listener.after_step(self, idx, out)
         return out
+
+    def simulate(self, state: BallState):
+        """``BilliardsCore.simulate``, keeping the cue ball's contacts in order where the rules read them."""
+        if not self.rules.contacts:
+            return super().simulate(state)
+        c = self.cfg
+        return simulate(state, self.table, self.params, solver=c.solver, dt=c.dt, record=self.record,
+                        effects=self.effects, models=self.models,
+                        options=SimOptions(validate=False, contacts=self.rules.contacts))
 
     # --- bots ------------------------------------------------------------------------
     def view(self, idx) -> GameView:

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ...physics.state import _triangle, free_spot
-from ...rules.placement import FOOT_SPOT
+from ...physics.state import _triangle, free_spot, snooker_rack
+from ...rules.placement import FOOT_SPOT, HEAD_STRING
 from ..tasks.nine_ball import nine_ball_rack
 
 
@@ -50,9 +50,53 @@ def ten_ball_rack(table, R: float, u: np.ndarray) -> np.ndarray:
     return pos
 
 
+def three_cushion_spots(table, R: float, u: np.ndarray) -> np.ndarray:
+    """Positions [n, 3, 2] of three-cushion's opening (UMB; the rules'
+    frame: the starting player's ball, the opponent's, the red): the red on
+    the foot spot, the opponent's ball on the head spot, the starting
+    player's on the head string ``OPENING_OFFSET`` to its left or right
+    (``u`` [n, 1] < 0.5: left)."""
+    from ...rules.three_cushion import OPENING_OFFSET
+    n, w, l = len(u), table.width, table.length
+    pos = np.zeros((n, 3, 2))
+    side = np.where(u[:, 0] < 0.5, -1.0, 1.0)
+    pos[:, 0, 0], pos[:, 0, 1] = w / 2 + side * OPENING_OFFSET, HEAD_STRING * l
+    pos[:, 1] = (w / 2, HEAD_STRING * l)
+    pos[:, 2] = (w / 2, FOOT_SPOT * l)
+    return pos
+
+
+def hand_over(pos: np.ndarray, rows: np.ndarray) -> None:
+    """Games where each player has their own cue ball: on the tables of
+    ``rows`` [n] (bool) the incoming player's ball (slot 1) and the outgoing
+    player's (slot 0) change slots, in place, so slot 0 is always the ball
+    of the player to move."""
+    r = np.nonzero(rows)[0]
+    pos[r, 0], pos[r, 1] = pos[r, 1].copy(), pos[r, 0].copy()
+
+
+def respot_frozen(pos: np.ndarray, table, R: float) -> None:
+    """Three-cushion: where the cue ball of the player to move (slot 0) is
+    frozen to a ball (closer than 2R + ``FROZEN_GAP``), the balls go to the
+    opening spots, in place: the cue ball on the head spot, the red on the
+    foot spot, the opponent's ball on the centre spot (docs/rules.md: UMB
+    lets the player choose; this always respots)."""
+    from ...rules.three_cushion import FROZEN_GAP
+    gap = np.linalg.norm(pos[:, 1:] - pos[:, :1], axis=2).min(axis=1)
+    r = np.nonzero(gap < 2 * R + FROZEN_GAP)[0]
+    w, l = table.width, table.length
+    pos[r, 0] = (w / 2, HEAD_STRING * l)
+    pos[r, 1] = (w / 2, 0.5 * l)
+    pos[r, 2] = (w / 2, FOOT_SPOT * l)
+
+
 def rack(game: str, table, R: float, u: np.ndarray) -> np.ndarray:
     """The rack of ``game`` from uniforms ``u`` [n, >= 14] (9-ball takes the
-    first 7, 10-ball the first 8)."""
+    first 7, 10-ball the first 8, three-cushion the first 1; snooker's opening has nothing to draw)."""
+    if game == "snooker":
+        return np.repeat(snooker_rack(table, R)[None], len(u), axis=0)
+    if game == "three_cushion":
+        return three_cushion_spots(table, R, u[:, :1])
     if game == "ten_ball":
         return ten_ball_rack(table, R, u[:, :8])
     return nine_ball_rack(table, R, u[:, :7]) if game == "nine_ball" else eight_ball_rack(table, R, u[:, :14])

@@ -8,7 +8,7 @@ import gymnasium as gym
 import numpy as np
 
 from .core import GameCore
-from .spaces import OBSERVATION_DOC, action_space, info_row, make_config, observation_space
+from .spaces import OBSERVATION_DOC, THREE_CUSHION_DOC, action_space, info_row, make_config, observation_space
 from .versus import AGENT, check_opponent, make_opponent, new_games, opponent_turns
 
 
@@ -113,3 +113,24 @@ class TenBallEnv(GameEnv):
     __doc__ = ("Billiards-TenBall-v0: 10-ball against a fixed opponent (a 9-component action: a8 the called "
                "ball).\n\n    " + GameEnv.__doc__)
     game = "ten_ball"
+
+
+class ThreeCushionEnv(GameEnv):
+    __doc__ = ("Billiards-ThreeCushion-v0: three-cushion against a fixed opponent (default the ``carom`` bot).\n\n    "
+               + GameEnv.__doc__ + THREE_CUSHION_DOC)
+    game = "three_cushion"
+
+    def __init__(self, opponent="carom", config=None, opponent_seed: int = 0, render_mode: str | None = None,
+                 **overrides: Any):
+        super().__init__(opponent, config, opponent_seed, render_mode, **overrides)
+
+
+class SnookerEnv(GameEnv):
+    __doc__ = ("Billiards-Snooker-v0: a frame of snooker (WPBSA rules, docs/rules.md) on the 12 ft table against a "
+               "fixed opponent (default the ``snooker`` bot; a 9-component action: a8 the nominated ball). The reward "
+               "is the frame's result: +1 won, -1 lost.\n\n    " + GameEnv.__doc__)
+    game = "snooker"
+
+    def __init__(self, opponent="snooker", config=None, opponent_seed: int = 0, render_mode: str | None = None,
+                 **overrides: Any):
+        super().__init__(opponent, config, opponent_seed, render_mode, **overrides)

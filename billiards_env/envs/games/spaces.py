@@ -8,7 +8,8 @@ from .core import GameConfig
 
 OBSERVATION_DOC = """
     **Observation** (``Box(0, 1, (4*B + 14,), float32)``, B = 10 balls in
-    9-ball, 16 in 8-ball, 11 in 10-ball; ball 0 the cue ball):
+    9-ball, 16 in 8-ball, 11 in 10-ball; snooker ``(4*B + 18,)``, B = 22;
+    ball 0 the cue ball):
 
     ==============  ===========================================================
     index           meaning
@@ -25,7 +26,36 @@ OBSERVATION_DOC = """
     4*B + 9..11     the shooter's group: open (9-ball, 10-ball always),
                     solids, stripes
     4*B + 12, 13    consecutive fouls of the shooter, of the opponent, / 3
+    4*B + 14..17    snooker only (B = 22): the shooter's score, the
+                    opponent's, the points of the balls on the table (each
+                    / 147, clipped to 1), 1 if a free ball may be nominated
     ==============  ===========================================================
+
+    Snooker reads "behind the head string" as "in the D" and its "call
+    needed" as a nomination (a colour after a red, or a free ball).
+"""
+
+
+THREE_CUSHION_DOC = """
+    **Three-cushion** (UMB rules, docs/rules.md) on the carom match table
+    with carom balls: B = 3 balls in the shooter's frame, ball 0 the cue
+    ball of the player to move (the starting player plays white, the other
+    yellow), ball 1 the opponent's cue ball, ball 2 the red. The action is
+    the 8-component one above; only a0 (aim, relative to ball 1; to the red
+    on the opening shot), a1 (draw), a2 (side) and a3 (height) are used.
+    A point (the cue ball meets both object balls and >= 3 cushions before
+    the second) keeps the player at the table; the game is to ``target``
+    points (``rule_options``), ends after ``max_innings`` innings each, the
+    equal-innings rule optional. The observation is the one above (B = 3)
+    and four more entries:
+
+    ==============  ===========================================================
+    4*B + 14, 15    the shooter's score / target, the opponent's
+    4*B + 16        the shooter's innings / max_innings
+    4*B + 17        1 in the equal-innings last inning
+    ==============  ===========================================================
+
+    **Info** adds ``points`` (the shot's points) and ``score`` [2].
 """
 
 

@@ -115,3 +115,9 @@ def eight_ball_vector(num_envs: int = 1, **kwargs):
 
 def ten_ball_vector(num_envs: int = 1, **kwargs):
     return game_vector(num_envs, "ten_ball", **kwargs)
+
+
+def three_cushion_vector(num_envs: int = 1, **kwargs):
+    return game_vector(num_envs, "three_cushion", **kwargs)
+def snooker_vector(num_envs: int = 1, **kwargs):
+    return game_vector(num_envs, "snooker", **kwargs)

@@ -10,10 +10,12 @@ from .nine_ball import NineBall
 from .pot_one import PotOne
 from .registry import TASKS, get_task, register_gym_ids, register_task
 from .run_out import RunOut
+from .three_cushion_point import ThreeCushionPoint
 
 register_task(PotOne())
 register_task(RunOut())
 register_task(NineBall())
+register_task(ThreeCushionPoint())
 
 __all__ = ["Task", "ShotOutcome", "Judgement", "REWARD_TERMS", "TASKS", "register_task", "get_task",
-           "register_gym_ids", "PotOne", "RunOut", "NineBall"]
+           "register_gym_ids", "PotOne", "RunOut", "NineBall", "ThreeCushionPoint"]

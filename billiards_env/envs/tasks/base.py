@@ -53,12 +53,16 @@ class ShotOutcome:
     pocketed by this shot (ball 0 the cue ball); ``pocket_after`` [n, B] is
     the pocket id of every ball after it (-1 on the table);
     ``first_contact`` the first ball the cue ball touched (-1 none);
-    ``target`` the legal target before the shot (-1 none)."""
+    ``target`` the legal target before the shot (-1 none); for a task
+    with ``contacts`` set, the cue ball's contacts in order (``contacts``
+    [n, K, 2], ``n_contacts`` [n]: ``physics.SimResult``'s), else None."""
 
     pocketed: np.ndarray
     pocket_after: np.ndarray
     first_contact: np.ndarray
     target: np.ndarray
+    contacts: np.ndarray | None = None
+    n_contacts: np.ndarray | None = None
 
     @property
     def scratch(self) -> np.ndarray:
@@ -105,6 +109,7 @@ class Task:
     class_prefix: str = ""
     config_path: Path | None = None
     reward_names: tuple = REWARD_TERMS  # the keys of reward_terms, in order
+    contacts: int = 0  # the cue ball's contacts kept in order for ``judge`` (``ShotOutcome.contacts``); 0 none
 
     # --- configuration ------------------------------------------------------
     @property

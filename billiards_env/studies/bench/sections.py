@@ -209,9 +209,13 @@ def rllib_rows(opts: RunOptions) -> list[dict]:
 def games_markdown(opts: RunOptions) -> str:
     """The two-player games' table (``studies.games_bench``): games/s of
     ``opts.batch`` tables over ``3 * batch`` games, and the vector env's
-    steps/s, for 9-ball and 10-ball."""
+    steps/s, for 9-ball, 10-ball and three-cushion (with its ``carom`` bot),
+    then three-cushion's shots/s per thread and cost per event beside the
+    pool scenes (``games_bench.carom_shots``)."""
     from billiards_env.studies import games_bench
-    return games_bench.markdown(games_bench.rows(("nine_ball", "ten_ball"), opts.batch, 3 * opts.batch))
+    table = games_bench.markdown(games_bench.rows(("nine_ball", "ten_ball", "three_cushion"), opts.batch,
+                                                  3 * opts.batch, quick=opts.quick))
+    return table + "\n" + games_bench.carom_markdown(games_bench.carom_shots(opts.batch, opts.repeats))
 
 
 # --only name -> (heading printed, rows of the section), in the order they run

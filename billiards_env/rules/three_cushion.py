@@ -1,0 +1,162 @@
+"""Three-cushion (UMB, "Rules of the Game of Three-Cushion"; the
+simplifications are in docs/rules.md).
+
+Three balls on a carom table without pockets: each player's own cue ball
+(the starting player's white, the opponent's yellow) and the red. The
+rules see every shot in the shooter's frame: ball 0 the shooter's cue ball,
+ball 1 the opponent's, ball 2 the red (the envs keep the shooter's ball in
+slot 0, ``Rules.own_cue_balls``).
+
+- **A point** (a carom): the cue ball contacts both object balls, and
+  touches cushions at least three times before its first contact with the
+  second object ball (any cushions, the same one more than once; cushions
+  struck by the object balls do not count). Read from the order of the cue
+  ball's contacts (``ShotInput.contacts``, the simulator's
+  ``SimOptions(contacts=K)``).
+- **The inning** continues after each point; a shot without a point (or a
+  foul) ends it and the opponent plays their ball from where it lies.
+- **The opening shot**: the red on the foot spot, the opponent's ball on the
+  head spot, the starting player's ball on the head string 18.2 cm beside
+  it (``OPENING_OFFSET``); the cue ball must strike the red first: striking
+  the opponent's ball first is a foul (``FOUL_WRONG_BALL``).
+- **Fouls** the simulator can produce: the opening shot's wrong first ball.
+  A foul scores nothing and ends the inning. (Playing the wrong cue ball,
+  jumped balls, push shots and touching balls cannot happen here; a cue
+  ball frozen to a ball is respotted by the envs: ``FROZEN_GAP``.)
+- **The game** is to ``target`` points, or ends after ``max_innings``
+  innings of each player with the higher score winning (equal: a draw).
+  With ``equal_innings`` the opponent of the starting player gets a last
+  inning when the starting player reaches the target (UMB's equal innings):
+  reaching the target in it draws the game, else the starting player wins.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..physics import constants as PC
+from .common import Rules, next_state
+from .records import (END_INNINGS, END_NONE, END_TARGET, FOUL_NONE, FOUL_WRONG_BALL, IN_HAND_NONE, PHASE_BREAK,
+                      PHASE_FINAL, PHASE_PLAY, Constraints, GameState, ShotInput, ShotRecord)
+
+CUE, OPPONENT_BALL, RED = 0, 1, 2  # slots in the shooter's frame
+POINT_CUSHIONS = 3                 # cushions the cue ball needs before its contact with the second object ball
+CONTACTS_KEPT = 64                 # the cue ball's contacts the simulator keeps: a point is decided within a few dozen
+OPENING_OFFSET = 0.182             # m: the starting player's ball on the head string beside the head spot (UMB)
+# A cue ball closer than this to another ball (m) at the start of an inning counts as frozen to it (the envs
+# respot: docs/rules.md); the simulator leaves touching balls exactly 2R apart, give or take rounding.
+FROZEN_GAP = 1e-6
+TARGET = 15                        # default points to win (UMB matches: 40 or 50; shorter games train faster)
+MAX_INNINGS = 50                   # default innings limit per player
+
+
+def point_made(contacts: np.ndarray, n_contacts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per shot [E]: whether the cue ball made a point, and its cushion
+    contacts before its first contact with the second object ball (all its
+    cushions if it did not reach both). ``contacts`` [E, K, 2] in the
+    shooter's frame (module docstring); ``n_contacts`` [E] (only the first K
+    are read)."""
+    contacts = np.asarray(contacts, dtype=np.int64)
+    E, K = contacts.shape[:2]
+    kind, other = contacts[..., 0], contacts[..., 1]
+    valid = np.arange(K)[None, :] < np.minimum(np.asarray(n_contacts), K)[:, None]
+    ball = valid & (kind == PC.EV_BALL_BALL)
+    cushion = valid & ((kind == PC.EV_CUSHION) | (kind == PC.EV_JAW_TIP))
+    firsts = []
+    for b in (OPPONENT_BALL, RED):
+        hit = ball & (other == b)
+        firsts.append(np.where(hit.any(axis=1), np.argmax(hit, axis=1), K))
+    second = np.maximum(*firsts)
+    before = (cushion & (np.arange(K)[None, :] < second[:, None])).sum(axis=1)
+    return (second < K) & (before >= POINT_CUSHIONS), before
+
+
+class ThreeCushionRules(Rules):
+    """UMB three-cushion to ``target`` points within ``max_innings`` innings
+    each, with the equal-innings rule if ``equal_innings`` (module docstring)."""
+
+    name = "three_cushion"
+    n_balls = 2
+    table_style = "carom"
+    physics = "carom"
+    contacts = CONTACTS_KEPT
+    own_cue_balls = True
+    extra_obs = 4
+
+    def __init__(self, target: int = TARGET, max_innings: int = MAX_INNINGS, equal_innings: bool = False):
+        for name, v in (("target", target), ("max_innings", max_innings)):
+            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1:
+                raise ValueError(f"three_cushion: {name} must be a positive integer, got {v!r}")
+        if not isinstance(equal_innings, (bool, np.bool_)):
+            raise TypeError(f"three_cushion: equal_innings must be True or False, got {equal_innings!r}")
+        self.target, self.max_innings, self.equal_innings = int(target), int(max_innings), bool(equal_innings)
+
+    def judge(self, game: GameState, shot: ShotInput) -> tuple[ShotRecord, GameState]:
+        self.check(game, shot)
+        if shot.contacts is None or shot.n_contacts is None:
+            raise ValueError("three_cushion: the shot needs the cue ball's contacts in order (ShotInput.contacts "
+                             "and n_contacts, from simulate(..., options=SimOptions(contacts=K)))")
+        E = game.n
+        ar, s = np.arange(E), game.shooter
+        point, _ = point_made(shot.contacts, shot.n_contacts)
+        is_break = game.phase == PHASE_BREAK
+        first = np.asarray(shot.first_contact, dtype=np.int64)
+        foul = np.where(is_break & (first == OPPONENT_BALL), FOUL_WRONG_BALL, FOUL_NONE).astype(np.int64)
+        scored = point & (foul == FOUL_NONE)
+        score = game.score.copy()
+        score[ar, s] += scored
+        reached = scored & (score[ar, s] >= self.target)
+        starter = s == game.breaker
+        final = game.phase == PHASE_FINAL
+        missed = ~scored
+        # the game ends: the target reached (with equal innings, the starter's opponent first plays a last
+        # inning), that last inning ended, or each player's innings limit played out
+        last_inning = final & (missed | reached)
+        win_now = reached & ~final & ~(self.equal_innings & starter)
+        limit = missed & ~starter & (game.innings[ar, s] >= self.max_innings) & ~final
+        over = win_now | last_inning | limit
+        by_score = np.where(score[:, 0] > score[:, 1], 0, np.where(score[:, 1] > score[:, 0], 1, -1))
+        winner = np.where(win_now, s, np.where(last_inning, np.where(reached, -1, game.breaker),
+                                                np.where(limit, by_score, -1)))
+        end = np.where(win_now | last_inning, END_TARGET, np.where(limit, END_INNINGS, END_NONE))
+        to_final = reached & starter & self.equal_innings & ~final
+        turn_over = (missed | to_final) & ~over
+        rec = ShotRecord(legal=foul == FOUL_NONE, foul=foul, turn_over=turn_over, game_over=over,
+                         winner=winner.astype(np.int64), end=end.astype(np.int64), push_out=np.zeros(E, dtype=bool),
+                         passed=np.zeros(E, dtype=bool), respot=np.zeros(np.shape(shot.pocket_before), dtype=bool),
+                         shooter=s.copy(), points=scored.astype(np.int64))
+        g = next_state(game, rec, foul, np.ones(E, dtype=bool))
+        g.score = score
+        g.innings[ar, 1 - s] += turn_over  # the incoming player begins an inning
+        g.phase = np.where(to_final | final, PHASE_FINAL, PHASE_PLAY).astype(np.int64)
+        g.ball_in_hand = np.full(E, IN_HAND_NONE, dtype=np.int64)
+        return rec, g
+
+    def constraints(self, game: GameState, pocket: np.ndarray) -> Constraints:
+        E, B = np.shape(pocket)
+        live = ~game.over
+        brk = live & (game.phase == PHASE_BREAK)
+        targets = np.zeros((E, B), dtype=bool)
+        targets[:, RED] = live
+        targets[:, OPPONENT_BALL] = live & ~brk  # the opening shot must strike the red first
+        no = np.zeros(E, dtype=bool)
+        return Constraints(shooter=game.shooter.copy(), ball_in_hand=np.full(E, IN_HAND_NONE, dtype=np.int64),
+                           targets=targets, push_out_allowed=no, may_pass=no.copy(), call_needed=no.copy(),
+                           is_break=brk, over=game.over.copy())
+
+    def observe_extra(self, game: GameState) -> np.ndarray:
+        """The shooter's and the opponent's score / target, the shooter's
+        innings / max_innings, and 1 in the equal-innings last inning."""
+        ar, s = np.arange(game.n), game.shooter
+        x = np.zeros((game.n, 4), dtype=np.float32)
+        x[:, 0] = np.minimum(game.score[ar, s] / self.target, 1.0)
+        x[:, 1] = np.minimum(game.score[ar, 1 - s] / self.target, 1.0)
+        x[:, 2] = np.minimum(game.innings[ar, s] / self.max_innings, 1.0)
+        x[:, 3] = game.phase == PHASE_FINAL
+        return x
+
+    def new_game(self, breaker) -> GameState:
+        """A fresh game (``GameState.new``) with the starting player's first inning begun."""
+        g = super().new_game(breaker)
+        g.innings[np.arange(g.n), g.breaker] = 1
+        g.ball_in_hand[:] = IN_HAND_NONE
+        return g
