@@ -17,12 +17,15 @@ from .ten_ball import TenBallRules
 RULES = {"nine_ball": NineBallRules(), "eight_ball": EightBallRules(), "ten_ball": TenBallRules()}
 
 
-def get_rules(name: str) -> Rules:
-    """The ruleset of a game by name (``nine_ball``, ``eight_ball``, ``ten_ball``)."""
+def get_rules(name: str, **options) -> Rules:
+    """The ruleset of a game by name (``nine_ball``, ``eight_ball``,
+    ``ten_ball``); ``options`` make a new instance with them (9-ball:
+    ``spot_break_nine=True``)."""
     try:
-        return RULES[name]
+        rules = RULES[name]
     except KeyError:
         raise ValueError(f"unknown game {name!r}; choose one of {sorted(RULES)}") from None
+    return type(rules)(**options) if options else rules
 
 
 __all__ = ["BREAK_RAIL_BALLS", "Rules", "lowest_on_table", "EightBallRules", "NineBallRules", "TenBallRules",
