@@ -260,7 +260,7 @@ class Budget:
     n_bank: int = 16
     n_push: int = 24
     n_eval: int = 32
-    n_eval_safe: int = 4
+    n_eval_safe: int = 8
     n_samples: int = 12
     throws: tuple = THROW
     speeds: tuple = SPEEDS
@@ -647,7 +647,8 @@ def game_lookahead(seed: int = 0, **kw) -> GameLookahead:
 
 
 # smaller search budgets, for measuring strength against compute (``module:factory`` entrants of scripts/match.py)
-BUDGETS = dict(fast=dict(n_pots=3, n_eval=8, n_samples=4), medium=dict(n_pots=4, n_eval=16, n_samples=8),
+BUDGETS = dict(fast=dict(n_pots=3, n_eval=8, n_eval_safe=4, n_samples=4),
+               medium=dict(n_pots=4, n_eval=16, n_eval_safe=4, n_samples=8),
                wide=dict(n_eval=64, n_samples=16))
 
 

@@ -159,3 +159,4 @@ def test_plays_a_combination_on_the_nine():
     plan = bot.act(view)
     pv = view.preview(plan)
     assert pv.record.game_over[0] and pv.record.winner[0] == 0 and pv.pocket[0, 9] >= 0
+
