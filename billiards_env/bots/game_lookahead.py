@@ -251,7 +251,11 @@ class Budget:
     how many candidates are re-judged under noise (pots, safeties) and with
     how many noise samples, the pots' variants (overcuts against throw, speed
     factors, tip heights), and the leave model (``sigma_model``; ``v_none``,
-    ``v_full``: see ``position_value``)."""
+    ``v_full``, ``q_run``: see ``position_value``). Off by default, tried
+    and measured without a gain (docs/games.md): ``q_run`` (a sure pot worth
+    more as the balls run out), ``combos`` (9-ball combinations on the 9,
+    ``combo_shots``) and ``w_next`` (the leave looked at two balls deep,
+    ``_leave_ease2``)."""
 
     n_pots: int = 6
     hand_pots: int = 3
