@@ -23,8 +23,8 @@ RULES = {"nine_ball": NineBallRules(), "eight_ball": EightBallRules(), "ten_ball
 def get_rules(name: str, **options) -> Rules:
     """The ruleset of a game by name (``nine_ball``, ``eight_ball``,
     ``ten_ball``, ``three_cushion``, ``snooker``); ``options`` build a ruleset of the
-    game's own settings (three-cushion: ``target``, ``max_innings``,
-    ``equal_innings``)."""
+    game's own settings (9-ball: ``spot_break_nine=True``; three-cushion: ``target``,
+    ``max_innings``, ``equal_innings``)."""
     try:
         rules = RULES[name]
     except KeyError:

@@ -56,11 +56,12 @@ from ..streams import TableStreams
 from .codec import ACTION_DIM, N_POCKETS, ActionCodec, placement_to_actions
 from ...rules.placement import FOOT_SPOT, HEAD_STRING, d_of, legal_spots
 from ...rules.snooker import respot_colours
-from .setup import hand_over, rack, respot, respot_frozen
+from .setup import RACKS, hand_over, loosen, rack, respot, respot_frozen
 
 EXTRA_OBS = 13  # observation entries after the one-player layout (see ``observation_doc``)
 GAMES = ("nine_ball", "eight_ball", "ten_ball", "three_cushion", "snooker")
 NOISE_LEVELS = ("none", "tournament", "high", "variable")
+BREAK_NINE = ("wins", "spotted")  # 9-ball: the 9 pocketed on a legal break wins, or is spotted (some pro events)
 VARIABLE_NOISE_MAX = 5.0  # "variable" noise: the tournament deviations times a factor uniform in [0, 5] per game
 
 
@@ -78,7 +79,12 @@ class GameConfig:
     ``max_shots`` (a game not over after this many shots is truncated, a
     draw), ``noise`` (``none``, ``tournament``, ``high`` = 5x tournament,
     ``variable`` = tournament times a factor uniform in [0, 5] drawn per
-    game, or a ``NoiseConfig`` / mapping), ``effects`` and ``models``."""
+    game, or a ``NoiseConfig`` / mapping), ``effects`` and ``models``;
+    ``rack`` (the pool games): ``realistic`` (seeded gaps and offsets between
+    the balls, ``setup.loosen``) or ``perfect`` (every ball frozen, as before;
+    snooker's reds are always racked frozen);
+    ``break_nine`` (9-ball): ``wins`` (the 9 pocketed on a legal break wins)
+    or ``spotted`` (it is respotted and the breaker shoots on)."""
 
     game: str = "nine_ball"
     table_size_ft: int = 9
@@ -91,6 +97,8 @@ class GameConfig:
     effects: Effects = dataclasses.field(default_factory=Effects)
     models: Models = dataclasses.field(default_factory=Models)
     rule_options: dict = dataclasses.field(default_factory=dict)
+    rack: str = "realistic"
+    break_nine: str = "wins"
 
     def __post_init__(self):
         if self.game not in GAMES:
@@ -99,6 +107,13 @@ class GameConfig:
             raise TypeError(f"rule_options must be a dict, got {type(self.rule_options).__name__}")
         if self.rule_options:
             get_rules(self.game, **self.rule_options)  # unknown or bad settings fail here
+        if self.rack not in RACKS:
+            raise ValueError(f"rack must be one of {RACKS}, got {self.rack!r}")
+        if self.break_nine not in BREAK_NINE:
+            raise ValueError(f"break_nine must be one of {BREAK_NINE}, got {self.break_nine!r}")
+        if self.break_nine != "wins" and self.game != "nine_ball":
+            raise ValueError(f"break_nine={self.break_nine!r} is a 9-ball option (10-ball always spots the 10 "
+                             f"on the break, 8-ball the 8), got game={self.game!r}")
         if self.solver not in ("event", "step") or (self.solver == "step" and not self.dt):
             raise ValueError(f"solver must be 'event' or 'step' (with a positive dt), "
                              f"got {self.solver!r}, dt={self.dt}")
@@ -146,7 +161,8 @@ class GameCore(BilliardsCore):
             raise ValueError(f"num_envs must be a positive integer, got {n_envs!r}")
         self.config = cfg
         self.cfg = _CoreConfig(cfg.shot_noise, cfg.min_draw, cfg.solver, cfg.dt)
-        self.rules = get_rules(cfg.game, **cfg.rule_options)
+        rules_options = {"spot_break_nine": True} if cfg.break_nine == "spotted" else {}
+        self.rules = get_rules(cfg.game, **rules_options, **cfg.rule_options)
         self.n_envs = int(n_envs)
         style = self.rules.table_style
         self.table = (Table.carom() if style == "carom" else Table.snooker() if style == "snooker"
@@ -231,9 +247,11 @@ class GameCore(BilliardsCore):
         n, B, t = len(idx), self.n_balls, self.table
         u = self.streams.uniform(idx, 16)  # 14 rack, breaker, noise factor
         pos = rack(self.config.game, t, self.params.R, u)
-        if not self.rules.own_cue_balls and t.marks is None:  # three-cushion's rack places each player's ball
-            # itself, snooker's puts the cue ball in the D
+        if not self.rules.own_cue_balls and t.marks is None:  # the pool racks (three-cushion's places each
+            # player's ball itself, snooker's puts the cue ball in the D)
             pos[:, 0] = (t.width / 2, HEAD_STRING * t.length)
+            if self.config.rack == "realistic":  # drawn after the 16 above: breaker and noise factor as with "perfect"
+                loosen(pos, t, self.params.R, self.streams.uniform(idx, 2 * (B - 1)))
         brk = (u[:, 14] < 0.5).astype(np.int64) if breaker is None else np.broadcast_to(breaker, (n,))
         lo, hi = self.config.noise_range
         if self.state is None:
