@@ -6,6 +6,8 @@ games benchmark accept.
   their leave under sampled noise): the built-in bots of the games (the
   one-player tasks' ``lookahead`` is ``bots.lookahead.LookaheadPolicy``,
   named by the tasks' own policy registry);
+- ``ladder-<k>`` (``bots.learned.ladder``): the k-th shipped learned agent
+  of the game it is handed, weakest first (numpy only; no torch);
 - ``module:factory`` (for example ``my_bots:planner``): a bot of your own;
   ``factory(seed=...)`` must return an object with ``name`` and
   ``act(view: GameView) -> ShotPlan`` (docs/bots.md);
@@ -15,14 +17,15 @@ from __future__ import annotations
 
 import importlib
 
-BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "<module>:<factory>")
+BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "ladder-<k>", "<module>:<factory>")
 DEFAULT_SEARCH_K = 64
 
 
 def is_bot_name(name) -> bool:
     """Whether ``name`` names a built-in bot or a ``module:factory``."""
     return isinstance(name, str) and (name in ("random", "ghost", "ghost-safety", "lookahead") or ":" in name
-                                      or (name.startswith("search") and (name[6:].isdigit() or name == "search")))
+                                      or (name.startswith("search") and (name[6:].isdigit() or name == "search"))
+                                      or (name.startswith("ladder-") and name[7:].isdigit()))
 
 
 def make_bot(spec, seed: int = 0):
@@ -43,6 +46,9 @@ def make_bot(spec, seed: int = 0):
     if spec.startswith("search") and (spec[6:].isdigit() or spec == "search"):
         from .search import SearchBot
         return SearchBot(seed=seed, k=int(spec[6:]) if spec[6:] else DEFAULT_SEARCH_K)
+    if spec.startswith("ladder-") and spec[7:].isdigit():
+        from .learned.ladder import LadderBot
+        return LadderBot(spec, seed=seed)
     if ":" in spec:
         return _user_bot(spec, seed)
     raise ValueError(f"unknown bot {spec!r}; choose one of {BOT_NAMES}")
