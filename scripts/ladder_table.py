@@ -4,6 +4,8 @@
     python scripts/ladder_table.py                        # every game and noise level, 20 racks per pairing
     python scripts/ladder_table.py --racks 50 --noise tournament high
     python scripts/ladder_table.py --quick --out /tmp/ladder   # smoke test: ladder-1 v ghost, 2 racks, no noise
+    python scripts/ladder_table.py --games eight_ball --noise high &   # one part per process, then
+    python scripts/ladder_table.py --collect                           # the CSV, summary and docs of every part
 
 For each game (9-ball, 8-ball) and noise level (``none``, ``tournament``,
 ``high``, ``variable``) every pairing of the game's ladder agents
@@ -15,12 +17,15 @@ Bradley-Terry ratings with 95% bootstrap intervals are fitted. Writes
 ``<out>/ratings.csv``, ``<out>/pairings.csv``, ``<out>/summary.md`` (one
 table of every rating) and ``<out>/ladder.md`` (the agents' cards and the
 summary); with the default ``--out`` the summary also goes into
-``docs/ladder.md`` between its markers.
+``docs/ladder.md`` between its markers. ``--collect`` plays nothing: it
+writes the CSV, summary and docs from the ``<game>_<noise>.json`` already
+in ``--out`` (parts played by separate processes).
 """
 from __future__ import annotations
 
 import argparse
 import csv
+import json
 import sys
 import time
 from pathlib import Path
@@ -78,12 +83,13 @@ def main(argv=None) -> int:
     ap.add_argument("--max-shots", type=int, default=200)
     ap.add_argument("--out", type=Path, default=ROOT / "results" / "ladder")
     ap.add_argument("--quick", action="store_true", help="ladder-1 v ghost, 2 racks, no noise (the test's run)")
+    ap.add_argument("--collect", action="store_true", help="play nothing: tables and docs from the JSON in --out")
     args = ap.parse_args(argv)
     if args.quick:
         args.bots, args.racks, args.noise = ["ghost"], 2, ["none"]
     command = " ".join(["python", "scripts/ladder_table.py"] + (argv if argv is not None else sys.argv[1:]))
     docs = []
-    for game in args.games:
+    for game in [] if args.collect else args.games:
         rungs = L.ladder_names(game)[:1] if args.quick else L.ladder_names(game)
         if not rungs:
             raise SystemExit(f"no ladder agents shipped for {game} (scripts/export_ladder.py writes them)")
@@ -97,6 +103,12 @@ def main(argv=None) -> int:
             print(f"{game} {noise}: " + ", ".join(f"{t['name']} {t['elo']:.0f}" for t in table)
                   + f" ({doc['seconds']:.0f} s)", flush=True)
             docs.append(doc)
+    if args.collect:
+        docs = [json.loads(p.read_text()) for p in sorted(args.out.glob("*_*.json"))]
+        if not docs:
+            raise SystemExit(f"no <game>_<noise>.json in {args.out} to collect")
+        command, args.racks, args.seed = docs[0]["command"], docs[0]["racks"], docs[0]["seed"]
+        args.games = [g for g in GAMES if any(d["game"] == g for d in docs)]
     write_csv(args.out, docs)
     summary = match_report.summary(args.out)
     (args.out / "summary.md").write_text(summary)

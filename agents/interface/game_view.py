@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import weakref
 
+import numpy as np
 from gymnasium import spaces
 
 from billiards_env.bots.learned.game_view import AGENT_ACTION_DIM, OnePlayerView as GameView  # noqa: F401

@@ -158,3 +158,16 @@ def test_ladder_agent_plays_the_aec_env():
         a = env.bot_action(bot.act(env.bot_view()))
         assert env.action_space(env.agent_selection).contains(a)
         env.step(a)
+
+
+def test_ladder_table_quick_mode_writes_its_tables(tmp_path):
+    for game in GAMES:
+        _shipped(game)
+    res = subprocess.run([sys.executable, "scripts/ladder_table.py", "--quick", "--out", str(tmp_path)], cwd=ROOT,
+                         capture_output=True, text=True, timeout=600)
+    assert res.returncode == 0, res.stderr[-2000:]
+    for game in GAMES:
+        assert (tmp_path / f"{game}_none.md").exists() and (tmp_path / f"{game}_none.png").exists()
+    rows = (tmp_path / "ratings.csv").read_text().splitlines()
+    assert rows[0].startswith("game,noise,entrant") and len(rows) == 1 + 2 * 2  # ladder-1 and ghost per game
+    assert "ladder-1" in (tmp_path / "ladder.md").read_text()
