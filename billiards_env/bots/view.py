@@ -41,7 +41,7 @@ import numpy as np
 from ..physics import Effects, Models, PhysicsParams, Table
 from ..physics.noise import NoiseConfig
 from ..rules import records as R
-from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP, place_cue
+from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP, legal_spots
 
 
 @dataclasses.dataclass(frozen=True)
@@ -146,14 +146,8 @@ class GameView:
         clear of the cushions, every ball and every pocket): (spots [k, 2],
         moved [k]). A spot that is already legal is returned unchanged."""
         rows = np.arange(self.n) if rows is None else np.asarray(rows, dtype=np.int64)
-        xy = np.ascontiguousarray(np.asarray(xy, dtype=np.float64).reshape(len(rows), 2))
-        kitchen = np.ascontiguousarray(self.ball_in_hand[rows] == R.IN_HAND_KITCHEN)
-        out, moved = np.empty((len(rows), 2)), np.zeros(len(rows), dtype=bool)
-        ok = place_cue(xy, np.ascontiguousarray(self.pos[rows]), np.ascontiguousarray(self.pocket[rows]), kitchen, self.table.width,
-                       self.table.length, self.params.R, self.pockets, out, moved)
-        if not ok:
-            raise RuntimeError("no free spot for the cue ball")
-        return out, moved
+        return legal_spots(xy, self.pos[rows], self.pocket[rows], self.ball_in_hand[rows] == R.IN_HAND_KITCHEN,
+                           self.table.width, self.table.length, self.params.R, self.pockets)
 
     def preview(self, plan, rows=None, noise=None, rng=None):
         """Play ``plan`` (one row per entry of ``rows``, default one per view

@@ -80,6 +80,27 @@ def _action_to_shot(actions, base, lo, hi, limit, out):
         out[2, e], out[3, e] = _clip_offset(a2 * limit, a3 * limit, limit)
 
 
+def shot_actions(shots, origin, min_draw: float, params, log_speed: bool = False) -> np.ndarray:
+    """The inverse of ``_action_to_shot`` on the unclipped range: ``Shots``
+    (absolute aim phi, speed, tip offsets a, b; arrays [n] or scalars) ->
+    actions a0..a3 [n, 4], not yet clipped: a0 the aim relative to
+    ``origin`` [n] over pi, wrapped to [-1, 1); a1 the cue draw between
+    ``min_draw`` and ``params.max_draw`` (linear, or geometric with
+    ``log_speed``); a2, a3 the offsets over the miscue limit. The one
+    mapping of the one-player tasks and the games' ``ActionCodec``."""
+    n = len(origin)
+    phi, speed, a, b = (np.broadcast_to(np.asarray(v, dtype=np.float64), (n,)) for v in shots)
+    rel = (phi - origin) / math.pi
+    rel = (rel + 1.0) % 2.0 - 1.0
+    lo, hi, lim = min_draw, params.max_draw, params.miscue_limit
+    draw = speed_to_draw(speed, params)
+    if log_speed:
+        a1 = 2.0 * np.log(np.maximum(draw, lo) / lo) / math.log(hi / lo) - 1.0
+    else:
+        a1 = 2.0 * (draw - lo) / (hi - lo) - 1.0
+    return np.stack([rel, a1, a / lim, b / lim], axis=1)
+
+
 @_jit
 def _observe(pos, pocket, tgt, shots, max_shots, width, length, obs):
     """Fill the zeroed observations ``obs`` [N, 4B + 1] (layout: see billiards._COMMON_DOC)."""
@@ -199,22 +220,13 @@ class BilliardsCore:
         n = len(idx)
         if not isinstance(shots, Shots):
             raise TypeError(f"shots must be a Shots, got {type(shots).__name__}")
-        phi, speed, a, b = (np.broadcast_to(v, (n,)) for v in shots)
         ctx = self.shot_context()
-        if self.cfg.aim == "impact":
-            rel = np.empty(n)
-            impact_actions(np.ascontiguousarray(phi, dtype=np.float64), ctx.aim_origin[idx], ctx.target[idx],
+        out = shot_actions(shots, ctx.aim_origin[idx], self.cfg.min_draw, self.params, self.cfg.speed_scale == "log")
+        if self.cfg.aim == "impact":  # a0 is the impact parameter (envs/impact.py)
+            phi, rel = np.broadcast_to(np.asarray(shots.phi, dtype=np.float64), (n,)), np.empty(n)
+            impact_actions(np.ascontiguousarray(phi), ctx.aim_origin[idx], ctx.target[idx],
                            self.state.pos[idx], self.params.R, rel)
-        else:
-            rel = (phi - ctx.aim_origin[idx]) / math.pi
-            rel = (rel + 1.0) % 2.0 - 1.0
-        lo, hi, lim = self.cfg.min_draw, self.params.max_draw, self.params.miscue_limit
-        draw = speed_to_draw(speed, self.params)
-        if self.cfg.speed_scale == "log":
-            a1 = 2.0 * np.log(np.maximum(draw, lo) / lo) / math.log(hi / lo) - 1.0
-        else:
-            a1 = 2.0 * (draw - lo) / (hi - lo) - 1.0
-        out = np.stack([rel, a1, a / lim, b / lim], axis=1)
+            out[:, 0] = rel
         return np.clip(out, -1.0, 1.0)
 
     # --- bots ----------------------------------------------------------------

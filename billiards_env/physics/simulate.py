@@ -213,9 +213,13 @@ def _simulate_chunk(s: BallState, geo: Geometry, p: np.ndarray, kernel, solver: 
         numba.set_num_threads(E)
     try:
         if solver == "event":
-            scr = EventScratch(tt=np.zeros((E, B)), tb=np.zeros((E, B)), bkind=np.zeros((E, B), dtype=np.int64),
-                               bidx=np.zeros((E, B), dtype=np.int64), tpair=np.zeros((E, B, B)),
-                               paths=np.zeros((E, B, 6)), tlast=np.zeros((E, B)))
+            # tt, tb and paths are read (as zeros) by the first refresh pass
+            # before every ball has been refreshed; the rest is written for
+            # every ball by that pass before anything reads it, so it need
+            # not be cleared (tpair is the big one: E x B x B).
+            scr = EventScratch(tt=np.zeros((E, B)), tb=np.zeros((E, B)), bkind=np.empty((E, B), dtype=np.int64),
+                               bidx=np.empty((E, B), dtype=np.int64), tpair=np.empty((E, B, B)),
+                               paths=np.zeros((E, B, 6)), tlast=np.empty((E, B)))
             call(kernel, balls, geo, p, scr, out, log, int(max_events))
         else:
             call(kernel, balls, geo, p, out, log, int(max_events), float(dt), int(C.MAX_STEPS))

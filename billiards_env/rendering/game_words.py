@@ -12,7 +12,7 @@ from ..rules import records as R
 IN_HAND_WORDS = {R.IN_HAND_NONE: "none", R.IN_HAND_ANYWHERE: "anywhere",
                  R.IN_HAND_KITCHEN: "behind the head string"}
 GROUP_WORDS = {R.GROUP_OPEN: "open", R.GROUP_SOLIDS: "solids", R.GROUP_STRIPES: "stripes"}
-GAME_WORDS = {"nine_ball": "9-ball", "eight_ball": "8-ball"}
+GAME_WORDS = {"nine_ball": "9-ball", "eight_ball": "8-ball", "ten_ball": "10-ball"}
 
 
 def _word(table: dict, code, what: str) -> str:

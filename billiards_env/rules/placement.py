@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 
 import numba
+import numpy as np
 
 from ..physics.state import SPOT_CLEAR, SPOT_EDGE, spot_free
 
@@ -66,3 +67,16 @@ def place_cue(want, pos, pocket, kitchen, width, length, R, pockets, out, moved)
         out[e, 0], out[e, 1] = x, y
         moved[e] = x != want[e, 0] or y != want[e, 1]
     return ok
+
+
+def legal_spots(xy, pos, pocket, kitchen, width: float, length: float, R: float, pockets):
+    """``place_cue`` for arrays from Python: the legal cue-ball spots nearest
+    to ``xy`` [n, 2] on tables ``pos`` [n, B, 2] / ``pocket`` [n, B], behind
+    the head string where ``kitchen`` [n]: (spots [n, 2], moved [n]).
+    Raises RuntimeError if some table has no free spot."""
+    xy = np.ascontiguousarray(np.asarray(xy, dtype=np.float64).reshape(len(kitchen), 2))
+    out, moved = np.empty((len(kitchen), 2)), np.zeros(len(kitchen), dtype=bool)
+    if not place_cue(xy, np.ascontiguousarray(pos), np.ascontiguousarray(pocket), np.ascontiguousarray(kitchen),
+                     width, length, R, pockets, out, moved):
+        raise RuntimeError("no free spot for the cue ball")
+    return out, moved

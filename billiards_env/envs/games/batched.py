@@ -12,6 +12,8 @@ from gymnasium.vector.utils import batch_space
 from .core import GameCore
 from .spaces import action_space, make_config, observation_space
 
+RENDER_MODES = ("rgb_array",)
+
 
 class GameTables(VectorEnv):
     """Base of ``GameVectorEnv`` (self-play) and ``GameVersusVectorEnv``
@@ -19,10 +21,13 @@ class GameTables(VectorEnv):
 
     def __init__(self, num_envs: int, game: str, config=None, overrides: dict | None = None):
         overrides = dict(overrides or {})
+        render_mode = overrides.pop("render_mode", None)
+        if render_mode is not None and render_mode not in RENDER_MODES:
+            raise ValueError(f"render_mode must be one of {list(RENDER_MODES)} or None, got {render_mode!r}")
         self.config = make_config(config, {**overrides, "game": game} if config is None else overrides)
         self.num_envs = int(num_envs)
-        self.render_mode = None
-        self.core = GameCore(self.config, self.num_envs)
+        self.render_mode = render_mode
+        self.core = GameCore(self.config, self.num_envs, record=render_mode is not None)
         self.single_observation_space = observation_space(self.core)
         self.single_action_space = action_space(self.core)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
@@ -49,6 +54,18 @@ class GameTables(VectorEnv):
 
     def constraints(self):
         return self.core.constraints()
+
+    def render(self):
+        """``render_mode="rgb_array"``: a tuple with one frame per table (the table and the
+        game's status panel, ``rendering.game.render_game``), as Gymnasium's vector envs return."""
+        if self.render_mode is None:
+            import gymnasium as gym
+            gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array' to gymnasium.make_vec")
+            return None
+        if self.core.state is None:
+            raise RuntimeError("call reset() before render()")
+        from ...rendering.game import render_game
+        return tuple(render_game(self.core, k) for k in range(self.num_envs))
 
     def _constraint_info(self, info: dict[str, Any] | None = None) -> dict:
         """``info`` with the next shooter's constraints on every table."""

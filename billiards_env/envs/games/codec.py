@@ -18,13 +18,12 @@ one its ``GameView`` carries (``view.codec``): the same arithmetic either way.
 from __future__ import annotations
 
 import dataclasses
-import math
 from typing import Callable
 
 import numpy as np
 
 from ...physics import PhysicsParams, Table
-from ...physics.strike import speed_to_draw
+from ..core import shot_actions
 
 ACTION_DIM = 8
 N_POCKETS = 6
@@ -95,12 +94,7 @@ class ActionCodec:
             out[:, 4:6] = self.placement_to_actions(np.where(has[:, None], placement, 0.5))
             if len(rows):
                 origin[has] = self.origin_from(placement[has], rows)
-        phi, speed, a, b = (np.broadcast_to(np.asarray(v, dtype=np.float64), (n,)) for v in shots)
-        rel = ((phi - origin) / math.pi + 1.0) % 2.0 - 1.0
-        lo, hi, lim = self.min_draw, self.params.max_draw, self.params.miscue_limit
-        out[:, 0] = rel
-        out[:, 1] = 2.0 * (speed_to_draw(speed, self.params) - lo) / (hi - lo) - 1.0
-        out[:, 2], out[:, 3] = a / lim, b / lim
+        out[:, :4] = shot_actions(shots, origin, self.min_draw, self.params)
         out[:, 6] = -1.0 if declare is None else np.where(declare, 1.0, -1.0)
         if pocket is not None:
             out[:, 7] = -1.0 + (2.0 * np.asarray(pocket) + 1.0) / N_POCKETS

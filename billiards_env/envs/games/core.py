@@ -48,7 +48,7 @@ from ..config import NoiseConfig, _number
 from ..core import BilliardsCore, ShotContext, _context, _observe
 from ..streams import TableStreams
 from .codec import ACTION_DIM, N_POCKETS, ActionCodec, placement_to_actions
-from ...rules.placement import FOOT_SPOT, HEAD_STRING, place_cue
+from ...rules.placement import FOOT_SPOT, HEAD_STRING, legal_spots
 from .setup import rack, respot
 
 EXTRA_OBS = 13  # observation entries after the one-player layout (see ``observation_doc``)
@@ -242,14 +242,11 @@ class GameCore(BilliardsCore):
         """The legal cue-ball spots nearest to ``xy`` [n, 2] on tables
         ``idx`` under their ball-in-hand constraint: (spots [n, 2], moved [n])."""
         idx = np.asarray(idx, dtype=np.int64)
-        s = self.state
         kitchen = self.constraints().ball_in_hand[idx] == R.IN_HAND_KITCHEN
-        out, moved = np.empty((len(idx), 2)), np.zeros(len(idx), dtype=bool)
-        ok = place_cue(np.ascontiguousarray(xy, dtype=np.float64), s.pos[idx], s.pocket[idx], kitchen,
-                       self.table.width, self.table.length, self.params.R, self.pockets, out, moved)
-        if not ok:
-            raise RuntimeError("no free spot for the cue ball")
-        return out, moved
+        return self._place(xy, self.state.pos[idx], self.state.pocket[idx], kitchen)
+
+    def _place(self, xy, pos, pocket, kitchen):
+        return legal_spots(xy, pos, pocket, kitchen, self.table.width, self.table.length, self.params.R, self.pockets)
 
     def called_pocket(self, a: np.ndarray) -> np.ndarray:
         return np.minimum(np.floor((a[:, 7] + 1.0) / 2.0 * N_POCKETS), N_POCKETS - 1).astype(np.int64)
@@ -338,30 +335,34 @@ class GameCore(BilliardsCore):
         """The read-only ``GameView`` of tables ``idx`` that a bot acts on."""
         idx = np.asarray(idx, dtype=np.int64)
         s, g, c = self.state, self.game, self.constraints()
-        view = GameView.build(
-            game=self.config.game, rows=idx.copy(), pos=s.pos[idx], pocket=s.pocket[idx], to_move=c.shooter[idx],
-            ball_in_hand=c.ball_in_hand[idx], targets=c.targets[idx], push_out_allowed=c.push_out_allowed[idx],
+        pos, in_hand = s.pos[idx], c.ball_in_hand[idx]
+        pocket, kitchen = s.pocket[idx], in_hand == R.IN_HAND_KITCHEN
+        place = lambda xy, r: self._place(xy, pos[r], pocket[r], kitchen[r])  # noqa: E731  (the view's own rows)
+        codec = self._codec(idx, pos, c.is_break[idx], in_hand != R.IN_HAND_NONE, place)
+        return GameView.build(
+            game=self.config.game, rows=idx.copy(), pos=pos, pocket=pocket, to_move=c.shooter[idx],
+            ball_in_hand=in_hand, targets=c.targets[idx], push_out_allowed=c.push_out_allowed[idx],
             may_pass=c.may_pass[idx], call_needed=c.call_needed[idx], is_break=c.is_break[idx],
             groups=g.group[idx], fouls=g.fouls[idx], shots=g.shots[idx], table=self.table, params=self.params,
             effects=self.effects, models=self.models, noise=self.cfg.noise, noise_scale=self.noise_scale[idx],
-            min_draw=self.cfg.min_draw, rules=self.rules, state=g.take(idx), _observe=lambda: self.observe()[idx])
-        return dataclasses.replace(view, codec=self._codec(idx, view.pos, view.targets, view.is_break, view.in_hand,
-                                                            view.legal_placement))
+            min_draw=self.cfg.min_draw, rules=self.rules, state=g.take(idx), codec=codec,
+            _observe=lambda: self.observe()[idx])
 
     def codec(self, idx) -> ActionCodec:
         """The ``ActionCodec`` (the action convention) of tables ``idx``."""
         idx = np.asarray(idx, dtype=np.int64)
         c = self.constraints()
-        return self._codec(idx, self.state.pos[idx], c.targets[idx], c.is_break[idx],
-                           c.ball_in_hand[idx] != R.IN_HAND_NONE, lambda xy, r: self.legal_placement(xy, idx[r]))
+        return self._codec(idx, self.state.pos[idx], c.is_break[idx], c.ball_in_hand[idx] != R.IN_HAND_NONE,
+                           lambda xy, r: self.legal_placement(xy, idx[r]))
 
-    def _codec(self, idx, pos, targets, is_break, in_hand, place) -> ActionCodec:
-        t = self.table
-        tgt = R.nominal_target(targets)
-        aim = np.where(is_break[:, None], np.array([t.width / 2, FOOT_SPOT * t.length]),
-                       pos[np.arange(len(idx)), np.maximum(tgt, 0)])
-        return ActionCodec(self.shot_context().aim_origin[idx], aim, in_hand, place, t, self.params, self.cfg.min_draw,
-                           np.maximum(tgt, 0), self.action_dim if self.rules.calls_ball else 0, self.n_balls)
+    def _codec(self, idx, pos, is_break, in_hand, place) -> ActionCodec:
+        """The codec of tables ``idx`` (``pos``, ``is_break`` and ``in_hand``
+        their rows); the nominal target comes from the cached shot context."""
+        t, ctx = self.table, self.shot_context()
+        tgt = np.maximum(ctx.target[idx], 0)
+        aim = np.where(is_break[:, None], np.array([t.width / 2, FOOT_SPOT * t.length]), pos[np.arange(len(idx)), tgt])
+        return ActionCodec(ctx.aim_origin[idx], aim, in_hand, place, t, self.params, self.cfg.min_draw,
+                           tgt, self.action_dim if self.rules.calls_ball else 0, self.n_balls)
 
     def actions_of(self, plan, idx, codec: ActionCodec | None = None) -> np.ndarray:
         """The actions [n, action_dim] (float64, validated) that play a bot's

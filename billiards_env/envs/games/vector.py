@@ -41,7 +41,7 @@ class GameVectorEnv(GameTables):
     ``push_out_allowed``, ``may_pass``, ``call_needed``, ``to_move``.
     """ + OBSERVATION_DOC
 
-    metadata = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 4, "autoreset_mode": AutoresetMode.NEXT_STEP}
 
     def __init__(self, num_envs: int = 1, game: str = "nine_ball", config=None, **overrides: Any):
         super().__init__(num_envs, game, config, overrides)

@@ -110,7 +110,7 @@ class GameVersusVectorEnv(GameTables):
     ``call_needed``).
     """ + OBSERVATION_DOC
 
-    metadata = {"render_modes": [], "autoreset_mode": AutoresetMode.NEXT_STEP}
+    metadata = {"render_modes": ["rgb_array"], "render_fps": 4, "autoreset_mode": AutoresetMode.NEXT_STEP}
 
     def __init__(self, num_envs: int = 1, game: str = "nine_ball", opponent="ghost", opponent_seed: int = 0,
                  config=None, autoreset_mode: str | AutoresetMode = AutoresetMode.NEXT_STEP, **overrides: Any):

@@ -1,0 +1,91 @@
+"""``billiards-play`` / ``python scripts/play.py``: start the play server
+(uvicorn) on the loopback address and open the page in the browser."""
+from __future__ import annotations
+
+import argparse
+import sys
+import threading
+import time
+import webbrowser
+
+LOOPBACK = "127.0.0.1"
+DEFAULT_PORT = 8765
+
+
+def warm_up(games=("nine_ball",)) -> float:
+    """Compile the simulator's and bots' kernels before the first person's shot (numba caches them on disk,
+    so this is seconds on a first run and fast afterwards): seconds taken."""
+    from .session import HUMAN, Session
+    t0 = time.perf_counter()
+    for g in games:
+        s = Session("warm-up", g, [HUMAN, "ghost"], 0)
+        s.human_shot({"aim": 1.5707963267948966, "speed": 8.0, "player": 0})
+        s.bot_shot()
+    return time.perf_counter() - t0
+
+
+def parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(prog="billiards-play", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--host", default=LOOPBACK, help=f"address to listen on (default {LOOPBACK}: this machine only; "
+                                                     "another address lets other machines play on it)")
+    ap.add_argument("--port", type=int, default=DEFAULT_PORT, help=f"port (default {DEFAULT_PORT}; 0: any free port)")
+    ap.add_argument("--no-browser", action="store_true", help="do not open the page in a browser")
+    ap.add_argument("--max-games", type=int, default=None, help="games kept in memory (default play.app.MAX_GAMES)")
+    ap.add_argument("--bot", action="append", default=[], metavar="MODULE:FACTORY",
+                    help="offer a bot of your own as well (docs/bots.md); repeatable")
+    ap.add_argument("--no-warm-up", action="store_true", help="skip compiling the kernels before serving")
+    return ap
+
+
+def serve(host: str = LOOPBACK, port: int = DEFAULT_PORT, max_games: int | None = None, log_level: str = "warning",
+          extra_bots=()):
+    """A started uvicorn server in a background thread: (server, url). ``server.should_exit = True`` stops it."""
+    import uvicorn
+
+    from .app import MAX_GAMES, create_app
+    app = create_app(MAX_GAMES if max_games is None else max_games, extra_bots)
+    trusted = None if host not in (LOOPBACK, "localhost") else ["127.0.0.1", "localhost"]
+    if trusted:  # a page on another site cannot reach this server through a rebound name
+        from starlette.middleware.trustedhost import TrustedHostMiddleware
+        app.add_middleware(TrustedHostMiddleware, allowed_hosts=trusted)
+    config = uvicorn.Config(app, host=host, port=port, log_level=log_level, lifespan="off")
+    server = uvicorn.Server(config)
+    thread = threading.Thread(target=server.run, daemon=True)
+    thread.start()
+    while not server.started:
+        if not thread.is_alive():
+            raise RuntimeError(f"the play server could not start on {host}:{port} (is the port in use?)")
+        time.sleep(0.02)
+    bound = server.servers[0].sockets[0].getsockname()[1]
+    return server, f"http://{'127.0.0.1' if host in ('0.0.0.0', LOOPBACK) else host}:{bound}/"
+
+
+def main(argv=None) -> int:
+    args = parser().parse_args(argv)
+    try:
+        import starlette  # noqa: F401
+        import uvicorn  # noqa: F401
+    except ImportError:
+        print("the play server needs starlette and uvicorn: pip install 'billiards_env[play]'", file=sys.stderr)
+        return 2
+    if not args.no_warm_up:
+        print("compiling the simulator and the bots (fast after the first run)...", flush=True)
+        print(f"ready in {warm_up():.1f} s", flush=True)
+    try:
+        server, url = serve(args.host, args.port, args.max_games, extra_bots=args.bot)
+    except (ValueError, TypeError, RuntimeError) as exc:
+        print(f"billiards-play: {exc}", file=sys.stderr)
+        return 2
+    print(f"billiards_env play server at {url} (Ctrl-C stops it)", flush=True)
+    if not args.no_browser:
+        webbrowser.open(url)
+    try:
+        while server.started and not server.should_exit:
+            time.sleep(0.5)
+    except KeyboardInterrupt:
+        server.should_exit = True
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,242 @@
+"""One game on the play server: a ``GameCore`` of one table, its
+``GameRecorder`` and the bots of the players who are not people.
+
+Every turn goes through the library: a person's shot is encoded with the
+table's ``ActionCodec`` (``envs.games.codec``) and played by
+``GameCore.step``, a bot's through ``envs.games.play.bot_actions``, so the
+rules, the simulator and the record are the ones every env and match uses.
+The recorder (``rendering.game_replay``) writes each turn as a replay entry;
+the page animates those entries with the replay viewer, and the saved file
+is that replay's viewer page (``rendering.html.replay_html``).
+"""
+from __future__ import annotations
+
+import math
+import threading
+import time
+
+import numpy as np
+
+from ..bots.registry import make_bot
+from ..envs.games import GameConfig, GameCore
+from ..envs.games.play import bot_actions
+from ..rendering.game_replay import GameRecorder, state_words
+from ..rendering.game_words import game_words, pocket_names
+from ..rendering.replay import Replay
+from ..rules import records as R
+from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP
+from ..physics.params import draw_to_speed
+from ..physics.state import SPOT_CLEAR, SPOT_EDGE
+
+HUMAN = "human"          # a player's name for a person at the screen
+MAX_SHOTS = 200          # shot cap of a played game (GameConfig.max_shots): a draw after this many shots
+
+
+class PlayError(Exception):
+    """A request the game cannot take: ``status`` (an HTTP 4xx code) and a message saying what is wrong."""
+
+    def __init__(self, status: int, message: str):
+        super().__init__(message)
+        self.status, self.message = int(status), str(message)
+
+
+def placement_problem(core: GameCore, xy) -> str | None:
+    """Why the cue ball may not be placed at ``xy`` on table 0 (None: it may),
+    by the library's own legal-placement test (``GameCore.legal_placement``)."""
+    x, y = float(xy[0]), float(xy[1])
+    _, moved = core.legal_placement(np.array([[x, y]]), [0])
+    if not moved[0]:
+        return None
+    t, Rb, s = core.table, core.params.R, core.state
+    edge = Rb + SPOT_EDGE
+    where = f"({x:.4f}, {y:.4f}) m"
+    if not (edge <= x <= t.width - edge and edge <= y <= t.length - edge):
+        return f"the cue ball at {where} is off the bed or touches a cushion (its centre must keep {edge:.4f} m inside)"
+    if core.constraints().ball_in_hand[0] == R.IN_HAND_KITCHEN and y > HEAD_STRING * t.length - KITCHEN_GAP:
+        return f"the cue ball at {where} is beyond the head string (y must be below {HEAD_STRING * t.length:.4f} m)"
+    d = np.hypot(s.pos[0, 1:, 0] - x, s.pos[0, 1:, 1] - y)
+    on = s.pocket[0, 1:] < 0
+    hit = np.nonzero(on & (d < 2 * Rb + SPOT_CLEAR))[0]
+    if len(hit):
+        return f"the cue ball at {where} overlaps ball {int(hit[0]) + 1}"
+    return f"the cue ball at {where} lies over a pocket"
+
+
+class Session:
+    """A game between two players (each ``HUMAN`` or a bot name of
+    ``bots.registry``) on ``game`` (a name of ``envs.games.GAMES``), seeded
+    with ``seed``; ``breaker``: who breaks (0 or 1); ``noise``: the shot
+    noise of ``GameConfig`` (``none`` by default: a person's shot is played
+    as aimed)."""
+
+    def __init__(self, gid: str, game: str, players, seed: int, breaker: int = 0, noise: str = "none"):
+        self.id, self.seed, self.players = gid, int(seed), [str(p) for p in players]
+        self.core = GameCore(GameConfig(game=game, noise=noise, max_shots=MAX_SHOTS), 1, record=True)
+        self.core.streams.seed([0], [self.seed])
+        self.bots = [None if p == HUMAN else make_bot(p, seed=self.seed + k) for k, p in enumerate(self.players)]
+        self.core.reset_tables([0], breaker=np.array([int(breaker)]))
+        names = [("you" if self.players.count(HUMAN) == 1 else f"person {k + 1}") if p == HUMAN else p
+                 for k, p in enumerate(self.players)]
+        self.names = names
+        self.recorder = GameRecorder(self.core, (0,), players=names,
+                                     meta={"seed": self.seed, "played_on": "billiards_env play server"})
+        self.start = state_words(self.core, 0, [0, 0])
+        self.start_pos, self.start_pocket = self.core.state.pos[0].copy(), self.core.state.pocket[0].copy()
+        self.lock = threading.Lock()
+        self.inputs: list[dict] = []   # every turn as it was asked for (a person's request, or {"bot": name})
+        self.timings: list[dict] = []  # seconds per turn: "think" (the bot) and "play" (step and record)
+        self.last_used = time.monotonic()
+
+    # --- what the page shows ----------------------------------------------------
+    @property
+    def game(self) -> str:
+        return self.core.config.game
+
+    def replay(self) -> Replay | None:
+        """The game's replay so far (None before the first turn)."""
+        games = self.recorder.games(0)
+        return games[-1] if games else None
+
+    def shots(self, since: int = 0) -> list[dict]:
+        rep = self.replay()
+        return [] if rep is None else rep.shots[since:]
+
+    def n_shots(self) -> int:
+        rep = self.replay()
+        return 0 if rep is None else len(rep)
+
+    def rack_entry(self, rep: Replay) -> None:
+        """Add the rack as a still entry to ``rep`` (the page's first picture, before any shot)."""
+        lab = ["Player 1", "Player 2"]
+        who = lab[self.start["to_move"]]
+        rep.add_still(self.start_pos, self.start_pocket, info={"game": {
+            "shooter": self.start["to_move"], "before": self.start, "after": self.start, "legal": True,
+            "passed": False, "rack": True, "ruling": f"The rack. {who} ({self.names[self.start['to_move']]}) breaks."}})
+
+    def page_replay(self) -> Replay:
+        """The replay the page starts from: the rack, then every turn so far."""
+        c = self.core
+        rep = Replay.for_table(c.table, c.params, c.effects, n_balls=c.n_balls, meta={
+            "title": f"{game_words(self.game)}: Player 1 ({self.names[0]}) v Player 2 ({self.names[1]})",
+            "seed": self.seed})
+        recorded = self.replay()
+        if recorded is not None:
+            rep.data["game"] = dict(recorded.data["game"])
+        else:
+            rep.data["game"] = {"name": self.game, "title": game_words(self.game), "players": self.names,
+                                "labels": ["Player 1", "Player 2"], "head_string": HEAD_STRING * c.table.length,
+                                "pocket_names": pocket_names(c.pockets), "start": self.start}
+        self.rack_entry(rep)
+        rep.data["shots"].extend(self.shots())
+        return rep
+
+    def state(self) -> dict:
+        """Where the game stands and what the player to move may do."""
+        c, k = self.core, 0
+        cons, g = c.constraints(), c.game
+        st = state_words(c, k, self._score())
+        to_move = int(cons.shooter[k])
+        over = bool(g.over[k]) or bool(g.shots[k] >= c.config.max_shots)
+        p, t = c.params, c.table
+        st.update({
+            "id": self.id, "game": self.game, "title": game_words(self.game), "seed": self.seed,
+            "players": self.players, "names": self.names, "over": over, "truncated": over and not bool(g.over[k]),
+            "human_to_move": not over and self.bots[to_move] is None, "in_hand_code": int(cons.ball_in_hand[k]),
+            "calls_ball": bool(c.rules.calls_ball), "n_shots": self.n_shots(),
+            "pos": c.state.pos[k].tolist(), "on_table": (c.state.pocket[k] < 0).tolist(),
+            "limits": {"speed_min": float(draw_to_speed(c.cfg.min_draw, p)), "speed_max": float(p.max_speed),
+                       "tip_max": float(p.miscue_limit), "R": float(p.R), "width": float(t.width),
+                       "length": float(t.length), "head_string": HEAD_STRING * t.length,
+                       "foot_spot": [t.width / 2, FOOT_SPOT * t.length],
+                       "kitchen_y_max": HEAD_STRING * t.length - KITCHEN_GAP, "edge": float(p.R + SPOT_EDGE),
+                       "clear": float(2 * p.R + SPOT_CLEAR)},
+            "pockets": c.pockets.tolist(), "pocket_names": pocket_names(c.pockets),
+        })
+        return st
+
+    def _score(self):
+        rep = self.replay()
+        if rep is None or not rep.shots:
+            return [0, 0]
+        return rep.shots[-1]["info"]["game"]["after"]["score"]
+
+    # --- turns --------------------------------------------------------------------
+    def _check_turn(self, player) -> int:
+        c = self.core
+        if bool(c.game.over[0]) or c.game.shots[0] >= c.config.max_shots:
+            raise PlayError(409, "the game is over: start a new one")
+        to_move = int(c.constraints().shooter[0])
+        if player is not None and player != to_move:
+            raise PlayError(409, f"it is Player {to_move + 1}'s turn, not Player {player + 1}'s")
+        return to_move
+
+    def human_shot(self, req: dict) -> list[dict]:
+        """Play a person's turn ``req`` (checked by ``api.shot_request``): returns the new replay entries."""
+        c = self.core
+        to_move = self._check_turn(req.get("player"))
+        if self.bots[to_move] is not None:
+            raise PlayError(409, f"it is the bot's turn ({self.players[to_move]}): ask it to play (POST .../bot)")
+        cons = c.constraints()
+        declare = req.get("declare")
+        if declare == "pass" and not cons.may_pass[0]:
+            raise PlayError(400, "passing the shot back is not allowed now (only right after the opponent's "
+                                 "push-out, or in 10-ball after an illegal pot)")
+        if declare == "push_out" and not cons.push_out_allowed[0]:
+            raise PlayError(400, "a push-out is not allowed now (only on the shot right after the break)")
+        placement = None
+        if cons.ball_in_hand[0] != R.IN_HAND_NONE and declare != "pass":
+            xy = req.get("placement")
+            if xy is None:  # where it lies, or the nearest legal spot (the break's head spot is on the string)
+                xy = c.legal_placement(c.state.pos[0, :1].copy(), [0])[0][0].tolist()
+            problem = placement_problem(c, xy)
+            if problem:
+                raise PlayError(400, problem)
+            placement = np.array([xy], dtype=np.float64)
+        elif req.get("placement") is not None and declare != "pass":
+            raise PlayError(400, "the cue ball is not in hand: it is played from where it lies (leave out placement)")
+        pocket = req.get("pocket")
+        if cons.call_needed[0] and declare != "pass" and pocket is None:
+            raise PlayError(400, "this shot needs a called pocket: click a pocket (pocket 0..5)")
+        ball = req.get("ball")
+        if ball is not None and (not c.rules.calls_ball or ball > c.n_balls - 1):
+            raise PlayError(400, f"ball {ball} cannot be called here" if c.rules.calls_ball else
+                            f"{game_words(self.game)} has no called balls")
+        if ball is not None and ball > 0 and c.state.pocket[0, ball] >= 0:
+            raise PlayError(400, f"ball {ball} is not on the table")
+        codec = c.codec([0])
+        actions = codec.encode((req["aim"], req["speed"], req.get("side", 0.0), req.get("height", 0.0)),
+                               placement=placement, declare=np.array([declare is not None]),
+                               pocket=None if pocket is None else np.array([pocket]),
+                               ball=None if ball is None else np.array([ball]))
+        self.inputs.append(dict(req))
+        return self._play(actions, 0.0)
+
+    def bot_shot(self) -> list[dict]:
+        """Let the bot to move play its turn: returns the new replay entries."""
+        to_move = self._check_turn(None)
+        bot = self.bots[to_move]
+        if bot is None:
+            raise PlayError(409, f"it is Player {to_move + 1}'s turn, a person's: no bot to ask")
+        t0 = time.perf_counter()
+        actions = bot_actions(self.core, bot, [0])
+        self.inputs.append({"bot": self.players[to_move]})
+        return self._play(actions, time.perf_counter() - t0)
+
+    def _play(self, actions, think: float) -> list[dict]:
+        n0 = self.n_shots()
+        t0 = time.perf_counter()
+        self.core.step(np.asarray(actions, dtype=np.float64), np.array([0]))
+        self.timings.append({"think": think, "play": time.perf_counter() - t0})
+        return self.shots(n0)
+
+    def hint(self) -> dict:
+        """The ``ghost`` bot's shot for the player to move, in the page's terms (aim, speed, tip, placement, call)."""
+        self._check_turn(None)
+        plan = make_bot("ghost", seed=self.seed).act(self.core.view([0]))
+        out = {"aim": float(plan.phi[0]) % (2 * math.pi), "speed": float(plan.speed[0]), "side": float(plan.a[0]),
+               "height": float(plan.b[0])}
+        if not np.isnan(plan.placement[0, 0]):
+            out["placement"] = plan.placement[0].tolist()
+        if plan.pocket[0] >= 0:
+            out["pocket"] = int(plan.pocket[0])
+        return out

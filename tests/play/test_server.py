@@ -1,0 +1,208 @@
+"""The play server's API against a server started on 127.0.0.1 by the test:
+clear 4xx answers to bad requests, a bounded request fuzzer after which the
+server still plays, the LRU bound, and a saved game that opens as a replay."""
+from __future__ import annotations
+
+import json
+import math
+import random
+
+import numpy as np
+import pytest
+
+FUZZ_REQUESTS = 400   # random and malformed requests per fuzz run (seconds on 2 cores)
+
+
+def new_game(server, **kw):
+    status, st = server("POST", "/api/games", {"game": "nine_ball", "opponent": "ghost", "seed": 11, **kw})
+    assert status == 201, st
+    return st
+
+
+@pytest.mark.parametrize("body, status, words", [
+    ({"aim": 1.0}, 400, "'speed' is required"),
+    ({"aim": 99, "speed": 2}, 400, "'aim' = 99 is out of range"),
+    ({"aim": 1.0, "speed": 50}, 400, "'speed' = 50 is out of range"),
+    ({"aim": 1.0, "speed": 2, "side": 0.45, "height": 0.45}, 400, "beyond the miscue limit"),
+    ({"aim": 1.0, "speed": 2, "placement": [0.6, 1.9]}, 400, "beyond the head string"),
+    ({"aim": 1.0, "speed": 2, "placement": [0.01, 0.3]}, 400, "off the bed or touches a cushion"),
+    ({"aim": 1.0, "speed": 2, "player": 1}, 409, "it is Player 1's turn, not Player 2's"),
+    ({"aim": 1.0, "speed": 2, "declare": "push_out"}, 400, "a push-out is not allowed now"),
+    ({"aim": 1.0, "speed": 2, "declare": "pass"}, 400, "passing the shot back is not allowed"),
+    ({"aim": 1.0, "speed": 2, "declare": "foo"}, 400, "'declare' must be one of"),
+    ({"aim": "left", "speed": 2}, 400, "'aim' must be a finite number"),
+    ({"aim": True, "speed": 2}, 400, "'aim' must be a finite number"),
+    ({"aim": 1.0, "speed": 2, "spin": 1}, 400, "unknown field 'spin'"),
+    ([1, 2], 400, "must be a JSON object"),
+])
+def test_bad_shots_say_what_is_wrong(server, body, status, words):
+    g = new_game(server)
+    got, answer = server("POST", f"/api/games/{g['id']}/shot", body)
+    assert got == status and words in answer["error"], answer
+
+
+def test_bad_requests_of_every_kind(server):
+    g = new_game(server)
+    assert server.raw("POST", f"/api/games/{g['id']}/shot", b"{not json")[0] == 400
+    assert "not valid JSON" in json.loads(server.raw("POST", f"/api/games/{g['id']}/shot", b"{")[1])["error"]
+    assert server.raw("POST", f"/api/games/{g['id']}/shot", b"x" * 20000)[0] == 413
+    assert server("POST", "/api/games", {"game": "snooker"})[0] == 400
+    assert "unknown game" in server("POST", "/api/games", {"game": "snooker"})[1]["error"]
+    assert "unknown player" in server("POST", "/api/games", {"opponent": "deep-blue"})[1]["error"]
+    assert "unknown player" in server("POST", "/api/games", {"opponent": "os:system"})[1]["error"]  # no imports by request
+    assert server("GET", "/api/games/nosuchgame")[0] == 404
+    assert server("GET", "/../../etc/passwd")[0] == 404
+    assert server("GET", "/billiards_env/play/app.py")[0] == 404
+    assert server("DELETE", f"/api/games/{g['id']}")[0] == 405
+    assert server("POST", f"/api/games/{g['id']}/bot")[0] == 409   # a person is to move
+    assert "nothing to save" in server("GET", f"/api/games/{g['id']}/replay.html")[1]["error"]
+    status, r = server("POST", f"/api/games/{g['id']}/place", {"x": 0.635, "y": 0.3})
+    assert status == 200 and r["legal"] and r["problem"] is None
+
+
+def test_a_placement_on_a_ball_is_refused(server):
+    """Two people: a break, then a shot that touches nothing (a foul) gives ball in hand anywhere."""
+    g = new_game(server, seed=4, opponent="human")
+    gid = g["id"]
+    assert server("POST", f"/api/games/{gid}/shot", {"player": 0, "aim": math.pi / 2, "speed": 8.0})[0] == 200
+    st = server("GET", f"/api/games/{gid}")[1]["state"]
+    cue = np.array(st["pos"][0])
+    away = math.atan2(-cue[1], 0.0) if cue[1] > 0.3 else math.atan2(1.0, 0.0)  # towards the head rail, slowly
+    r = server("POST", f"/api/games/{gid}/shot", {"player": st["to_move"], "aim": away, "speed": 0.34})[1]
+    assert "state" in r, r
+    st = r["state"]
+    assert st["ball_in_hand"] == "anywhere", r["shots"][-1]["info"]["game"]["ruling"]
+    ball = st["pos"][st["targets"][0]]
+    status, r = server("POST", f"/api/games/{gid}/shot", {"player": st["to_move"], "aim": 0.0, "speed": 2.0,
+                                                           "placement": ball})
+    assert status == 400 and f"overlaps ball {st['targets'][0]}" in r["error"], r
+    r = server("POST", f"/api/games/{gid}/place", {"x": ball[0], "y": ball[1]})[1]
+    assert not r["legal"] and "overlaps ball" in r["problem"] and r["nearest"] != ball
+    status, r = server("POST", f"/api/games/{gid}/shot", {"player": st["to_move"], "aim": 0.0, "speed": 2.0,
+                                                           "placement": r["nearest"]})
+    assert status == 200, r
+
+
+def _junk(rng: random.Random):
+    return rng.choice([None, True, -1, 0, 1e308, -1e-300, "", "x" * 50, [], [1, 2, 3], {}, {"a": 1}, 3.5, "NaN"])
+
+
+def _fuzz_request(rng: random.Random, gid: str):
+    """A random request: a valid-looking shot with some fields broken, an unknown route or method, or junk bytes."""
+    kind = rng.random()
+    if kind < 0.55:
+        body = {"player": rng.choice([0, 1]), "aim": rng.uniform(-8, 8), "speed": rng.uniform(-1, 12),
+                "side": rng.uniform(-0.6, 0.6), "height": rng.uniform(-0.6, 0.6)}
+        if rng.random() < 0.3:
+            body["placement"] = [rng.uniform(-0.2, 1.5), rng.uniform(-0.2, 2.8)]
+        if rng.random() < 0.2:
+            body["declare"] = rng.choice(["push_out", "pass", "resign", None])
+        if rng.random() < 0.2:
+            body["pocket"] = rng.choice([-1, 0, 3, 5, 6, 2.5])
+        for k in rng.sample(sorted(body), rng.randint(0, 2)):
+            body[k] = _junk(rng)
+        if rng.random() < 0.1:
+            body[rng.choice(["aim2", "__proto__", "x" * 30])] = 1
+        return "POST", f"/api/games/{gid}/shot", json.dumps(body).encode()
+    if kind < 0.65:
+        return "POST", f"/api/games/{gid}/place", json.dumps({"x": _junk(rng), "y": rng.uniform(-2, 4)}).encode()
+    if kind < 0.75:
+        return "POST", "/api/games", json.dumps({"game": rng.choice(["nine_ball", "8ball", None, 9]),
+                                                 "opponent": rng.choice(["ghost", "random", "", 5, "x:y"]),
+                                                 "seed": rng.choice([1, -5, 2 ** 70, "s", None])}).encode()
+    if kind < 0.85:
+        data = bytes(rng.getrandbits(8) for _ in range(rng.randint(0, 64)))
+        return rng.choice(["POST", "PUT"]), rng.choice([f"/api/games/{gid}/shot", "/api/games", f"/api/games/{gid}/bot"]), data
+    path = rng.choice(["/api/games/" + "z" * rng.randint(1, 300), f"/api/games/{gid}/hint", "/static/x", "/%2e%2e/",
+                       f"/game/{gid}x", f"/api/games/{gid}/replay.html", "/api/options"])
+    return rng.choice(["GET", "POST", "DELETE"]), path, None
+
+
+def test_fuzzed_requests_get_answers_and_the_server_still_plays(server):
+    rng = random.Random(29)
+    g = new_game(server, seed=21)
+    gid = g["id"]
+    counts = {}
+    for _ in range(FUZZ_REQUESTS):
+        method, path, data = _fuzz_request(rng, gid)
+        status, raw = server.raw(method, path, data)
+        counts[status] = counts.get(status, 0) + 1
+        assert status < 500, (method, path, data, raw[:300])
+        if status >= 400:
+            answer = json.loads(raw)
+            assert isinstance(answer["error"], str) and answer["error"], answer
+        st = server("GET", f"/api/games/{gid}")
+        if st[0] == 200 and not st[1]["state"]["over"] and not st[1]["state"]["human_to_move"]:
+            assert server("POST", f"/api/games/{gid}/bot")[0] == 200
+    assert counts.get(400, 0) > FUZZ_REQUESTS // 4 and counts.get(200, 0) + counts.get(201, 0) > 0, counts
+    # still plays: a fresh game, a break and the bot's reply
+    g2 = new_game(server, seed=5)
+    assert server("POST", f"/api/games/{g2['id']}/shot", {"player": 0, "aim": math.pi / 2, "speed": 8.0})[0] == 200
+    status, r = server("POST", f"/api/games/{g2['id']}/bot")
+    assert status in (200, 409), r  # 409 when the breaker stays at the table
+
+
+def test_games_in_memory_are_bounded(server):
+    """The test server keeps 4 games: the least recently used goes first."""
+    ids = [new_game(server, seed=k)["id"] for k in range(5)]
+    assert server("GET", f"/api/games/{ids[0]}")[0] == 404
+    assert "most recently used" in server("GET", f"/api/games/{ids[0]}")[1]["error"]
+    assert all(server("GET", f"/api/games/{k}")[0] == 200 for k in ids[1:])
+
+
+def test_saved_game_is_the_recorded_replay(server, tmp_path):
+    from billiards_env.rendering.replay import Replay
+    g = new_game(server, seed=8)
+    gid = g["id"]
+    server("POST", f"/api/games/{gid}/shot", {"player": 0, "aim": math.pi / 2, "speed": 8.0})
+    status, page = server.raw("GET", f"/api/games/{gid}/replay.html")
+    assert status == 200 and b"billiards-replay" in page and b'src="http' not in page and b"href=\"http" not in page
+    shots = server("GET", f"/api/games/{gid}")[1]["shots"]
+    start = page.index(b'id="replay-data">') + len(b'id="replay-data">')
+    data = json.loads(page[start:page.index(b"</script>", start)].decode().replace("<\\/", "</"))
+    assert Replay.from_dict(data).shots == shots and len(shots) >= 1
+    assert np.isfinite(Replay.from_dict(data).positions_at(0.5)[0]).all()
+
+
+def test_ten_ball_calls_are_checked(server):
+    """10-ball: after the break every shot needs a called pocket; the called ball must be on the table."""
+    g = new_game(server, game="ten_ball", opponent="human", seed=2)
+    gid = g["id"]
+    assert g["title"] == "10-ball" and not g["call_needed"]
+    r = server("POST", f"/api/games/{gid}/shot", {"player": 0, "aim": math.pi / 2, "speed": 8.0})[1]
+    st = r["state"]
+    if st["over"]:
+        pytest.fail("the 10 went down on the break: pick another seed")
+    assert st["call_needed"] and st["calls_ball"]
+    body = {"player": st["to_move"], "aim": 0.3, "speed": 1.0}
+    if st["ball_in_hand"] != "none":
+        body["placement"] = server("POST", f"/api/games/{gid}/place", {"x": 0.6, "y": 0.3})[1]["nearest"]
+    status, r = server("POST", f"/api/games/{gid}/shot", body)
+    assert status == 400 and "needs a called pocket" in r["error"]
+    gone = [b for b in range(1, 11) if not st["on_table"][b]]
+    if gone:
+        status, r = server("POST", f"/api/games/{gid}/shot", {**body, "pocket": 1, "ball": gone[0]})
+        assert status == 400 and "not on the table" in r["error"]
+    assert server("POST", f"/api/games/{gid}/shot", {**body, "pocket": 1, "ball": 11})[0] == 400
+    status, r = server("POST", f"/api/games/{gid}/shot", {**body, "pocket": 1, "ball": st["targets"][0]})
+    assert status == 200 and r["shots"][-1]["info"]["game"]["called_pocket"] is not None
+
+
+def test_a_bot_of_your_own_only_when_the_server_offers_it():
+    from billiards_env.play.app import PlayError, new_request
+    spec = "billiards_env.bots.registry:make_bot"
+    with pytest.raises(PlayError, match="unknown player"):
+        new_request({"opponent": spec})
+    assert new_request({"opponent": spec}, extra_bots=(spec,))["players"] == ["human", spec]
+
+
+def test_every_game_of_the_library_plays(server):
+    """Each game the lobby offers (read from envs.games.GAMES): a break by the person, then a bot's turn."""
+    games = [g["id"] for g in server("GET", "/api/options")[1]["games"]]
+    from billiards_env.envs.games import GAMES
+    assert games == list(GAMES)
+    for game in games:
+        g = new_game(server, game=game, seed=12, breaker=1)
+        status, r = server("POST", f"/api/games/{g['id']}/bot")
+        assert status == 200 and r["shots"][0]["info"]["game"]["before"]["break"], r
+        assert server("GET", f"/api/games/{g['id']}/hint")[0] in (200, 409)
