@@ -107,7 +107,11 @@ def main(argv=None) -> int:
         docs = [json.loads(p.read_text()) for p in sorted(args.out.glob("*_*.json"))]
         if not docs:
             raise SystemExit(f"no <game>_<noise>.json in {args.out} to collect")
-        command, args.racks, args.seed = docs[0]["command"], docs[0]["racks"], docs[0]["seed"]
+        args.racks, args.seed = docs[0]["racks"], docs[0]["seed"]
+        parts = sorted({d["command"] for d in docs})
+        command = (parts[0] if len(parts) == 1 else
+                   f"python scripts/ladder_table.py --racks {args.racks}` (played as {len(parts)} processes, one per "
+                   f"game and noise level, then `python scripts/ladder_table.py --collect")
         args.games = [g for g in GAMES if any(d["game"] == g for d in docs)]
     write_csv(args.out, docs)
     summary = match_report.summary(args.out)
