@@ -84,13 +84,8 @@ class TrainSettings:
     tensorboard: bool = True
 
 
-# How the policy's action becomes the env's (agents.interface.features.transform_actions).
-ACTION_MODES = ("direct", "residual", "choice")
-
-
-def check_action_mode(mode: str) -> None:
-    if mode not in ACTION_MODES:
-        raise ValueError(f"action_mode must be one of {ACTION_MODES}, got {mode!r}")
+# How the policy's action becomes the env's (billiards_env.bots.learned.features.transform_actions).
+from billiards_env.bots.learned.features import ACTION_MODES, check_action_mode  # noqa: E402,F401 (re-exported)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -102,7 +97,7 @@ class TrainConfig:
     env_kwargs: dict = dataclasses.field(default_factory=dict)
     features: bool = True     # agent-side ghost-ball features (agents.interface.features)
     aim_scale: float = 1.0    # policy a0 -> env a0 = aim_scale * a0
-    action_mode: str = "direct"  # ACTION_MODES: direct | residual (ghost-ball corrections) | choice (agents.interface.choice)
+    action_mode: str = "direct"  # ACTION_MODES: direct | residual (ghost-ball corrections) | choice (billiards_env.bots.learned.menu)
     ppo: dict = dataclasses.field(default_factory=dict)   # SB3 PPO kwargs
     sac: dict = dataclasses.field(default_factory=dict)   # SB3 SAC kwargs
     rllib: dict = dataclasses.field(default_factory=dict)  # RLlib PPO settings (agents.rllib.backend)

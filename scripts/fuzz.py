@@ -6,6 +6,7 @@ JSON regression cases (replayed by tests/physics/test_regressions.py).
     python scripts/fuzz.py --shots 20000 --solver step --dt 1e-3
     python scripts/fuzz.py --shots 1000000 --effects each   # every effect set
     python scripts/fuzz.py --shots 200000 --effects each --models cushion=mathavan2010
+    python scripts/fuzz.py --shots 1000000 --table snooker   # the 12 ft snooker table, snooker balls
 """
 from __future__ import annotations
 
@@ -19,6 +20,7 @@ from tqdm import tqdm
 
 from billiards_env.physics import Effects, Models
 from billiards_env.testing import CAROM_LAYOUTS, LAYOUTS, case_dict, random_batch, run_batch, save_case
+from billiards_env.testing.fuzzing import SNOOKER_LAYOUTS
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
@@ -34,10 +36,12 @@ def main(argv=None):
     ap.add_argument("--models", nargs="*", default=[], metavar="KEY=VALUE",
                     help="model choices, e.g. ball_ball_friction=alciatore cushion=mathavan2010 "
                          "(keys and names: billiards_env.physics.models.REGISTRIES; default: Models())")
-    ap.add_argument("--table", choices=("pool", "carom"), default="pool",
+    ap.add_argument("--table", choices=("pool", "carom", "snooker"), default="pool",
                     help="pool: 9-ball and 8-ball racks and random balls on the 9 ft table (standard and seed "
                          "physics); carom: three balls on the carom match table with carom equipment, frozen "
-                         "to each other or to a cushion, extreme spin (testing.fuzzing.carom_batch)")
+                         "to each other or to a cushion, extreme spin (testing.fuzzing.carom_batch); snooker: "
+                         "the frozen 22-ball opening, random balls and balls in the jaws on the 12 ft snooker "
+                         "table (snooker preset)")
     ap.add_argument("--batch", type=int, default=4096)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--regressions", type=pathlib.Path, default=ROOT / "tests" / "regressions")
@@ -66,12 +70,16 @@ def main(argv=None):
                 stopped_early = True
                 break
             n = min(args.batch, args.shots - done)
-            layouts = CAROM_LAYOUTS if args.table == "carom" else LAYOUTS
-            layout = layouts[int(rng.integers(len(layouts)))]
-            preset = "seed" if rng.random() < 0.2 else "standard"
+            if args.table == "snooker":
+                layout, preset = SNOOKER_LAYOUTS[int(rng.integers(len(SNOOKER_LAYOUTS)))], "snooker"
+            else:
+                layouts = CAROM_LAYOUTS if args.table == "carom" else LAYOUTS
+                layout = layouts[int(rng.integers(len(layouts)))]
+                preset = "seed" if rng.random() < 0.2 else "standard"
             name = names[int(rng.integers(len(names)))] if len(names) > 1 else names[0]
             effects = effect_sets[name]
-            state, table, params = random_batch(rng, n, layout, preset, pockets=effects.pockets)
+            table_name = "snooker" if args.table == "snooker" else "pool9"  # carom: its layout picks the table
+            state, table, params = random_batch(rng, n, layout, preset, pockets=effects.pockets, table_name=table_name)
             res, viol = run_batch(state, table, params, args.solver, dt=args.dt, effects=effects,
                                   models=models)
             per_set[name] = per_set.get(name, 0) + n
@@ -83,7 +91,8 @@ def main(argv=None):
                         kinds[m.split(" ")[0]] = kinds.get(m.split(" ")[0], 0) + 1
                     failures_per_set[name] = failures_per_set.get(name, 0) + 1
                     if failures <= 50:
-                        save_case(case_dict(state, e, params, args.solver, args.dt, v, effects, models),
+                        save_case(case_dict(state, e, params, args.solver, args.dt, v, effects, models,
+                                            "snooker" if args.table == "snooker" else None),
                                   args.regressions, tag="fuzz")
             done += n
             bar.update(n)

@@ -7,6 +7,7 @@
     python scripts/match.py --game ten_ball --policies ghost ghost-safety search64 --racks 100
     python scripts/match.py --summary    # every game and noise level of results/matches in one table
     python scripts/match.py --policies ghost search64 --racks 20 --save-replays 4   # + 4 whole games per pairing
+    python scripts/match.py --protocol championship --policies lookahead search64 ghost-safety --racks 100
 
 Every pairing plays ``--racks`` racks twice (each side breaks once on each
 rack). Writes ``<out>/<game>_<noise>.json``, ``.md`` and ``.png`` (ratings
@@ -17,10 +18,19 @@ JSON in ``<out>/replays/<game>_<noise>/``. An entrant is a built-in bot (``rando
 docs/bots.md; the module is looked up on PYTHONPATH and in the current
 directory) or the path of a saved model. Noise levels: ``tournament``, ``high`` (5x), ``variable``
 (a factor uniform in [0, 5] per game), ``none``.
+
+``--protocol championship``: 8-ball under the 2011 computer pool
+championship's conditions (``studies.championship``): the tournament at
+each of the noise levels ``tournament`` (1x), ``high`` (5x) and
+``variable``, alternating breaks on the same racks, and every entrant's
+compute per shot; writes ``<out>/eight_ball_<noise>.*`` and
+``<out>/championship.md`` / ``.json`` (default out: results/matches/championship).
+``--quick``: 2 racks, games cut at 20 shots (a smoke run).
 """
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 import time
 from pathlib import Path
@@ -31,8 +41,12 @@ sys.path.insert(1, str(Path.cwd()))  # module:factory bots in the current direct
 
 from agents.evaluation.entrants import bot_factory  # noqa: E402
 from billiards_env.envs.games import GAMES  # noqa: E402
+from billiards_env.envs.games.core import BREAK_NINE  # noqa: E402
+from billiards_env.envs.games.setup import RACKS  # noqa: E402
 from billiards_env.rendering import save_replay_html  # noqa: E402
 from billiards_env.studies import match_report  # noqa: E402
+from billiards_env.studies.championship import GAME as CHAMPIONSHIP_GAME  # noqa: E402
+from billiards_env.studies.championship import championship, compute_table  # noqa: E402
 from billiards_env.studies.matches import tournament  # noqa: E402
 
 
@@ -53,18 +67,32 @@ def _safe(name: str) -> str:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--game", choices=list(GAMES), default="nine_ball")
+    ap.add_argument("--game", choices=list(GAMES), default=None, help="default nine_ball (championship: eight_ball)")
+    ap.add_argument("--protocol", choices=("standard", "championship"), default="standard",
+                    help="championship: 8-ball at tournament, high (5x) and variable noise, with compute per shot")
+    ap.add_argument("--quick", action="store_true", help="2 racks, games cut at 20 shots")
     ap.add_argument("--policies", nargs="+", default=["random", "ghost"],
                     help="entrants: random, ghost, ghost-safety, search<K>, module:factory, or paths of saved models")
     ap.add_argument("--racks", type=int, default=100, help="racks per pairing (each played twice)")
     ap.add_argument("--noise", choices=match_report.NOISES, default="tournament")
+    ap.add_argument("--rack", choices=RACKS, default="realistic",
+                    help="realistic: seeded gaps and offsets between the balls; perfect: every ball frozen")
+    ap.add_argument("--break-nine", choices=BREAK_NINE, default="wins", help="9-ball: the 9 on the break wins or is spotted")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--max-shots", type=int, default=200)
-    ap.add_argument("--out", type=Path, default=ROOT / "results" / "matches")
+    ap.add_argument("--out", type=Path, default=None, help="default results/matches (championship: its championship/)")
     ap.add_argument("--save-replays", type=int, default=0, metavar="N",
                     help="write the first N games of every pairing as replays (HTML and JSON)")
     ap.add_argument("--summary", action="store_true", help="only write <out>/summary.md from the JSON files there")
     args = ap.parse_args(argv)
+    if args.quick:
+        args.racks, args.max_shots = 2, 20
+    champ = args.protocol == "championship"
+    if champ and args.game not in (None, CHAMPIONSHIP_GAME):
+        ap.error(f"--protocol championship plays {CHAMPIONSHIP_GAME}, got --game {args.game}")
+    args.game = args.game or (CHAMPIONSHIP_GAME if champ else "nine_ball")
+    args.out = args.out or ROOT / "results" / "matches" / ("championship" if champ else "")
+    config = dict(rack=args.rack, **({"break_nine": args.break_nine} if args.break_nine != "wins" else {}))
     if args.summary:
         md = match_report.summary(args.out)
         (args.out / "summary.md").write_text(md)
@@ -77,15 +105,45 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     for spec in args.policies:  # a bad entrant fails before any game is played
         bot_factory(spec, args.seed)
+    command = " ".join(["python", "scripts/match.py"] + (argv if argv is not None else sys.argv[1:]))
+    if champ:
+        return run_championship(args, command)
     results, table = tournament(args.policies, args.game, args.racks, args.seed, args.noise, max_shots=args.max_shots,
-                                bot_factory=bot_factory, save_replays=args.save_replays)
+                                bot_factory=bot_factory, save_replays=args.save_replays, **config)
     seconds = time.perf_counter() - t0
     write_replays(args.out / "replays" / f"{args.game}_{args.noise}", results)
-    doc = dict(command=" ".join(["python", "scripts/match.py"] + (argv if argv is not None else sys.argv[1:])),
-               game=args.game, noise=args.noise, racks=args.racks, seed=args.seed, seconds=seconds,
+    doc = dict(command=command, game=args.game, **config, noise=args.noise, racks=args.racks, seed=args.seed, seconds=seconds,
                pairings=[r.summary() for r in results], ratings=table)
     md = match_report.write(args.out / f"{args.game}_{args.noise}", doc, results, table)
     print(md)
+    return 0
+
+
+def run_championship(args, command: str) -> int:
+    """The championship protocol (module docstring): one tournament per noise level, compute per shot."""
+    if args.break_nine != "wins":
+        raise SystemExit("--break-nine is a 9-ball option; the championship plays 8-ball")
+    levels = championship(args.policies, args.racks, args.seed, max_shots=args.max_shots, bot_factory=bot_factory,
+                          rack=args.rack,
+                          progress=lambda lv: print(f"noise {lv} ...", file=sys.stderr, flush=True))
+    parts = [f"# The championship protocol: {CHAMPIONSHIP_GAME}, {args.racks} racks per pairing and level\n",
+             f"`{command}`\n",
+             "Compute per shot: wall-clock seconds in each entrant's decisions (its previews included), over the "
+             "shots it played; the tables of a pairing are decided in batches, so this is the batched cost.\n",
+             compute_table(levels) + "\n"]
+    for lv in levels:
+        doc = dict(command=command, protocol="championship", game=CHAMPIONSHIP_GAME, noise=lv["noise"], rack=args.rack,
+                   racks=args.racks, seed=args.seed, seconds=lv["seconds"],
+                   pairings=[r.summary() for r in lv["results"]], ratings=lv["ratings"], compute=lv["compute"])
+        md = match_report.write(args.out / f"{CHAMPIONSHIP_GAME}_{lv['noise']}", doc, lv["results"], lv["ratings"])
+        parts.append("#" + md)  # its title one level down
+    text = "\n".join(parts)
+    (args.out / "championship.md").write_text(text)
+    (args.out / "championship.json").write_text(json.dumps(dict(
+        command=command, racks=args.racks, seed=args.seed,
+        levels=[dict(noise=lv["noise"], compute=lv["compute"], ratings=lv["ratings"], seconds=lv["seconds"],
+                     pairings=[r.summary() for r in lv["results"]]) for lv in levels]), indent=2) + "\n")
+    print(text)
     return 0
 
 

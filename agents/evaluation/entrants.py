@@ -1,6 +1,7 @@
 """Trained models as entrants of the two-player games, beside the library's bots.
 
-The built-in bots (``random``, ``ghost``, ``ghost-safety``, ``search<K>``)
+The built-in bots (``random``, ``ghost``, ``ghost-safety``, ``search<K>``,
+``lookahead``, the shipped ladder ``ladder-<k>``)
 and ``module:factory`` bots come from ``billiards_env.bots.make_bot``;
 ``bot_factory`` adds saved stable-baselines3 models (a run directory or a
 ``.zip``), played by ``GameModelPolicy``.
@@ -12,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from billiards_env.bots import BOT_NAMES, is_bot_name, make_bot
+from billiards_env.bots.learned.policy import ViewPolicy
 
 ENTRANTS = BOT_NAMES + ("<path to a saved model>",)
 
@@ -21,31 +23,23 @@ class GameModelPolicy:
     its normaliser statistics; ``SB3Policy.load``) trained on a game env,
     playing deterministically; it returns the env's actions [n, 8]. A model
     trained against an opponent with the agent wrappers
-    (``configs/ppo_games.yaml``) was always player 0 and chose its shots
-    through ``game_view.GameView``: it plays through that adapter over the
-    bot view it is handed (its ``observation()`` and action ``codec``) and
-    sees every table as player 0 saw it (the player-to-move entry set to 0;
-    the group and foul entries are the shooter's already). A model of the
-    env's own 8 action components plays on the raw observation."""
+    (``configs/ppo_games.yaml``) plays through the library's
+    ``bots.learned.policy.ViewPolicy`` (the shipped ladder's path, with the
+    model's network in place of the numpy one). A model of the env's own 8
+    action components plays on the raw observation."""
 
     def __init__(self, path, name: str | None = None):
-        from ..sb3.policy import SB3Policy
+        from ..sb3.policy import SB3Network, SB3Policy
         self.model = SB3Policy.load(path)
         self.viewed = self.model.model.action_space.shape != (8,)
         self.name = name or f"model:{path}"
-        self.placer = None  # the ghost bot behind the adapter's placements and breaks
+        m = self.model
+        self.player = ViewPolicy(SB3Network(m.model, m.vecnormalize), self.name, m.features, m.aim_scale,
+                                 m.action_mode) if self.viewed else None
 
     def act(self, view) -> np.ndarray:
-        o = view.observation()
-        policy = self.model
-        if self.viewed:
-            from billiards_env.bots.ghost import GhostBot
-
-            from ..interface.game_view import GameView
-            o[:, 4 * view.n_balls + 1] = 0.0  # the player to move: the model always played as player 0
-            self.placer = self.placer or GhostBot(seed=0)
-            policy = self.model.bind(GameView.of_view(view, self.placer))
-        a = np.asarray(policy.act(o), dtype=np.float32)
+        a = self.player.act(view) if self.viewed else self.model.act(view.observation())
+        a = np.asarray(a, dtype=np.float32)
         if a.shape[1] != 8:
             raise ValueError(f"{self.name}: the model gives {a.shape[1]} action components, a game needs 8")
         return a

@@ -94,3 +94,18 @@ class SB3Policy:
         return cls(model, vn, name=name or (algo or "model"), features=bool(meta.get("features", False)),
                    aim_scale=float(meta.get("aim_scale", 1.0)), env=env,
                    action_mode=meta.get("action_mode", "direct"), env_kwargs=meta.get("env_kwargs"))
+
+
+class SB3Network:
+    """A stable-baselines3 model's deterministic action on observations it
+    normalises with its run's statistics: the network interface of
+    ``ViewPolicy`` (``obs_dim``, ``act``)."""
+
+    def __init__(self, model, vecnormalize=None):
+        self.model, self.vecnormalize = model, vecnormalize
+        self.obs_dim = int(model.observation_space.shape[0])
+
+    def act(self, obs: np.ndarray) -> np.ndarray:
+        if self.vecnormalize is not None:
+            obs = self.vecnormalize.normalize_obs(obs)
+        return self.model.predict(obs, deterministic=True)[0]

@@ -67,6 +67,7 @@ HAND_DCG = 0.3                     # m: cue-to-ghost distance assumed for a shoo
 ROLL_MIN = 0.35                    # m/s: speed the object ball should still have at the pocket's line
 V_NONE = 0.5                       # value of a table whose shooter has no pot (a safety battle: even)
 V_FULL = 0.9                       # value of a table whose shooter has a sure pot (the run may still end)
+Q_RUN = 0.0                        # each further ball of a run continues with this (0: the value ignores balls left)
 THROW = (0.0, math.radians(2.0))   # rad: object-ball overcut tried against collision-induced throw
 SPEEDS = (1.15, 1.8, 2.8)          # factors of the speed that just drops the ball
 HEIGHTS = (-0.35, 0.0, 0.35)       # tip heights (units of R): draw, stun, follow
@@ -76,6 +77,9 @@ SAFE_SPEEDS = (0.5, 3.5)           # m/s: range of the safeties' speeds
 KICK_SPEEDS = (1.0, 5.0)           # m/s: range of the kicks' speeds
 BANK_SPEEDS = (1.5, 5.0)           # m/s: range of the one-rail kicks' speeds
 PUSH_SPEEDS = (0.3, 1.6)           # m/s: range of the push-outs' speeds
+COMBO_CUT = math.radians(60)       # 9-ball combinations: both cuts (cue -> legal ball, legal ball -> 9) below this
+COMBO_REACH = 1.2                  # m: and the legal ball within this of the 9's ghost ball
+COMBO_SPEEDS = (2.5, 4.5)          # m/s: the combinations' speeds
 CHUNK = 128                        # tables decided per batch of previews (memory stays bounded)
 
 
@@ -162,9 +166,73 @@ def _leave_ease(pos, on, targets, hand, pockets, lim, out):
         out[e] = best
 
 
-def position_value(ease: np.ndarray, v_none: float = V_NONE, v_full: float = V_FULL) -> np.ndarray:
-    """The chance the shooter of a table wins, from the ease of their best pot (see the module docstring)."""
-    return v_none + (v_full - v_none) * ease
+@_jit
+def _leave_ease2(pos, on, targets, hand, rotation, game_ball, pockets, lim, w_next, out):
+    """``_leave_ease`` looking two balls deep, per table [n]: the best over the shooter's pots (ball b, pocket p;
+    success q) of q ((1 - w_next) + w_next e2), where e2 is the ease of the best pot on the ball after b from b's
+    ghost ball (the cue ball stunned there; 1 if b is the game's ball). The ball after b: in rotation games
+    (``rotation``) the lowest left on the table, else the other legal targets, or the game's ball when none."""
+    aims = pockets[0]
+    R = lim[0]
+    for e in range(pos.shape[0]):
+        best = 0.0
+        if hand[e] or on[e, 0]:
+            for b in range(1, pos.shape[1]):
+                if not (targets[e, b] and on[e, b]):
+                    continue
+                for p in range(aims.shape[0]):
+                    q = _pot(pos[e], on[e], b, p, pos[e, 0, 0], pos[e, 0, 1], hand[e], pockets, lim)[0]
+                    if q * 1.0 <= best:  # cannot beat the best so far (the second factor is at most 1)
+                        continue
+                    if b == game_ball:
+                        best = q
+                        continue
+                    ox, oy = pos[e, b, 0], pos[e, b, 1]
+                    dop = math.hypot(aims[p, 0] - ox, aims[p, 1] - oy)
+                    gx, gy = ox - 2 * R * (aims[p, 0] - ox) / dop, oy - 2 * R * (aims[p, 1] - oy) / dop
+                    on[e, b] = False
+                    any_target = False
+                    if not rotation:
+                        for c in range(1, pos.shape[1]):
+                            if c != b and targets[e, c] and on[e, c]:
+                                any_target = True
+                    e2 = 0.0
+                    for c in range(1, pos.shape[1]):
+                        if not on[e, c]:
+                            continue
+                        if rotation:
+                            nxt = True
+                            for d in range(1, c):
+                                if on[e, d]:
+                                    nxt = False
+                        else:
+                            nxt = (c != b and targets[e, c]) if any_target else c == game_ball
+                        if not nxt:
+                            continue
+                        for p2 in range(aims.shape[0]):
+                            e2 = max(e2, _pot(pos[e], on[e], c, p2, gx, gy, False, pockets, lim)[0])
+                    on[e, b] = True
+                    best = max(best, q * ((1.0 - w_next) + w_next * e2))
+        out[e] = best
+
+
+def position_value(ease: np.ndarray, v_none: float = V_NONE, v_full: float = V_FULL, left=None,
+                   q_run: float = 0.0) -> np.ndarray:
+    """The chance the shooter of a table wins, from the ease of their best pot (see the module docstring);
+    with ``left`` [n] (the balls the shooter still has to pocket, the game's ball included) and ``q_run`` > 0,
+    a sure pot is worth ``v_full + (1 - v_full) q_run ** (left - 1)``: 1 on the game ball, ``v_full`` with many
+    balls left (a run of ``left`` balls continues each with ``q_run``)."""
+    full = v_full if left is None or not q_run else v_full + (1.0 - v_full) * q_run ** np.maximum(left - 1, 0)
+    return v_none + (full - v_none) * ease
+
+
+def balls_left(game: str, on: np.ndarray, targets: np.ndarray) -> np.ndarray:
+    """[n] the object balls the next shooter still has to pocket, the game's ball included: every object ball
+    on the table in rotation games; in 8-ball the legal targets on the table, plus the 8 while it is not one."""
+    tg = (targets & on)[:, 1:]
+    if game != "eight_ball":
+        return on[:, 1:].sum(axis=1)
+    return tg.sum(axis=1) + ~tg[:, 7]
 
 
 class PotArrays(NamedTuple):
@@ -183,7 +251,11 @@ class Budget:
     how many candidates are re-judged under noise (pots, safeties) and with
     how many noise samples, the pots' variants (overcuts against throw, speed
     factors, tip heights), and the leave model (``sigma_model``; ``v_none``,
-    ``v_full``: see ``position_value``)."""
+    ``v_full``, ``q_run``: see ``position_value``). Off by default, tried
+    and measured without a gain (docs/games.md): ``q_run`` (a sure pot worth
+    more as the balls run out), ``combos`` (9-ball combinations on the 9,
+    ``combo_shots``) and ``w_next`` (the leave looked at two balls deep,
+    ``_leave_ease2``)."""
 
     n_pots: int = 6
     hand_pots: int = 3
@@ -192,7 +264,7 @@ class Budget:
     n_bank: int = 16
     n_push: int = 24
     n_eval: int = 32
-    n_eval_safe: int = 4
+    n_eval_safe: int = 8
     n_samples: int = 12
     throws: tuple = THROW
     speeds: tuple = SPEEDS
@@ -200,6 +272,9 @@ class Budget:
     sigma_model: float = SIGMA_MODEL
     v_none: float = V_NONE
     v_full: float = V_FULL
+    q_run: float = Q_RUN
+    combos: bool = False
+    w_next: float = 0.0
 
 
 # --- the bot ------------------------------------------------------------------------------------------------------
@@ -223,6 +298,7 @@ class GameLookahead:
         self.n_eval, self.n_eval_safe, self.n_samples = bud.n_eval, bud.n_eval_safe, bud.n_samples
         self.throws, self.speeds, self.heights = tuple(bud.throws), tuple(bud.speeds), tuple(bud.heights)
         self.sigma_model, self.v_none, self.v_full = float(bud.sigma_model), float(bud.v_none), float(bud.v_full)
+        self.q_run, self.combos, self.w_next = float(bud.q_run), bool(bud.combos), float(bud.w_next)
         self.model: PocketModel | None = None
         self.sims = 0        # shots previewed so far (cost accounting)
         self.last_value = None  # [n] the value of the played shot at the last decision (diagnostics)
@@ -250,8 +326,15 @@ class GameLookahead:
         return out._asdict()
 
     def leave_ease(self, view, pos, on, targets, hand) -> np.ndarray:
-        """[n] the ease of the shooter's best pot on tables after a shot (``hand``: ball in hand)."""
+        """[n] the ease of the shooter's best pot on tables after a shot (``hand``: ball in hand); with
+        ``w_next`` > 0, looking two balls deep (``_leave_ease2``)."""
         out = np.empty(len(pos))
+        if self.w_next:
+            game_ball = {"nine_ball": 9, "ten_ball": 10}.get(view.game, 8)
+            _leave_ease2(np.ascontiguousarray(pos), np.array(on, dtype=np.bool_), np.ascontiguousarray(targets),
+                         np.ascontiguousarray(hand, dtype=np.bool_), view.game != "eight_ball", game_ball,
+                         self.pockets(view).arrays(), self._lim(view), self.w_next, out)
+            return out
         _leave_ease(np.ascontiguousarray(pos), np.ascontiguousarray(on), np.ascontiguousarray(targets),
                     np.ascontiguousarray(hand, dtype=np.bool_), self.pockets(view).arrays(), self._lim(view), out)
         return out
@@ -270,10 +353,15 @@ class GameLookahead:
         rec, nxt = pv.record, pv.next
         hand = nxt.ball_in_hand != RR.IN_HAND_NONE
         e = self.leave_ease(view, pv.pos, pv.on_table, nxt.targets, hand)
-        v = position_value(e, self.v_none, self.v_full)
+        v = self.position_value(view, e, pv.on_table, nxt.targets)
         keep = nxt.shooter == rec.shooter
         val = np.where(keep, v, 1.0 - v)
         return np.where(rec.game_over, (rec.winner == rec.shooter).astype(np.float64), val)
+
+    def position_value(self, view, ease, on, targets) -> np.ndarray:
+        """``position_value`` of tables after shots, with the balls their next shooter has left."""
+        left = balls_left(view.game, on, targets) if self.q_run else None
+        return position_value(ease, self.v_none, self.v_full, left, self.q_run)
 
     def noise(self, view):
         return "env" if view.noise.enabled else NoiseConfig.from_any("tournament")
@@ -364,8 +452,41 @@ class GameLookahead:
         # safeties and kicks: from the cue ball where it lies, or from each row's first ball-in-hand spot
         first = np.searchsorted(srow, rows)
         parts = [c, self.safeties(view, rows, cue[first], placed[first])]
+        if view.game == "nine_ball" and self.combos:
+            parts.append(self.combo_shots(view, rows, cue[first], placed[first]))
         out = {key: np.concatenate([q[key] for q in parts]) for key in c}
         return out
+
+    def combo_shots(self, view, rows, cue, placed):
+        """9-ball combinations: the legal ball driven into the 9 so that the 9 drops, into each pocket where both
+        cuts are below ``COMBO_CUT`` (ghost balls of the 9 and of the legal ball; paths are not checked: the
+        preview judges), at ``COMBO_SPEEDS``, the cue ball at ``cue`` [n, 2]."""
+        R_ = view.params.R
+        aims = self.pockets(view).aims                                     # [P, 2]
+        on, tg = view.on_table[rows], view.targets[rows] & view.on_table[rows]
+        low = np.argmax(tg, axis=1)
+        ok_row = on[:, 9] & (low > 0) & (low != 9)
+        L, G = view.pos[rows, low], view.pos[rows, 9]                      # [n, 2]
+        u9 = aims[None] - G[:, None]                                       # [n, P, 2]
+        u9 /= np.maximum(np.linalg.norm(u9, axis=-1, keepdims=True), 1e-9)
+        g9 = G[:, None] - 2 * R_ * u9
+        u2 = g9 - L[:, None]
+        d2 = np.maximum(np.linalg.norm(u2, axis=-1, keepdims=True), 1e-9)
+        u2 = u2 / d2
+        gl = L[:, None] - 2 * R_ * u2
+        vc = gl - cue[:, None]
+        dc = np.maximum(np.linalg.norm(vc, axis=-1), 1e-9)
+        cut1 = np.arccos(np.clip((vc * u2).sum(-1) / dc, -1, 1))
+        cut2 = np.arccos(np.clip((u2 * u9).sum(-1), -1, 1))
+        ok = ok_row[:, None] & (cut1 < COMBO_CUT) & (cut2 < COMBO_CUT) & (d2[..., 0] < COMBO_REACH)
+        ri, pi = np.nonzero(ok)
+        V = len(COMBO_SPEEDS)
+        rep, var = np.repeat(np.arange(len(ri)), V), np.tile(np.arange(V), len(ri))
+        r = ri[rep]
+        phi = np.arctan2(vc[ri, pi, 1], vc[ri, pi, 0])[rep]
+        m = len(rep)
+        return dict(row=rows[r], phi=phi, speed=np.asarray(COMBO_SPEEDS)[var], a=np.zeros(m), b=np.zeros(m),
+                    placement=np.where(placed[r, None], cue[r], np.nan), pocket=pi[rep], safe=np.zeros(m, bool))
 
     def eight_pocket(self, view, rows) -> np.ndarray:
         """The pocket each row's 8 is easiest into from where the cue ball lies (0 where no pot is open)."""
@@ -440,7 +561,7 @@ class GameLookahead:
         tg[np.arange(len(low)), low] = True
         scratch = ~on[:, 0]
         e = self.leave_ease(view, pv.pos, on, tg, scratch)
-        v = position_value(e, self.v_none, self.v_full)
+        v = self.position_value(view, e, on, tg)
         val = np.where(scratch, 1.0 - v, np.minimum(v, 1.0 - v))
         val = np.where(pv.record.game_over, (pv.record.winner == pv.record.shooter) * 1.0, val)
         val = val.reshape(n, K)
@@ -533,7 +654,8 @@ def game_lookahead(seed: int = 0, **kw) -> GameLookahead:
 
 
 # smaller search budgets, for measuring strength against compute (``module:factory`` entrants of scripts/match.py)
-BUDGETS = dict(fast=dict(n_pots=3, n_eval=8, n_samples=4), medium=dict(n_pots=4, n_eval=16, n_samples=8),
+BUDGETS = dict(fast=dict(n_pots=3, n_eval=8, n_eval_safe=4, n_samples=4),
+               medium=dict(n_pots=4, n_eval=16, n_eval_safe=4, n_samples=8),
                wide=dict(n_eval=64, n_samples=16))
 
 

@@ -123,10 +123,12 @@ def preview(view, plan, rows=None, noise=None, rng=None, start: BallState | None
     if getattr(view.rules, "calls_ball", False):  # 10-ball: the called ball (-1: the nominal target)
         ball = np.where(plan.ball < 0, np.maximum(view.nominal_target()[rows], 0), plan.ball)
         ball = np.where(view.call_needed[rows], ball, -1)
+    where = getattr(view.rules, "reads_position", False)  # snooker's free ball reads the position
     shot = ShotInput(start.pocket, pocket, first, rails, object_rails, called_pocket=called, called_ball=ball,
-                     contacts=res.contacts, n_contacts=res.n_contacts)
+                     contacts=res.contacts, n_contacts=res.n_contacts, pos_before=start.pos if where else None)
     rec, after = view.rules.judge(view.state.take(rows), shot)
-    return Preview(rec, pos, pocket, first, view.rules.constraints(after, pocket), res.contacts, res.n_contacts)
+    return Preview(rec, pos, pocket, first, view.rules.constraints(after, pocket, **({"pos": pos} if where else {})),
+                   res.contacts, res.n_contacts)
 
 
 def _task_preview(view, plan, rows, noise_rng, start) -> TaskPreview:

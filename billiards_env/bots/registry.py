@@ -6,9 +6,13 @@ games benchmark accept.
   their leave under sampled noise): the built-in bots of the games (the
   one-player tasks' ``lookahead`` is ``bots.lookahead.LookaheadPolicy``,
   named by the tasks' own policy registry);
+- ``snooker`` (``bots.snooker.SnookerBot``): pots on the ball on with its
+  nomination, safeties and a break-off chosen in the preview (snooker only);
 - ``carom<K>`` (K candidate strikes per table, default 96): the
   three-cushion bot (``bots.carom``: paths searched in the simulator, scored
   by the point's probability under noise);
+- ``ladder-<k>`` (``bots.learned.ladder``): the k-th shipped learned agent
+  of the game it is handed, weakest first (numpy only; no torch);
 - ``module:factory`` (for example ``my_bots:planner``): a bot of your own;
   ``factory(seed=...)`` must return an object with ``name`` and
   ``act(view: GameView) -> ShotPlan`` (docs/bots.md);
@@ -18,11 +22,12 @@ from __future__ import annotations
 
 import importlib
 
-BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "carom<K>", "<module>:<factory>")
+BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "carom<K>", "snooker", "ladder-<k>",
+             "<module>:<factory>")
 DEFAULT_SEARCH_K = 64
 # The bot a game is played by when none is named (the play app's opponent and hint): ``ghost``, but the pool
 # bots pot balls, so a game without pockets has its own.
-DEFAULT_BOTS = {"three_cushion": "carom"}
+DEFAULT_BOTS = {"three_cushion": "carom", "snooker": "snooker"}
 
 
 def default_bot(game: str) -> str:
@@ -32,9 +37,10 @@ def default_bot(game: str) -> str:
 
 def is_bot_name(name) -> bool:
     """Whether ``name`` names a built-in bot or a ``module:factory``."""
-    return isinstance(name, str) and (name in ("random", "ghost", "ghost-safety", "lookahead") or ":" in name
+    return isinstance(name, str) and (name in ("random", "ghost", "ghost-safety", "lookahead", "snooker") or ":" in name
                                       or (name.startswith("search") and (name[6:].isdigit() or name == "search"))
-                                      or (name.startswith("carom") and (name[5:].isdigit() or name == "carom")))
+                                      or (name.startswith("carom") and (name[5:].isdigit() or name == "carom"))
+                                      or (name.startswith("ladder-") and name[7:].isdigit()))
 
 
 def make_bot(spec, seed: int = 0):
@@ -49,6 +55,9 @@ def make_bot(spec, seed: int = 0):
     if spec in ("ghost", "ghost-safety"):
         from .ghost import GhostBot
         return GhostBot(seed=seed, safety=spec == "ghost-safety")
+    if spec == "snooker":
+        from .snooker import SnookerBot
+        return SnookerBot(seed=seed)
     if spec == "lookahead":
         from .game_lookahead import GameLookahead
         return GameLookahead(seed=seed)
@@ -58,6 +67,9 @@ def make_bot(spec, seed: int = 0):
     if spec.startswith("carom") and (spec[5:].isdigit() or spec == "carom"):
         from .carom import DEFAULT_K, CaromBot
         return CaromBot(seed=seed, k=int(spec[5:]) if spec[5:] else DEFAULT_K)
+    if spec.startswith("ladder-") and spec[7:].isdigit():
+        from .learned.ladder import LadderBot
+        return LadderBot(spec, seed=seed)
     if ":" in spec:
         return _user_bot(spec, seed)
     raise ValueError(f"unknown bot {spec!r}; choose one of {BOT_NAMES}")

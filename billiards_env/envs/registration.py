@@ -23,6 +23,8 @@ GAME_IDS = {
                              "billiards_env.envs.games.vector:ten_ball_vector"),
     "Billiards-ThreeCushion-v0": ("billiards_env.envs.games.single:ThreeCushionEnv",
                                   "billiards_env.envs.games.vector:three_cushion_vector"),
+    "Billiards-Snooker-v0": ("billiards_env.envs.games.single:SnookerEnv",
+                             "billiards_env.envs.games.vector:snooker_vector"),
 }
 
 

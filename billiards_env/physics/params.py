@@ -13,6 +13,12 @@ Presets:
   (Kiefl); the cushion's tangential to normal contact stiffness 0.826 (the
   ``stronge`` model; omega_t / omega_n = sqrt(3.5 kt_kn) = 1.7, pooltool 0.6.0's
   default, in Stronge's (2018) range 1 to 2).
+- ``snooker``: ``standard`` with snooker balls: diameter 52.5 mm (WPBSA
+  Official Rules, Section 1: 52.5 mm +- 0.05 mm), mass 0.140 kg (pooltool's
+  ``SNOOKER_GENERIC`` ball parameters) and the cushion nose at the same
+  fraction of the ball's diameter as ``standard``'s (0.04 / 0.05715, an
+  assumption: no source gives it); felt, cushion and cue constants are
+  ``standard``'s (docs/rules.md, snooker's simplifications).
 - ``carom``: three-cushion equipment on the carom match table (``Table.carom()``).
   Balls per the UMB equipment article: diameter 61-61.5 mm (61.5 mm here, as
   pooltool's ``BILLIARD_GENERIC`` ball), mass 205-220 g (0.210 kg, pooltool's
@@ -70,6 +76,11 @@ class PhysicsParams:
                    k=10.0, contact_time=0.01, max_draw=0.3)
 
     @classmethod
+    def snooker(cls) -> "PhysicsParams":
+        R = 0.02625
+        return cls(m=0.140, R=R, h_c=0.04 * R / 0.028575)
+
+    @classmethod
     def carom(cls) -> "PhysicsParams":
         """Carom balls, cloth and cushion height (module docstring)."""
         m = 0.210
@@ -77,7 +88,7 @@ class PhysicsParams:
 
     @classmethod
     def preset(cls, name: str) -> "PhysicsParams":
-        presets = {"standard": cls.standard, "seed": cls.seed, "carom": cls.carom}
+        presets = {"standard": cls.standard, "seed": cls.seed, "carom": cls.carom, "snooker": cls.snooker}
         if name not in presets:
             raise ValueError(f"unknown physics preset {name!r}; choose one of {sorted(presets)}")
         return presets[name]()

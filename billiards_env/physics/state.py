@@ -116,18 +116,49 @@ def _rack(table: Table, R: float, layout: str, gap: float, rng, jitter: float) -
         order = np.array(nums[:4] + [8] + nums[4:])  # 8 in the centre of the third row
         balls = np.zeros((16, 2))
         balls[order] = pts
+    elif layout == "snooker":
+        balls = snooker_rack(table, R, gap)
     else:
         raise ValueError(f"unknown rack layout {layout!r}")
     if jitter:
         balls[1:] += rng.uniform(-jitter, jitter, size=balls[1:].shape)
-    balls[0] = head
+    balls[0] = head if layout != "snooker" else snooker_break_spot(table)
     return balls
+
+
+SNOOKER_REDS = 15
+PINK_GAP = 1e-3      # m between the pink and the apex red: "as near to the pink as possible without touching" (WPBSA)
+BREAK_SPOT_D = 0.5   # the default break-off spot: this fraction of the D's radius from its centre, towards the yellow
+
+
+def snooker_rack(table: Table, R: float, gap: float = 0.0) -> np.ndarray:
+    """Positions [22, 2] of a snooker frame's opening (WPBSA Section 3, rule 2):
+    the 15 reds (balls 1..15) in a triangle with its apex on the table's long
+    axis PINK_GAP behind the pink and its base towards the top cushion; the
+    colours (16..21: yellow, green, brown, blue, pink, black) on their spots;
+    the cue ball (0) in the D (``snooker_break_spot``). ``gap=0``: the reds frozen."""
+    m = table.marks
+    if m is None:
+        raise ValueError("a snooker rack needs a snooker table (Table.snooker())")
+    pink = m.spots[4]
+    balls = np.zeros((1 + SNOOKER_REDS + 6, 2))
+    balls[1:1 + SNOOKER_REDS] = _triangle(5, (pink[0], pink[1] + 2 * R + PINK_GAP), R, gap, slice(None))
+    balls[1 + SNOOKER_REDS:] = m.spots
+    balls[0] = snooker_break_spot(table)
+    return balls
+
+
+def snooker_break_spot(table: Table) -> tuple:
+    """A cue-ball spot in the D for the break-off: on the baulk line, BREAK_SPOT_D of the radius towards the yellow."""
+    m = table.marks
+    return (m.d_centre[0] + BREAK_SPOT_D * m.d_radius, m.d_centre[1] - 1e-6)
 
 
 def rack(table: Table, params, layout: str = "nine", n_envs: int = 1, *, gap: float = 0.0,
          jitter: float = 0.0, seed=None) -> BallState:
     """A 9-ball diamond (``layout="nine"``, 10 balls) or 8-ball triangle
-    (``"eight"``, 16 balls) on the foot spot, cue ball on the head spot.
+    (``"eight"``, 16 balls) on the foot spot, cue ball on the head spot; or
+    a snooker frame's 22 balls (``"snooker"``, ``snooker_rack``: a snooker table).
     ``gap=0`` freezes every ball to its neighbours (centres exactly 2R apart);
     the numbered balls are shuffled as the rules allow, seeded."""
     rng = _rng(seed)

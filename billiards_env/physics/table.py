@@ -7,6 +7,15 @@ corner pocket mouth is cut at 45 degrees with jaws at 142 degrees to the rail,
 each side pocket with jaws at 104 degrees (WPA equipment specifications). A
 ball whose centre enters a pocket's capture circle is pocketed.
 
+The 12 ft snooker table (``Table.snooker``) is built the same way from its
+own ``PocketSpec``: playing area 3569 x 1778 mm between the cushion noses
+(WPBSA Official Rules, Section 1 Equipment), the pocket mouths and jaws of
+pooltool's snooker table (``pooltool/objects/table/collection.py``,
+``SNOOKER_GENERIC``: corner mouth 83 mm, middle 75 mm, pocket angle 0,
+i.e. jaws running straight into the pocket, jaw depths 36 mm and 24 mm),
+and its markings (``SnookerMarks``: baulk line, D, the six colour spots,
+WPBSA Section 1). pooltool rounds the snooker jaws (radii 91 and 64 mm);
+here they stay straight segments with a sharp tip (docs/rules.md says so).
 The carom match table (``Table.carom()``) has no pockets: its playing
 surface between the cushion noses is 2.84 x 1.42 m (UMB, "Rules of the
 Game of Three-Cushion", the equipment article: 2.84 m x 1.42 m, +-5 mm; a
@@ -14,7 +23,7 @@ cushion nose 37 mm +-1 mm above the bed, which ``PhysicsParams.carom()``
 holds as ``h_c``). pooltool's ``BilliardTableSpecs`` is a pocketless box of
 the same kind (its default is a 10 ft table, not the match size).
 
-``Table.style`` names the equipment the renderers draw ("pool", "carom"):
+``Table.style`` names the equipment the renderers draw ("pool", "carom", "snooker"):
 the balls' colours and the table's markings; the physics never reads it.
 """
 from __future__ import annotations
@@ -33,6 +42,11 @@ SIDE_JAW_ANGLE = 104.0
 CORNER_JAW_LENGTH = 0.05  # m
 SIDE_JAW_LENGTH = 0.04
 CAPTURE_DEPTH = 0.004  # m a ball centre must pass the mouth line to drop
+# 12 ft snooker (WPBSA Section 1: 11 ft 8.5 in x 5 ft 10 in between the cushion noses).
+SNOOKER_SIZE = (1.778, 3.569)
+SNOOKER_BAULK = 0.737     # m, the baulk line from the bottom cushion's face (29 in, WPBSA)
+SNOOKER_D_RADIUS = 0.292  # m, the D's radius about the baulk line's middle (11.5 in, WPBSA)
+SNOOKER_BLACK = 0.324     # m, the black spot from the top cushion's face (12.75 in, WPBSA)
 # A jaw segment or tip belongs to a pocket's neighbourhood if it lies within
 # this of the pocket's centre (m): a pool pocket's jaws reach ~0.11 m from
 # it, and every rail between two pockets is longer than twice this, so rails
@@ -40,6 +54,59 @@ CAPTURE_DEPTH = 0.004  # m a ball centre must pass the mouth line to drop
 POCKET_GROUP_RADIUS = 0.2
 # UMB match carom table: playing surface between the cushion noses (m).
 CAROM_SIZE = (1.42, 2.84)
+
+
+@dataclasses.dataclass(frozen=True)
+class PocketSpec:
+    """A six-pocket table's mouths and jaws: mouth widths (m, between the jaw
+    tips), each jaw's angle to the rail nose (degrees; 180 would continue the
+    rail) and length (m), and the middle pocket's capture circle (its centre
+    outside the rail line and its radius, m)."""
+
+    corner_mouth: float = CORNER_MOUTH
+    side_mouth: float = SIDE_MOUTH
+    corner_jaw_angle: float = CORNER_JAW_ANGLE
+    side_jaw_angle: float = SIDE_JAW_ANGLE
+    corner_jaw_length: float = CORNER_JAW_LENGTH
+    side_jaw_length: float = SIDE_JAW_LENGTH
+    side_capture_centre: float = 0.06
+    side_capture_radius: float = 0.06 - CAPTURE_DEPTH
+
+
+POOL_POCKETS = PocketSpec()
+# pooltool SNOOKER_GENERIC: corner_pocket_width 0.083, side_pocket_width 0.075, pocket angles 0 (a corner jaw
+# then meets the rail at 135 degrees, a middle jaw at 90), corner_pocket_depth 0.036, side 0.95 in. The middle
+# capture circle keeps pool's proportions to the mouth (centre 0.06 / 0.066 and radius 0.056 / 0.066 of the
+# half mouth), so it spans the throat a few mm past the rail line as on the pool table.
+SNOOKER_POCKETS = PocketSpec(corner_mouth=0.083, side_mouth=0.075, corner_jaw_angle=135.0, side_jaw_angle=90.0,
+                             corner_jaw_length=0.036, side_jaw_length=0.95 * 0.0254,
+                             side_capture_centre=0.0375 * 0.06 / 0.066, side_capture_radius=0.0375 * 0.056 / 0.066)
+
+
+@dataclasses.dataclass(frozen=True)
+class SnookerMarks:
+    """A snooker table's markings (m, table frame: y = 0 the baulk cushion):
+    ``baulk`` the baulk line's y, ``d_centre`` (x, y) and ``d_radius`` of the
+    D (the half circle on the baulk side of the line), ``spots [6, 2]`` the
+    colour spots yellow, green, brown, blue, pink, black (values 2..7).
+    Yellow is at the D's right end seen from the baulk end, green at its left."""
+
+    baulk: float
+    d_centre: tuple
+    d_radius: float
+    spots: np.ndarray
+
+    @classmethod
+    def wpbsa(cls, width: float, length: float) -> "SnookerMarks":
+        cx = width / 2
+        spots = np.array([(cx + SNOOKER_D_RADIUS, SNOOKER_BAULK), (cx - SNOOKER_D_RADIUS, SNOOKER_BAULK),
+                          (cx, SNOOKER_BAULK), (cx, length / 2), (cx, 0.75 * length), (cx, length - SNOOKER_BLACK)])
+        return cls(SNOOKER_BAULK, (cx, SNOOKER_BAULK), SNOOKER_D_RADIUS, spots)
+
+    def in_d(self, x, y, tol: float = 0.0):
+        """Whether points lie in the D (on its line or arc counts, ``tol`` m inside)."""
+        cx, cy = self.d_centre
+        return (np.asarray(y) <= cy - tol) & (np.hypot(np.asarray(x) - cx, np.asarray(y) - cy) <= self.d_radius - tol)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -110,6 +177,7 @@ class Table:
     pockets: np.ndarray
     name: str = "custom"
     style: str = "pool"
+    marks: "SnookerMarks | None" = None  # a snooker table's baulk line, D and spots (None on other tables)
 
     @property
     def box_segments(self) -> np.ndarray:
@@ -166,8 +234,21 @@ class Table:
         if size_ft not in _POOL_SIZES:
             raise ValueError(f"size_ft must be one of {sorted(_POOL_SIZES)}, got {size_ft!r}")
         w, l = _POOL_SIZES[size_ft]
-        sc = CORNER_MOUTH / math.sqrt(2.0)  # rail end distance from the corner
-        ss = SIDE_MOUTH / 2.0
+        return cls._six_pockets(w, l, POOL_POCKETS, f"pool {size_ft} ft")
+
+    @classmethod
+    def snooker(cls) -> "Table":
+        """The 12 ft snooker table (see the module docstring), with its ``marks``."""
+        w, l = SNOOKER_SIZE
+        t = cls._six_pockets(w, l, SNOOKER_POCKETS, "snooker 12 ft")
+        object.__setattr__(t, "marks", SnookerMarks.wpbsa(w, l))
+        object.__setattr__(t, "style", "snooker")
+        return t
+
+    @classmethod
+    def _six_pockets(cls, w: float, l: float, spec: PocketSpec, name: str) -> "Table":
+        sc = spec.corner_mouth / math.sqrt(2.0)  # rail end distance from the corner
+        ss = spec.side_mouth / 2.0
         # Rails as (start, end) along the nose, walked counter-clockwise, each
         # ending at a pocket mouth: (corner|side, point, direction along rail).
         rails = [
@@ -186,8 +267,8 @@ class Table:
             for (px, py), away in (((x0, y0), d), ((x1, y1), -d)):
                 # the jaw leaves the rail end, turning outward (-n) by the jaw angle
                 at_side = (abs(px) < 1e-12 or abs(px - w) < 1e-12) and abs(py - l / 2) < l / 4
-                ang = math.radians(SIDE_JAW_ANGLE if at_side else CORNER_JAW_ANGLE)
-                length = SIDE_JAW_LENGTH if at_side else CORNER_JAW_LENGTH
+                ang = math.radians(spec.side_jaw_angle if at_side else spec.corner_jaw_angle)
+                length = spec.side_jaw_length if at_side else spec.corner_jaw_length
                 # unit vector at angle `ang` from `away`, on the outside of the rail
                 jd = math.cos(ang) * away + math.sin(ang) * (-n)
                 qx, qy = px + length * jd[0], py + length * jd[1]
@@ -201,12 +282,11 @@ class Table:
         # mouth line (corner) or the rail line (side); each circle also spans
         # the whole throat between the jaws, so no ball can pass behind them.
         rc = sc / math.sqrt(2.0) - CAPTURE_DEPTH
-        side_c, side_r = 0.06, 0.06 - CAPTURE_DEPTH
+        side_c, side_r = spec.side_capture_centre, spec.side_capture_radius
         pockets = [(0.0, 0.0, rc), (w, 0.0, rc), (-side_c, l / 2, side_r),
                    (w + side_c, l / 2, side_r), (0.0, l, rc), (w, l, rc)]
         return cls(w, l, np.array(segs, dtype=np.float64), np.array(norms, dtype=np.float64),
-                   np.array(tips, dtype=np.float64), np.array(pockets, dtype=np.float64),
-                   name=f"pool {size_ft} ft")
+                   np.array(tips, dtype=np.float64), np.array(pockets, dtype=np.float64), name=name)
 
     def outline(self, pockets: bool = True) -> np.ndarray:
         """Polygon [N, 2] of the region ball centres may occupy, before the

@@ -30,7 +30,11 @@ BALL_COLORS = {
 }
 # Balls of other equipment (``Table.style``): carom's white and yellow cue
 # balls and the red, drawn without numbers.
-STYLE_BALL_COLORS = {"carom": {0: (255, 255, 255), 1: (250, 200, 0), 2: (200, 20, 20)}}
+# Snooker: the white, 15 reds (balls 1..15), then yellow, green, brown, blue, pink, black (16..21).
+SNOOKER_COLORS = ((255, 255, 255),) + ((200, 20, 20),) * 15 + (
+    (250, 215, 0), (0, 130, 60), (120, 70, 30), (0, 70, 200), (250, 130, 170), (15, 15, 15))
+STYLE_BALL_COLORS = {"carom": {0: (255, 255, 255), 1: (250, 200, 0), 2: (200, 20, 20)},
+                     "snooker": dict(enumerate(SNOOKER_COLORS))}
 DIAMOND_COLOR = (232, 220, 192)
 BORDER = 0.08  # m of rail drawn around the playing surface
 # Default pixels per metre: a ball is 17 px across, its number legible.
@@ -45,6 +49,26 @@ NUMBER_DISC_FRACTION = 0.6
 STRIPE_ANGLE = 40.5  # degrees: the band of a striped ball spans |dy| < sin(40.5 deg) R = 0.65 R
 _DIGITS = ("111101101101111", "010110010010111", "111001111100111", "111001111001111", "101101111001001",
            "111100111001111", "111100111101111", "111001010010010", "111101111101111", "111101111001111")
+
+
+MARK_COLOR = (225, 225, 225)
+
+
+def draw_marks(d, table, ppm: float, border: float) -> None:
+    """A snooker table's baulk line, D and colour spots (nothing on other tables)."""
+    m = getattr(table, "marks", None)
+    if m is None:
+        return
+    P = lambda xy: [tuple(p) for p in world_to_pixel(table, xy, ppm, border)]
+    w = max(1, int(ppm * 0.003))
+    d.line(P([(0.0, m.baulk), (table.width, m.baulk)]), fill=MARK_COLOR, width=w)
+    (cx, cy), r = m.d_centre, m.d_radius
+    a = np.linspace(np.pi, 2 * np.pi, 49)
+    d.line(P(np.stack([cx + r * np.cos(a), cy + r * np.sin(a)], axis=1)), fill=MARK_COLOR, width=w)
+    sr = max(1.0, 0.004 * ppm)
+    for x, y in m.spots:
+        c = world_to_pixel(table, (x, y), ppm, border)
+        d.ellipse([c[0] - sr, c[1] - sr, c[0] + sr, c[1] + sr], fill=MARK_COLOR)
 
 
 def ball_color(i: int, style: str = "pool") -> tuple:
@@ -150,6 +174,7 @@ def render_table(table, params, pos, pocket=None, paths=None, ppm: float = PPM,
         d.ellipse([c[0] - rr, c[1] - rr, c[0] + rr, c[1] + rr], fill=POCKET_COLOR)
     for x0, y0, x1, y1 in table.segments:
         d.line(P([(x0, y0), (x1, y1)]), fill=CUSHION_COLOR, width=max(1, int(ppm * 0.01)))
+    draw_marks(d, table, ppm, border)
     style = getattr(table, "style", "pool")
     if style == "carom":  # the sights carom players aim by, and the three spots
         for c in world_to_pixel(table, diamonds(table, border), ppm, border):

@@ -53,9 +53,11 @@ def status_lines(core, k: int, info: dict | None = None) -> list[str]:
     if c.may_pass[k]:
         extras.append("may pass the shot back")
     if c.call_needed[k]:
-        extras.append("on the 8: call a pocket")
+        extras.append("nominate a ball" if core.rules.scored else "on the 8: call a pocket")
     groups = (f"groups: P0 {GROUP_NAMES[int(g.group[k, 0])]}, P1 {GROUP_NAMES[int(g.group[k, 1])]}; "
               if core.config.game == "eight_ball" else "")
+    if core.rules.scored:  # snooker: the scores
+        groups = f"score: P0 {int(g.score[k, 0])}, P1 {int(g.score[k, 1])}; "
     return [first + (" - " + ", ".join(e for e in extras if e) if any(extras) else ""),
             f"{groups}fouls in a row: P0 {int(g.fouls[k, 0])}, P1 {int(g.fouls[k, 1])}; shot {int(g.shots[k])}",
             "last: " + ruling_text(info, k), ""]

@@ -10,7 +10,7 @@ from ..rules import END_NAMES, FOUL_NAMES
 from ..rules import records as R
 
 IN_HAND_WORDS = {R.IN_HAND_NONE: "none", R.IN_HAND_ANYWHERE: "anywhere",
-                 R.IN_HAND_KITCHEN: "behind the head string"}
+                 R.IN_HAND_KITCHEN: "behind the head string", R.IN_HAND_D: "in the D"}
 GROUP_WORDS = {R.GROUP_OPEN: "open", R.GROUP_SOLIDS: "solids", R.GROUP_STRIPES: "stripes"}
 GAME_WORDS = {"nine_ball": "9-ball", "eight_ball": "8-ball", "ten_ball": "10-ball", "three_cushion": "three-cushion"}
 

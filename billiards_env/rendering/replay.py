@@ -198,6 +198,10 @@ class Replay:
         geo = {"name": table.name, "style": table.style, "width": table.width, "length": table.length,
                "segments": segs.tolist(), "tips": tips.tolist(), "pockets": pockets.tolist(),
                "outline": table.outline(effects.pockets).tolist()}
+        if table.marks is not None:  # snooker: the markings for the viewer
+            m = table.marks
+            geo["marks"] = {"baulk": m.baulk, "d_centre": list(m.d_centre), "d_radius": m.d_radius,
+                            "spots": m.spots.tolist()}
         return cls({"format": FORMAT, "version": VERSION, "meta": _jsonable(meta or {}), "n_balls": n_balls,
                     "table": geo, "params": params.to_dict(), "effects": effects.to_dict(), "shots": []})
 
@@ -338,9 +342,14 @@ class Replay:
         segs = np.array(g["segments"], dtype=np.float64).reshape(-1, 4)
         d = segs[:, 2:] - segs[:, :2]
         n = np.stack([-d[:, 1], d[:, 0]], axis=1) / np.hypot(d[:, 0], d[:, 1])[:, None]
+        marks = None
+        if "marks" in g:
+            from ..physics.table import SnookerMarks
+            mk = g["marks"]
+            marks = SnookerMarks(mk["baulk"], tuple(mk["d_centre"]), mk["d_radius"], np.array(mk["spots"], dtype=np.float64))
         return Table(g["width"], g["length"], segs, n, np.array(g["tips"], dtype=np.float64).reshape(-1, 2),
                      np.array(g["pockets"], dtype=np.float64).reshape(-1, 3), name=g.get("name", "custom"),
-                     style=g.get("style", "pool"))
+                     style=g.get("style", "pool"), marks=marks)
 
     # --- files ------------------------------------------------------------
     def to_dict(self) -> dict:

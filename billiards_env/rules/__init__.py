@@ -1,6 +1,6 @@
 """Rules of two-player pool, apart from the physics: pure numpy, batched over tables.
 
-A ruleset (``NineBallRules``, ``EightBallRules``, ``TenBallRules``, ``ThreeCushionRules``) turns a table before and
+A ruleset (``NineBallRules``, ``EightBallRules``, ``TenBallRules``, ``ThreeCushionRules``, ``SnookerRules``) turns a table before and
 after a shot (``ShotInput``) into a ruling (``ShotRecord``) and the next
 game state (``GameState``), and tells the next shooter what they may do
 (``Constraints``). Every rule and simplification: docs/rules.md.
@@ -12,18 +12,19 @@ from .placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP
 from .records import (CALL_NONE, CALL_SAFETY, END_NAMES, FOUL_NAMES, GROUP_OPEN, GROUP_SOLIDS, GROUP_STRIPES,
                       IN_HAND_ANYWHERE, IN_HAND_KITCHEN, IN_HAND_NONE, PHASE_AFTER_BREAK, PHASE_BREAK, PHASE_OPTION,
                       PHASE_PLAY, PHASE_PUSHED, Constraints, GameState, ShotInput, ShotRecord)
+from .snooker import SnookerRules
 from .ten_ball import TenBallRules
 from .three_cushion import ThreeCushionRules
 
 RULES = {"nine_ball": NineBallRules(), "eight_ball": EightBallRules(), "ten_ball": TenBallRules(),
-         "three_cushion": ThreeCushionRules()}
+         "three_cushion": ThreeCushionRules(), "snooker": SnookerRules()}
 
 
 def get_rules(name: str, **options) -> Rules:
     """The ruleset of a game by name (``nine_ball``, ``eight_ball``,
-    ``ten_ball``, ``three_cushion``); ``options`` build a ruleset of the
-    game's own settings (three-cushion: ``target``, ``max_innings``,
-    ``equal_innings``)."""
+    ``ten_ball``, ``three_cushion``, ``snooker``); ``options`` build a ruleset of the
+    game's own settings (9-ball: ``spot_break_nine=True``; three-cushion: ``target``,
+    ``max_innings``, ``equal_innings``)."""
     try:
         rules = RULES[name]
     except KeyError:
@@ -32,6 +33,7 @@ def get_rules(name: str, **options) -> Rules:
 
 
 __all__ = ["BREAK_RAIL_BALLS", "Rules", "lowest_on_table", "EightBallRules", "NineBallRules", "TenBallRules", "ThreeCushionRules",
+           "SnookerRules",
            "CALL_NONE", "CALL_SAFETY", "PHASE_OPTION", "END_NAMES",
            "FOUL_NAMES", "IN_HAND_ANYWHERE", "IN_HAND_KITCHEN", "IN_HAND_NONE", "Constraints", "GameState",
            "ShotInput", "ShotRecord", "RULES", "get_rules", "GROUP_OPEN", "GROUP_SOLIDS", "GROUP_STRIPES",

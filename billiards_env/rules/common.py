@@ -119,6 +119,8 @@ class Rules:
     contacts: int = 0
     own_cue_balls: bool = False
     extra_obs: int = 0
+    scored: bool = False      # a game of points (``GameState.score``, ``ShotRecord.points``; snooker)
+    reads_position: bool = False  # ``constraints`` and ``judge`` read where the balls lie (snooker's free ball)
 
     def new_game(self, breaker) -> GameState:
         """Fresh games before the opening shot (``GameState.new``)."""

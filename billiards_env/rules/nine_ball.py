@@ -9,6 +9,11 @@ or a push-out is respotted. The shot right after a legal break (no foul on
 it: WPA 2.4) may be declared a push-out (no contact or rail needed); the
 opponent then shoots or passes the shot back. Every foul gives the opponent ball in hand anywhere; a
 player's third consecutive foul loses the game.
+
+Option (``NineBallRules(spot_break_nine=True)``, ``GameConfig(break_nine=
+"spotted")``, the rule of some professional events): a 9 pocketed on the
+break is respotted and does not win; it counts as a ball pocketed, so a
+legal break that pockets it keeps the breaker at the table.
 """
 from __future__ import annotations
 
@@ -25,12 +30,15 @@ class NineBallRules(Rules):
     name = "nine_ball"
     n_balls = 9
 
+    def __init__(self, spot_break_nine: bool = False):
+        self.spot_break_nine = bool(spot_break_nine)
+
     def judge(self, game: GameState, shot: ShotInput) -> tuple[ShotRecord, GameState]:
         self.check(game, shot)
         r = RotationShot.of(game, shot)
         f, legal, pushed, played, three = r.facts, r.legal, r.pushed, r.played, r.three
         nine = f.pocketed[:, NINE] & played
-        win = legal & nine & ~pushed
+        win = legal & nine & ~pushed & ~(r.is_break & self.spot_break_nine)
         over = win | three
         winner = np.where(win, game.shooter, np.where(three, 1 - game.shooter, -1))
         end = np.where(win, END_NINE, np.where(three, END_THREE_FOULS, END_NONE))

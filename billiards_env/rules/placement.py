@@ -8,7 +8,8 @@ y = HEAD_STRING * length, the foot spot (width / 2, FOOT_SPOT * length).
 A legal spot keeps the cue ball's centre R + SPOT_EDGE inside the cushions,
 clear of every ball by SPOT_CLEAR beyond 2R and outside every pocket's
 capture circle (``physics.state.spot_free``), and, in the kitchen, behind
-the head string by KITCHEN_GAP.
+the head string by KITCHEN_GAP. Snooker's ball in hand is in the D
+(``place_cue_in_d``).
 """
 from __future__ import annotations
 
@@ -69,14 +70,70 @@ def place_cue(want, pos, pocket, kitchen, width, length, R, pockets, out, moved)
     return ok
 
 
-def legal_spots(xy, pos, pocket, kitchen, width: float, length: float, R: float, pockets):
+def legal_spots(xy, pos, pocket, kitchen, width: float, length: float, R: float, pockets, d=None):
     """``place_cue`` for arrays from Python: the legal cue-ball spots nearest
     to ``xy`` [n, 2] on tables ``pos`` [n, B, 2] / ``pocket`` [n, B], behind
-    the head string where ``kitchen`` [n]: (spots [n, 2], moved [n]).
-    Raises RuntimeError if some table has no free spot."""
+    the head string where ``kitchen`` [n]; on a snooker table (``d``, the
+    D's centre and radius: ``d_of``) in the D (``place_cue_in_d``):
+    (spots [n, 2], moved [n]). Raises RuntimeError if some table has no free spot."""
     xy = np.ascontiguousarray(np.asarray(xy, dtype=np.float64).reshape(len(kitchen), 2))
     out, moved = np.empty((len(kitchen), 2)), np.zeros(len(kitchen), dtype=bool)
-    if not place_cue(xy, np.ascontiguousarray(pos), np.ascontiguousarray(pocket), np.ascontiguousarray(kitchen),
-                     width, length, R, pockets, out, moved):
+    pos, pocket = np.ascontiguousarray(pos), np.ascontiguousarray(pocket)
+    if d is not None:
+        ok = place_cue_in_d(xy, pos, pocket, np.asarray(d, dtype=np.float64), width, length, R, pockets, out, moved)
+    else:
+        ok = place_cue(xy, pos, pocket, np.ascontiguousarray(kitchen), width, length, R, pockets, out, moved)
+    if not ok:
         raise RuntimeError("no free spot for the cue ball")
     return out, moved
+
+
+def d_of(table):
+    """A snooker table's D as (cx, cy, r) for ``legal_spots``; None on a table without one."""
+    m = getattr(table, "marks", None)
+    return None if m is None else np.array([m.d_centre[0], m.d_centre[1], m.d_radius])
+
+
+@_jit
+def _in_d(x, y, cx, cy, r):
+    return y <= cy - KITCHEN_GAP and math.hypot(x - cx, y - cy) <= r
+
+
+@_jit
+def place_cue_in_d(want, pos, pocket, d, width, length, R, pockets, out, moved):
+    """Snooker's ball in hand (WPBSA Section 2: "in-hand" means in the D):
+    per table the cue ball at the point of the D nearest to ``want`` [n, 2]
+    (the D's line and arc count, its centre kept KITCHEN_GAP behind the
+    baulk line), then, if that overlaps a ball, the first free point of the
+    rings of ``_legal_spot`` that lies in the D. ``d``: the D's centre and
+    radius (cx, cy, r). Writes ``out``, ``moved``; returns False if some
+    table has no free spot."""
+    cx, cy = d[0], d[1]
+    r = d[2] - SPOT_EDGE
+    md = 2 * R + SPOT_CLEAR
+    edge = R + SPOT_EDGE
+    ok = True
+    for e in range(want.shape[0]):
+        on = pocket[e] < 0
+        on[0] = False
+        x, y = want[e, 0], min(want[e, 1], cy - KITCHEN_GAP)
+        dist = math.hypot(x - cx, y - cy)
+        if dist > r:
+            x, y = cx + (x - cx) * r / dist, cy + (y - cy) * r / dist
+        found = spot_free(x, y, pos[e], on, width, length, edge, pockets, md)
+        if not found:
+            for k in range(1, PLACE_RINGS):
+                rr = 0.25 * R * k
+                m = 8 * k
+                for j in range(m):
+                    a = 2.0 * math.pi * j / m
+                    qx, qy = x + rr * math.cos(a), y + rr * math.sin(a)
+                    if _in_d(qx, qy, cx, cy, r) and spot_free(qx, qy, pos[e], on, width, length, edge, pockets, md):
+                        x, y, found = qx, qy, True
+                        break
+                if found or rr > 2 * r:
+                    break
+        ok &= found
+        out[e, 0], out[e, 1] = x, y
+        moved[e] = x != want[e, 0] or y != want[e, 1]
+    return ok

@@ -27,8 +27,10 @@ FOUL_WRONG_BALL = 2      # the first ball touched was not a legal target
 FOUL_NO_RAIL = 3         # nothing pocketed and no ball touched a rail after the contact
 FOUL_SCRATCH = 4         # the cue ball was pocketed
 FOUL_BAD_BREAK = 5       # break: no ball pocketed and fewer than four object balls reached a rail
+FOUL_WRONG_POT = 6       # snooker: a ball not on was pocketed
 FOUL_NAMES = {FOUL_NONE: "none", FOUL_NO_CONTACT: "no contact", FOUL_WRONG_BALL: "wrong ball first",
-              FOUL_NO_RAIL: "no rail after contact", FOUL_SCRATCH: "scratch", FOUL_BAD_BREAK: "illegal break"}
+              FOUL_NO_RAIL: "no rail after contact", FOUL_SCRATCH: "scratch", FOUL_BAD_BREAK: "illegal break",
+              FOUL_WRONG_POT: "a ball not on pocketed"}
 
 # --- how a game ended (ShotRecord.end) ----------------------------------------
 END_NONE = 0
@@ -41,10 +43,12 @@ END_EIGHT_POCKET = 6     # the 8 pocketed in another pocket than the one called:
 END_TEN = 7              # 10-ball: the 10 called and pocketed in the called pocket on a legal shot: the shooter wins
 END_TARGET = 8           # games to a score: a player reached the target score (winner -1: a draw, as equal innings allow)
 END_INNINGS = 9          # games to a score: the innings limit was reached; the higher score wins (winner -1: a draw)
+END_LAST_BLACK = 10      # snooker: the first score or foul with only the black left ended the frame on points
 END_NAMES = {END_NONE: "none", END_NINE: "9 pocketed", END_THREE_FOULS: "three consecutive fouls",
              END_EIGHT: "8 pocketed", END_EIGHT_EARLY: "8 pocketed early", END_EIGHT_FOUL: "8 pocketed on a foul",
              END_EIGHT_POCKET: "8 in an uncalled pocket", END_TEN: "10 pocketed as called",
-             END_TARGET: "target score reached", END_INNINGS: "innings limit reached"}
+             END_TARGET: "target score reached", END_INNINGS: "innings limit reached",
+             END_LAST_BLACK: "the last black decided the frame"}
 
 # --- called ball (ShotInput.called_ball, 10-ball) ----------------------------------
 CALL_NONE = -1           # no ball called (the break, a push-out, a game without ball calls)
@@ -54,6 +58,7 @@ CALL_SAFETY = 0          # a called safety: no ball is called, every ball the sh
 IN_HAND_NONE = 0         # the cue ball is played from where it lies
 IN_HAND_ANYWHERE = 1     # anywhere on the table
 IN_HAND_KITCHEN = 2      # behind the head string (the break, and after a scratch on the 8-ball break)
+IN_HAND_D = 3            # snooker: in the D (the break-off, and after an in-off)
 
 # --- phases (GameState.phase) ---------------------------------------------------
 PHASE_BREAK = 0          # the next shot is the opening break
@@ -61,9 +66,11 @@ PHASE_AFTER_BREAK = 1    # the first shot after the break (9-ball: push-out allo
 PHASE_PUSHED = 2         # 9-ball, 10-ball: a push-out was played; the next player may pass the shot back
 PHASE_PLAY = 3           # any other shot
 PHASE_OPTION = 4         # 10-ball: the last shot pocketed a ball illegally (not the called ball in the called
-                         # pocket) without a foul; the next player may shoot or pass the shot back
+                         # pocket) without a foul; the next player may shoot or pass the shot back.
+                         # Snooker: the last shot was a foul; the incoming player may play or put the offender back in
 PHASE_FINAL = 5          # games to a score with equal innings: the starting player reached the target; the
                          # opponent plays a last inning
+PHASE_COLOUR = 6         # snooker: a red (or a free ball taken as a red) was potted; a nominated colour is on
 
 # --- 8-ball groups (GameState.group) ------------------------------------------------
 GROUP_OPEN = 0
@@ -77,7 +84,7 @@ class GameState:
     ``phase`` (PHASE_*), ``ball_in_hand`` (IN_HAND_*), ``fouls`` [E, 2]
     consecutive fouls per player, ``group`` [E, 2] each player's 8-ball
     group (GROUP_*), ``shots`` taken, ``over`` and ``winner`` (-1 none);
-    games to a score (three-cushion) also keep ``score`` [E, 2] each
+    games to a score (three-cushion, snooker) also keep ``score`` [E, 2] each
     player's points and ``innings`` [E, 2] the innings (turns at the table)
     each player has begun (zeros in the games won by a ball)."""
 
@@ -134,7 +141,8 @@ class ShotInput:
     ``passed`` (bool: after a push-out, or in 10-ball after an illegally
     pocketed ball, the player handed the shot back and no shot was played)
     and ``called_ball`` (10-ball: the ball called, CALL_SAFETY for a called
-    safety, CALL_NONE none). From a ``physics.SimResult``: ``state.pocket``,
+    safety, CALL_NONE none; snooker: the nominated ball, a colour or a free
+    ball); ``pos_before`` (optional) the positions the shot was played from. From a ``physics.SimResult``: ``state.pocket``,
     ``first_contact``, ``cushion_hits_after_contact`` (``rails``) and
     ``cushion_hits`` (``object_rails``); games judged on the order of the
     cue ball's contacts (three-cushion) also take ``contacts`` [E, K, 2] and
@@ -151,6 +159,7 @@ class ShotInput:
     called_ball: np.ndarray | None = None
     contacts: np.ndarray | None = None
     n_contacts: np.ndarray | None = None
+    pos_before: np.ndarray | None = None  # [E, B, 2] the balls where the shot was played from (snooker's free ball)
 
     def __post_init__(self):
         E, B = np.shape(self.pocket_before)
@@ -185,8 +194,10 @@ class ShotRecord:
     ``respot`` [E, B] balls the table must put back on the foot spot,
     ``shooter`` (who played it), ``option`` (10-ball: the shot pocketed a
     ball illegally without a foul, so the next player may shoot or pass the
-    shot back; all False in the other games) and ``points`` (the points
-    the shot scored for its shooter; games to a score, else zeros)."""
+    shot back; snooker: the shot was a foul, so the incoming player may put
+    the offender back in; all False in the other games), ``points`` (the
+    points the shot scored for its shooter; games to a score, else zeros)
+    and ``penalty`` (what a foul gave the opponent; snooker, else zeros)."""
 
     legal: np.ndarray
     foul: np.ndarray
@@ -200,12 +211,14 @@ class ShotRecord:
     shooter: np.ndarray
     option: np.ndarray | None = None
     points: np.ndarray | None = None
+    penalty: np.ndarray | None = None
 
     def __post_init__(self):
         if self.option is None:
             object.__setattr__(self, "option", np.zeros(len(self.legal), dtype=bool))
-        if self.points is None:
-            object.__setattr__(self, "points", np.zeros(len(self.legal), dtype=np.int64))
+        for name in ("points", "penalty"):
+            if getattr(self, name) is None:
+                object.__setattr__(self, name, np.zeros(len(self.legal), dtype=np.int64))
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

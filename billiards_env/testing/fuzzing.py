@@ -54,19 +54,34 @@ def carom_batch(rng, n_envs, pockets=False):
     r = np.where(rng.random(n_envs) < CAROM_EXTREME_SPIN, params.miscue_limit * (1 - 1e-12), r)
     ang = rng.uniform(0, 2 * np.pi, n_envs)
     return strike(s, phi, draw, r * np.cos(ang), r * np.sin(ang), params), table, params
+# On the snooker table: the frozen 22-ball frame opening, random balls, and random balls of which about half lie
+# in a pocket's mouth or jaws (within JAW_REACH of a pocket's capture circle centre).
+SNOOKER_LAYOUTS = ("snooker", "random", "jaws")
+JAW_REACH = 0.09  # m: a corner jaw reaches ~0.06 m from its pocket's centre, a middle jaw ~0.05 m
+TABLES = {"pool9": lambda: Table.pool(9), "snooker": Table.snooker}
 
 
-def random_batch(rng, n_envs, layout, preset, n_balls=None, pockets=True):
+def random_batch(rng, n_envs, layout, preset, n_balls=None, pockets=True, table_name="pool9"):
     """``n_envs`` tables of one layout, each with a random cue strike.
     ``pockets=False``: random balls lie inside the closed box (a ball in a
-    pocket mouth would be off that table). ``layout="carom"``: ``carom_batch``."""
+    pocket mouth would be off that table). ``table_name``: ``pool9`` (the
+    9 ft pool table) or ``snooker`` (``SNOOKER_LAYOUTS``). ``layout="carom"``: ``carom_batch``."""
     if layout == "carom":
         return carom_batch(rng, n_envs, pockets)
     params = PhysicsParams.preset(preset)
-    table = Table.pool(9)
+    table = TABLES[table_name]()
     R = params.R
-    if layout in ("nine", "eight"):
+    if layout in ("nine", "eight", "snooker"):
         s = rack(table, params, layout, n_envs, gap=0.0, seed=rng)
+        if layout == "snooker":  # the cue ball anywhere in the D, clear of the yellow, brown and green
+            m = table.marks
+            todo = np.arange(n_envs)
+            while len(todo):
+                r, a = m.d_radius * np.sqrt(rng.uniform(0, 1, len(todo))), rng.uniform(np.pi, 2 * np.pi, len(todo))
+                p = np.stack([m.d_centre[0] + r * np.cos(a), m.d_centre[1] + r * np.sin(a)], 1)
+                ok = (np.hypot(*(s.pos[todo, 1:] - p[:, None]).transpose(2, 0, 1)) >= 2 * R).all(1)
+                s.pos[todo[ok], 0] = p[ok]
+                todo = todo[~ok]
     else:
         B = n_balls or int(rng.integers(2, 17))
         pos = np.empty((n_envs, B, 2))
@@ -75,6 +90,9 @@ def random_batch(rng, n_envs, layout, preset, n_balls=None, pockets=True):
             todo = np.arange(n_envs)
             while len(todo):
                 p = rng.uniform(lo, hi, size=(len(todo), 2))
+                if layout == "jaws" and pockets and rng.random() < 0.5:  # in a pocket's mouth or jaws
+                    k = rng.integers(0, len(table.pockets), len(todo))
+                    p = table.pockets[k, :2] + rng.uniform(-JAW_REACH, JAW_REACH, size=(len(todo), 2))
                 # exactly frozen contacts are a hard case: sometimes snap to a neighbour
                 if b and rng.random() < 0.3:
                     k = rng.integers(0, b)
@@ -108,9 +126,12 @@ def run_batch(state, table, params, solver, dt=1e-3, effects=None, models=None):
     return res, check_invariants(res, state, table, params, pockets=effects.pockets)
 
 
-def case_dict(state, e, params, solver, dt, violations, effects=None, models=None):
-    case = {"solver": solver, "dt": dt, "table": "carom" if params == PhysicsParams.carom() else "pool9",
-            "params": params.to_dict(),
+def case_dict(state, e, params, solver, dt, violations, effects=None, models=None, table_name=None):
+    """A failing case; ``table_name`` (``TABLES``, or ``carom``) defaults to the carom table for carom
+    equipment, else pool9."""
+    if table_name is None:
+        table_name = "carom" if params == PhysicsParams.carom() else "pool9"
+    case = {"solver": solver, "dt": dt, "table": table_name, "params": params.to_dict(),
             "effects": (effects or Effects.all()).to_dict(),
             "pos": state.pos[e].tolist(), "vel": state.vel[e].tolist(),
             "omega": state.omega[e].tolist(), "pocket": state.pocket[e].tolist(),
@@ -137,7 +158,7 @@ def load_case(path):
     ``Models.from_dict(case.get("models"))`` (absent: the default models)."""
     c = json.loads(pathlib.Path(path).read_text())
     params = PhysicsParams(**c["params"])
-    table = (Table.pool(9) if c["table"] == "pool9" else Table.carom() if c["table"] == "carom"
+    table = (TABLES[c["table"]]() if c["table"] in TABLES else Table.carom() if c["table"] == "carom"
              else Table.pocketless(*c.get("size", (1.27, 2.54))))
     s = BallState(np.array(c["pos"])[None], np.array(c["vel"])[None], np.array(c["omega"])[None],
                   np.array(c["pocket"], dtype=np.int64)[None])

@@ -130,3 +130,33 @@ def test_cost_script_quick(capsys):
     assert mod.main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert '"previews_per_decision"' in out and "| fast | 4 |" in out and "lost without a shot" in out
+
+
+def test_value_of_a_sure_pot_grows_as_the_balls_run_out():
+    """With ``q_run``, a sure pot on the last ball is worth 1 (it wins) and less with more balls left; no pot is
+    worth ``v_none`` whatever is left; 8-ball counts the shooter's group and the 8."""
+    from billiards_env.bots.game_lookahead import balls_left, position_value
+    left = np.array([1, 2, 9])
+    v = position_value(np.ones(3), 0.5, 0.9, left, 0.8)
+    assert v[0] == 1.0 and v[0] > v[1] > v[2] > 0.9 - 1e-12
+    assert np.allclose(position_value(np.zeros(3), 0.5, 0.9, left, 0.8), 0.5)
+    on = np.ones((2, 16), bool)
+    tg = np.zeros((2, 16), bool)
+    tg[0, 1:8] = True          # solids to shoot: 7 and the 8
+    on[1, 1:8], tg[1, 8] = False, True   # only the 8 left
+    assert balls_left("eight_ball", on, tg).tolist() == [8, 1]
+    nine = np.array([[True] * 3 + [False] * 6 + [True]])
+    assert balls_left("nine_ball", nine, nine).tolist() == [3]    # the cue ball, the 1, the 2 and the 9
+
+
+def test_plays_a_combination_on_the_nine():
+    """The 1 and the 9 lie on the diagonal to the corner pocket at the origin, the 9 nearer it: the only win is
+    the 1 into the 9. With combinations on, the bot plays it and wins; its candidates hold it."""
+    view = nine_ball_view({0: (0.75, 0.75), 1: (0.4, 0.4), 9: (0.2, 0.2), 2: (1.0, 2.3)})
+    bot = GameLookahead(seed=0, combos=True)
+    c = bot.combo_shots(view, np.array([0]), view.pos[:, 0], np.zeros(1, bool))
+    assert len(c["row"]) >= 1
+    plan = bot.act(view)
+    pv = view.preview(plan)
+    assert pv.record.game_over[0] and pv.record.winner[0] == 0 and pv.pocket[0, 9] >= 0
+

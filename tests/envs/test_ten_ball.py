@@ -22,7 +22,7 @@ ID = "Billiards-TenBall-v0"
 
 # ------------------------------------------------------------------- the rack --
 def test_rack_one_on_the_foot_spot_ten_in_the_centre_frozen_and_shuffled():
-    core = GameCore(GameConfig(game="ten_ball"), 200)
+    core = GameCore(GameConfig(game="ten_ball", rack="perfect"), 200)  # realistic racks: tests/envs/test_racks.py
     core.streams.seed(np.arange(200), np.arange(200))
     core.reset_tables(np.arange(200))
     t, R_ = core.table, core.params.R

@@ -11,6 +11,7 @@ from hypothesis import HealthCheck, given, settings, strategies as st
 from billiards_env.physics import Effects, Models
 from billiards_env.physics.models import REGISTRIES
 from billiards_env.testing import LAYOUTS, case_dict, random_batch, run_batch, save_case
+from billiards_env.testing.fuzzing import SNOOKER_LAYOUTS
 
 # tests/regressions/, shared with scripts/fuzz.py (its default --regressions)
 REGRESSIONS = pathlib.Path(__file__).resolve().parents[1] / "regressions"
@@ -56,10 +57,21 @@ def test_random_shots_keep_invariants_with_every_model(model, seed, layout, pres
     _check_batch(*random_batch(rng, 8, layout, preset), "event", Effects.all(), NEW_MODELS[model])
 
 
-def _check_batch(state, table, params, solver, effects, models=None):
+@pytest.mark.parametrize("solver", ["event", "step"])
+@settings(SETTINGS, max_examples=6)
+@given(seed=st.integers(0, 2**32 - 1), layout=st.sampled_from(SNOOKER_LAYOUTS))
+def test_random_shots_on_the_snooker_table_keep_invariants(solver, seed, layout):
+    """The 12 ft snooker table with snooker balls: the frozen 22-ball opening, random balls, balls in the jaws."""
+    rng = np.random.default_rng(seed)
+    _check_batch(*random_batch(rng, 8, layout, "snooker", table_name="snooker"), solver, Effects.all(),
+                 table_name="snooker")
+
+
+def _check_batch(state, table, params, solver, effects, models=None, table_name="pool9"):
     """Simulate, save every failing table as a regression case, and fail."""
     _, viol = run_batch(state, table, params, solver, effects=effects, models=models)
     bad = [e for e, v in enumerate(viol) if v]
     for e in bad:
-        save_case(case_dict(state, e, params, solver, 1e-3, viol[e], effects, models), REGRESSIONS, tag="hyp")
+        save_case(case_dict(state, e, params, solver, 1e-3, viol[e], effects, models, table_name), REGRESSIONS,
+                  tag="hyp")
     assert not bad, {e: viol[e] for e in bad}

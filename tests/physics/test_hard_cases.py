@@ -273,3 +273,52 @@ def test_long_shot_everything_moving(solver):
     s.omega[0, :, 2] = rng.uniform(-60, 60, 10)
     res = run_checked(s, BOX, params, solver)
     assert res.time[0] > 60.0
+
+
+# ------------------------------------------------------- the snooker table --
+SNK_P = PhysicsParams.snooker()
+SNOOKER = Table.snooker()
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+@pytest.mark.parametrize("speed, side", [(12.0, 0.0), (4.0, 0.3), (0.5, 0.0)])
+def test_snooker_break_frozen_reds(solver, speed, side):
+    """The frozen 15-red triangle and its 22-ball opening: a full smash, a
+    break-off with side at the side of the pack, a slow roll into the apex."""
+    s = rack(SNOOKER, SNK_P, "snooker", 1, gap=0.0)
+    apex = s.pos[0, 1]
+    if speed < 1.0:  # from beside the pink (it sits 1 mm below the apex), into the apex red
+        s.pos[0, 0] = (apex[0] - 0.15, apex[1] + 0.01)
+    d = apex + (0.0 if side == 0 else 0.04, 0.0) - s.pos[0, 0]
+    s = strike_velocity(s, math.atan2(d[1], d[0]), speed, side, 0.0, SNK_P)
+    res = run_checked(s, SNOOKER, SNK_P, solver)
+    assert res.first_contact[0] >= 1
+    moved = np.hypot(*(res.state.pos[0] - s.pos[0]).T) > 1e-6
+    assert moved[1:16].sum() >= (5 if speed > 1 else 1)
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+@pytest.mark.parametrize("pocket", [0, 2])  # a corner, a middle pocket
+def test_snooker_balls_in_the_jaws(solver, pocket):
+    """Two balls touching in a narrow pocket's mouth, one frozen to a jaw's
+    tip, struck by a ball driven into them along the pocket's axis and across it."""
+    cx, cy, _ = SNOOKER.pockets[pocket]
+    R_ = SNK_P.R
+    if pocket == 0:   # corner: the axis points into the table at 45 deg
+        ax = np.array([1.0, 1.0]) / math.sqrt(2)
+        tip = SNOOKER.tips[np.argmin(np.hypot(*(SNOOKER.tips - (cx, cy)).T))]
+    else:             # the left middle pocket: its axis is +x
+        ax = np.array([1.0, 0.0])
+        tip = SNOOKER.tips[np.argmin(np.hypot(*(SNOOKER.tips - (0.0, cy)).T))]
+    n = np.array([-ax[1], ax[0]])
+    mouth = np.array([cx, cy]) + ax * (0.06 if pocket == 0 else 0.06 + 0.034)
+    b1 = tip + R_ * (mouth - tip) / np.linalg.norm(mouth - tip) * (1 + 1e-9)  # frozen to the jaw tip
+    b2 = b1 + 2 * R_ * ax
+    for across in (False, True):
+        cue = b2 + (0.4 * ax if not across else 0.3 * ax + 0.3 * n)
+        s = place(SNOOKER, [cue, b1, b2])
+        d = b2 - cue
+        s = strike_velocity(s, math.atan2(d[1], d[0]), 3.0, 0.0, 0.1, SNK_P)
+        ok = SNOOKER.contains(s.pos[0], R_, 1e-9)
+        assert ok.all(), "the constructed balls must lie legally on the table"
+        run_checked(s, SNOOKER, SNK_P, solver)

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from billiards_env.rendering.replay import Replay
+from billiards_env.envs.games import GAMES
 
 ROOT = Path(__file__).resolve().parents[2]
 LINK_TOL = 1e-6  # m: a link to a moment opens within this of the replay's positions (the bound)
@@ -36,8 +37,7 @@ def test_play_script_serves_on_loopback_and_stops():
             assert line or proc.poll() is None, "the server exited"
         url = re.search(r"(http://127\.0\.0\.1:\d+/)", line).group(1)
         opts = json.loads(urllib.request.urlopen(url + "api/options", timeout=30).read())
-        from billiards_env.envs.games import GAMES
-        assert {g["id"] for g in opts["games"]} == set(GAMES)  # 9-ball, 8-ball, 10-ball, three-cushion
+        assert {g["id"] for g in opts["games"]} == set(GAMES)
         assert "ghost" in opts["bots"] and "lookahead" in opts["bots"]
         assert b"Start the game" in urllib.request.urlopen(url, timeout=30).read()
         req = urllib.request.Request(url + "api/options", headers={"Host": "evil.example"})  # a rebound name

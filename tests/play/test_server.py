@@ -46,8 +46,8 @@ def test_bad_requests_of_every_kind(server):
     assert server.raw("POST", f"/api/games/{g['id']}/shot", b"{not json")[0] == 400
     assert "not valid JSON" in json.loads(server.raw("POST", f"/api/games/{g['id']}/shot", b"{")[1])["error"]
     assert server.raw("POST", f"/api/games/{g['id']}/shot", b"x" * 20000)[0] == 413
-    assert server("POST", "/api/games", {"game": "snooker"})[0] == 400
-    assert "unknown game" in server("POST", "/api/games", {"game": "snooker"})[1]["error"]
+    assert server("POST", "/api/games", {"game": "croquet"})[0] == 400
+    assert "unknown game" in server("POST", "/api/games", {"game": "croquet"})[1]["error"]
     assert "unknown player" in server("POST", "/api/games", {"opponent": "deep-blue"})[1]["error"]
     assert "unknown player" in server("POST", "/api/games", {"opponent": "os:system"})[1]["error"]  # no imports by request
     assert server("GET", "/api/games/nosuchgame")[0] == 404

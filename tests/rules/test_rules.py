@@ -95,6 +95,19 @@ def test_nine_on_the_break_wins():
     assert rec.game_over[0] and rec.winner[0] == 0
 
 
+def test_nine_on_the_break_spotted_option():
+    """``spot_break_nine``: the 9 on a legal break is respotted, no win, and
+    it counts as a ball pocketed (the breaker shoots on); later shots win."""
+    spot = NineBallRules(spot_break_nine=True)
+    g, p = position(spot, phase=R.PHASE_BREAK, in_hand=R.IN_HAND_KITCHEN)
+    rec, g2, c = judge(spot, g, shot(p, 1, potted=[9]))
+    assert rec.legal[0] and not rec.game_over[0] and rec.respot[0].tolist() == [False] * 9 + [True]
+    assert not rec.turn_over[0] and g2.shooter[0] == 0 and c.push_out_allowed[0]
+    g, p = position(spot, off=[1, 2])
+    rec, _, _ = judge(spot, g, shot(p, 3, potted=[9]))
+    assert rec.game_over[0] and rec.winner[0] == 0
+
+
 def test_nine_on_a_foul_is_respotted():
     g, p = position(NINE, off=[1, 2])
     rec, g2, c = judge(NINE, g, shot(p, 5, potted=[9], rails=[5]))  # wrong ball first

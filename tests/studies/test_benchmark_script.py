@@ -87,6 +87,8 @@ SECTION_TABLES = {
     "games": lambda: ["games/s, ghost vs ghost", "vector env steps/s, random actions", "nine_ball", "ten_ball",
                       "games/s, carom vs carom", "three_cushion", "three-cushion shot (carom table, contacts kept)",
                       "9-ball break (8 m/s)", "us per event"],
+    "snooker": lambda: ["snooker opening (22 balls, 8 m/s)", "pool 15-ball break (8 m/s)", "per-event cost vs pool",
+                        "frames, snooker vs snooker", "shots per frame"],
     "rllib": lambda: ["sampling: bare env", "sampling: sb3 rollout", "sampling: rllib 1 runner",
                       "sampling: rllib 2 runners", "training: sb3 (default config)", "one EnvRunner, CPU per env step"],
 }
@@ -94,7 +96,7 @@ SECTION_TABLES = {
 
 def test_every_section_has_a_quick_test():
     from billiards_env.studies.bench.options import SECTION_NAMES
-    assert set(SECTION_TABLES) | {"env"} == set(SECTION_NAMES) | {"games"}
+    assert set(SECTION_TABLES) | {"env"} == set(SECTION_NAMES) | {"games", "snooker"}
 
 
 # rllib starts Ray and trains both backends for 8,192 steps: about a minute
@@ -109,7 +111,7 @@ def test_benchmark_section_quick(section, tmp_path):
     table = (tmp_path / f"{section}.md").read_text()
     missing = [name for name in SECTION_TABLES[section]() if name not in table]
     assert not missing, table
-    if section == "games":
+    if section in ("games", "snooker"):
         return
     assert (tmp_path / "benchmark.md").read_text().strip() == table.strip()
     recorded = list(csv.DictReader((tmp_path / "benchmark.csv").open()))

@@ -129,3 +129,10 @@ class ThreeCushionAECEnv(GameAECEnv):
     __doc__ = "Three-cushion for two agents.\n\n    " + GameAECEnv.__doc__ + THREE_CUSHION_DOC
     metadata = {**GameAECEnv.metadata, "name": "billiards_three_cushion_v0"}
     game = "three_cushion"
+
+
+class SnookerAECEnv(GameAECEnv):
+    __doc__ = ("A frame of snooker for two agents (a 9-component action: a8 the nominated ball; rewards +1 / -1 "
+               "by the frame's result).\n\n    " + GameAECEnv.__doc__)
+    metadata = {**GameAECEnv.metadata, "name": "billiards_snooker_v0"}
+    game = "snooker"

@@ -26,8 +26,14 @@ a7   the called pocket when a call is needed (8-ball, on the 8; 10-ball,
      every shot but the break and a push-out): pocket
      floor((a7 + 1) / 2 * 6), in the order of ``Table.pockets``
 a8   10-ball only, the called ball when a call is needed: ball
-     floor((a8 + 1) / 2 * 11) (1..10; 0, a8 < -9/11, calls a safety)
+     floor((a8 + 1) / 2 * 11) (1..10; 0, a8 < -9/11, calls a safety).
+     Snooker: the nominated ball (a colour after a red, or the free ball):
+     ball floor((a8 + 1) / 2 * 22) (16..21 the colours yellow .. black)
 ===  ========================================================================
+
+Snooker (``game="snooker"``): the 12 ft table and snooker balls; a4, a5
+place the cue ball in the D (the nearest point of it, ``placement_moved``);
+a6 > 0 after a foul puts the offender back in (``may_pass``).
 
 Components outside [-1, 1] are clipped (``info["action_clipped"]``);
 components the constraints do not use are ignored.
@@ -48,21 +54,24 @@ from ..config import NoiseConfig, _number
 from ..core import BilliardsCore, ShotContext, _context, _observe
 from ..streams import TableStreams
 from .codec import ACTION_DIM, N_POCKETS, ActionCodec, placement_to_actions
-from ...rules.placement import FOOT_SPOT, HEAD_STRING, legal_spots
-from .setup import hand_over, rack, respot, respot_frozen
+from ...rules.placement import FOOT_SPOT, HEAD_STRING, d_of, legal_spots
+from ...rules.snooker import respot_colours
+from .setup import RACKS, hand_over, loosen, rack, respot, respot_frozen
 
 EXTRA_OBS = 13  # observation entries after the one-player layout (see ``observation_doc``)
-GAMES = ("nine_ball", "eight_ball", "ten_ball", "three_cushion")
+GAMES = ("nine_ball", "eight_ball", "ten_ball", "three_cushion", "snooker")
 NOISE_LEVELS = ("none", "tournament", "high", "variable")
+BREAK_NINE = ("wins", "spotted")  # 9-ball: the 9 pocketed on a legal break wins, or is spotted (some pro events)
 VARIABLE_NOISE_MAX = 5.0  # "variable" noise: the tournament deviations times a factor uniform in [0, 5] per game
 
 
 @dataclasses.dataclass(frozen=True)
 class GameConfig:
     """A two-player game instance: ``game`` (``nine_ball``, ``eight_ball``,
-    ``ten_ball`` or ``three_cushion``), the table (``table_size_ft``;
-    three-cushion: the carom match table), ``physics`` preset ("standard":
-    the game's own equipment, carom balls and cloth in three-cushion),
+    ``ten_ball``, ``three_cushion`` or ``snooker``), the table (``table_size_ft``;
+    three-cushion: the carom match table; snooker: the 12 ft snooker table),
+    ``physics`` preset ("standard": the game's own equipment, carom balls and
+    cloth in three-cushion, snooker balls in snooker),
     ``rule_options`` (the ruleset's own settings, ``rules.get_rules(game,
     **rule_options)``: three-cushion's ``target``, ``max_innings``,
     ``equal_innings``),
@@ -70,7 +79,12 @@ class GameConfig:
     ``max_shots`` (a game not over after this many shots is truncated, a
     draw), ``noise`` (``none``, ``tournament``, ``high`` = 5x tournament,
     ``variable`` = tournament times a factor uniform in [0, 5] drawn per
-    game, or a ``NoiseConfig`` / mapping), ``effects`` and ``models``."""
+    game, or a ``NoiseConfig`` / mapping), ``effects`` and ``models``;
+    ``rack`` (the pool games): ``realistic`` (seeded gaps and offsets between
+    the balls, ``setup.loosen``) or ``perfect`` (every ball frozen, as before;
+    snooker's reds are always racked frozen);
+    ``break_nine`` (9-ball): ``wins`` (the 9 pocketed on a legal break wins)
+    or ``spotted`` (it is respotted and the breaker shoots on)."""
 
     game: str = "nine_ball"
     table_size_ft: int = 9
@@ -83,6 +97,8 @@ class GameConfig:
     effects: Effects = dataclasses.field(default_factory=Effects)
     models: Models = dataclasses.field(default_factory=Models)
     rule_options: dict = dataclasses.field(default_factory=dict)
+    rack: str = "realistic"
+    break_nine: str = "wins"
 
     def __post_init__(self):
         if self.game not in GAMES:
@@ -91,6 +107,13 @@ class GameConfig:
             raise TypeError(f"rule_options must be a dict, got {type(self.rule_options).__name__}")
         if self.rule_options:
             get_rules(self.game, **self.rule_options)  # unknown or bad settings fail here
+        if self.rack not in RACKS:
+            raise ValueError(f"rack must be one of {RACKS}, got {self.rack!r}")
+        if self.break_nine not in BREAK_NINE:
+            raise ValueError(f"break_nine must be one of {BREAK_NINE}, got {self.break_nine!r}")
+        if self.break_nine != "wins" and self.game != "nine_ball":
+            raise ValueError(f"break_nine={self.break_nine!r} is a 9-ball option (10-ball always spots the 10 "
+                             f"on the break, 8-ball the 8), got game={self.game!r}")
         if self.solver not in ("event", "step") or (self.solver == "step" and not self.dt):
             raise ValueError(f"solver must be 'event' or 'step' (with a positive dt), "
                              f"got {self.solver!r}, dt={self.dt}")
@@ -138,9 +161,12 @@ class GameCore(BilliardsCore):
             raise ValueError(f"num_envs must be a positive integer, got {n_envs!r}")
         self.config = cfg
         self.cfg = _CoreConfig(cfg.shot_noise, cfg.min_draw, cfg.solver, cfg.dt)
-        self.rules = get_rules(cfg.game, **cfg.rule_options)
+        rules_options = {"spot_break_nine": True} if cfg.break_nine == "spotted" else {}
+        self.rules = get_rules(cfg.game, **rules_options, **cfg.rule_options)
         self.n_envs = int(n_envs)
-        self.table = Table.carom() if self.rules.table_style == "carom" else Table.pool(cfg.table_size_ft)
+        style = self.rules.table_style
+        self.table = (Table.carom() if style == "carom" else Table.snooker() if style == "snooker"
+                      else Table.pool(cfg.table_size_ft))
         self.params = PhysicsParams.preset(self.rules.physics if cfg.physics == "standard" and self.rules.physics
                                            else cfg.physics)
         self.effects, self.models, self.record = cfg.effects, cfg.models, record
@@ -167,7 +193,8 @@ class GameCore(BilliardsCore):
     def constraints(self) -> R.Constraints:
         """The ``Constraints`` of every table's next shooter (cached until the state changes)."""
         if self._constraints is None:
-            self._constraints = self.rules.constraints(self.game, self.state.pocket)
+            pos = {"pos": self.state.pos} if self.rules.reads_position else {}  # snooker: the free ball
+            self._constraints = self.rules.constraints(self.game, self.state.pocket, **pos)
         return self._constraints
 
     def shot_context(self) -> ShotContext:
@@ -200,13 +227,15 @@ class GameCore(BilliardsCore):
         x = obs[:, 4 * B + 1:]
         ar = np.arange(self.n_envs)
         x[:, 0] = g.shooter
-        x[ar, 1 + c.ball_in_hand] = 1.0
+        x[ar, 1 + np.minimum(c.ball_in_hand, R.IN_HAND_KITCHEN)] = 1.0  # snooker's D as "behind the head string"
         x[:, 4], x[:, 5], x[:, 6], x[:, 7] = c.push_out_allowed, c.may_pass, c.call_needed, c.is_break
         x[ar, 8 + g.group[ar, g.shooter]] = 1.0
         x[:, 11] = np.minimum(g.fouls[ar, g.shooter] / 3.0, 1.0)
         x[:, 12] = np.minimum(g.fouls[ar, 1 - g.shooter] / 3.0, 1.0)
-        if self.rules.extra_obs:  # the game's own entries (three-cushion: scores, innings)
-            x[:, EXTRA_OBS:] = self.rules.observe_extra(g)
+        if self.rules.extra_obs:  # the game's own entries (three-cushion: scores, innings; snooker: scores,
+            # points left, free ball: it reads the table and the constraints too)
+            more = {"pocket": s.pocket, "constraints": c} if self.rules.reads_position else {}
+            x[:, EXTRA_OBS:] = self.rules.observe_extra(g, **more)
         return obs
 
     # --- new games --------------------------------------------------------------
@@ -218,8 +247,11 @@ class GameCore(BilliardsCore):
         n, B, t = len(idx), self.n_balls, self.table
         u = self.streams.uniform(idx, 16)  # 14 rack, breaker, noise factor
         pos = rack(self.config.game, t, self.params.R, u)
-        if not self.rules.own_cue_balls:  # three-cushion's rack places each player's ball itself
+        if not self.rules.own_cue_balls and t.marks is None:  # the pool racks (three-cushion's places each
+            # player's ball itself, snooker's puts the cue ball in the D)
             pos[:, 0] = (t.width / 2, HEAD_STRING * t.length)
+            if self.config.rack == "realistic":  # drawn after the 16 above: breaker and noise factor as with "perfect"
+                loosen(pos, t, self.params.R, self.streams.uniform(idx, 2 * (B - 1)))
         brk = (u[:, 14] < 0.5).astype(np.int64) if breaker is None else np.broadcast_to(breaker, (n,))
         lo, hi = self.config.noise_range
         if self.state is None:
@@ -260,7 +292,8 @@ class GameCore(BilliardsCore):
         return self._place(xy, self.state.pos[idx], self.state.pocket[idx], kitchen)
 
     def _place(self, xy, pos, pocket, kitchen):
-        return legal_spots(xy, pos, pocket, kitchen, self.table.width, self.table.length, self.params.R, self.pockets)
+        return legal_spots(xy, pos, pocket, kitchen, self.table.width, self.table.length, self.params.R, self.pockets,
+                           d_of(self.table))  # snooker: in hand means in the D
 
     def called_pocket(self, a: np.ndarray) -> np.ndarray:
         return np.minimum(np.floor((a[:, 7] + 1.0) / 2.0 * N_POCKETS), N_POCKETS - 1).astype(np.int64)
@@ -330,10 +363,11 @@ class GameCore(BilliardsCore):
                     self.last_events[k] = res.events[j]
         t0 = time.perf_counter()
         shot = ShotInput(start.pocket, pocket_after, first, rails, object_rails, push, called, passed, ball,
-                         contacts, n_contacts)
+                         contacts, n_contacts, pos_before=start.pos if self.rules.reads_position else None)
         rec, game = self.rules.judge(self.game.take(idx), shot)
         self.timers["rules"] += time.perf_counter() - t0
-        respot(pos_after, pocket_after, rec.respot, self.table, self.params.R, self.pockets)
+        (respot_colours if self.table.marks is not None else respot)(pos_after, pocket_after, rec.respot, self.table,
+                                                                     self.params.R, self.pockets)
         if self.rules.own_cue_balls:  # the incoming player's ball to slot 0; a frozen cue ball respotted
             hand_over(pos_after, rec.turn_over & ~rec.game_over)
             respot_frozen(pos_after, self.table, self.params.R)
@@ -348,6 +382,8 @@ class GameCore(BilliardsCore):
                     called_pocket=called, called_ball=ball, points=rec.points, score=game.score.copy(),
                     placement=placed, placement_moved=moved, action_clipped=clipped, n_events=n_events,
                     sim_time=sim_time, shot=game.shots.copy())
+        if self.rules.scored:  # snooker: a foul's points to the opponent
+            info["penalty"] = rec.penalty
         out = dict(record=rec, reward=reward, terminated=game.over.copy(), truncated=truncated, info=info)
         for listener in self.listeners:
             listener.after_step(self, idx, out)

@@ -123,3 +123,14 @@ class ThreeCushionEnv(GameEnv):
     def __init__(self, opponent="carom", config=None, opponent_seed: int = 0, render_mode: str | None = None,
                  **overrides: Any):
         super().__init__(opponent, config, opponent_seed, render_mode, **overrides)
+
+
+class SnookerEnv(GameEnv):
+    __doc__ = ("Billiards-Snooker-v0: a frame of snooker (WPBSA rules, docs/rules.md) on the 12 ft table against a "
+               "fixed opponent (default the ``snooker`` bot; a 9-component action: a8 the nominated ball). The reward "
+               "is the frame's result: +1 won, -1 lost.\n\n    " + GameEnv.__doc__)
+    game = "snooker"
+
+    def __init__(self, opponent="snooker", config=None, opponent_seed: int = 0, render_mode: str | None = None,
+                 **overrides: Any):
+        super().__init__(opponent, config, opponent_seed, render_mode, **overrides)

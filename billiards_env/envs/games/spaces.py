@@ -8,7 +8,8 @@ from .core import GameConfig
 
 OBSERVATION_DOC = """
     **Observation** (``Box(0, 1, (4*B + 14,), float32)``, B = 10 balls in
-    9-ball, 16 in 8-ball, 11 in 10-ball; ball 0 the cue ball):
+    9-ball, 16 in 8-ball, 11 in 10-ball; snooker ``(4*B + 18,)``, B = 22;
+    ball 0 the cue ball):
 
     ==============  ===========================================================
     index           meaning
@@ -25,7 +26,13 @@ OBSERVATION_DOC = """
     4*B + 9..11     the shooter's group: open (9-ball, 10-ball always),
                     solids, stripes
     4*B + 12, 13    consecutive fouls of the shooter, of the opponent, / 3
+    4*B + 14..17    snooker only (B = 22): the shooter's score, the
+                    opponent's, the points of the balls on the table (each
+                    / 147, clipped to 1), 1 if a free ball may be nominated
     ==============  ===========================================================
+
+    Snooker reads "behind the head string" as "in the D" and its "call
+    needed" as a nomination (a colour after a red, or a free ball).
 """
 
 

@@ -119,3 +119,5 @@ def ten_ball_vector(num_envs: int = 1, **kwargs):
 
 def three_cushion_vector(num_envs: int = 1, **kwargs):
     return game_vector(num_envs, "three_cushion", **kwargs)
+def snooker_vector(num_envs: int = 1, **kwargs):
+    return game_vector(num_envs, "snooker", **kwargs)

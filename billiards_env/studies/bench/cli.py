@@ -12,6 +12,7 @@ the history of the headline figures (history.png).
     python scripts/benchmark.py --only rllib    # RLlib vs SB3 vs bare env (docs/distributed.md; needs [ray])
     python scripts/benchmark.py --history       # only redraw history.png
     python scripts/benchmark.py --only games    # two-player games/s and vector-env steps/s (games.md)
+    python scripts/benchmark.py --only snooker  # snooker openings/s against the pool break, frames/s (snooker.md)
 
 ``--against REV`` checks REV out in a temporary git worktree, warms both
 trees' numba caches, then runs each section in both trees in turn, a fresh
@@ -36,7 +37,7 @@ def parser() -> argparse.ArgumentParser:
     ap.add_argument("--repeats", type=int, default=None, help="timed repeats per figure (default 5, quick 2)")
     ap.add_argument("--quick", action="store_true", help="batch 64, 2 repeats, 4 env steps")
     ap.add_argument("--only", nargs="*", default=list(DEFAULT_SECTIONS),
-                    choices=list(SECTION_NAMES) + ["games"],
+                    choices=list(SECTION_NAMES) + ["games", "snooker"],
                     help="sections (default: all but models; models: every effect with each non-default "
                          "model, written to models.md)")
     ap.add_argument("--scene", action="append", default=None,
@@ -56,6 +57,14 @@ def _games(opts: RunOptions, out: Path) -> None:
     md = games_markdown(opts)
     print(md)
     (out / "games.md").write_text(md)
+
+
+def _snooker(opts: RunOptions, out: Path) -> None:
+    """Snooker's table, snooker.md (billiards_env/studies/snooker_bench.py)."""
+    from ..snooker_bench import snooker_markdown
+    md = snooker_markdown(opts.batch, opts.repeats)
+    print(md)
+    (out / "snooker.md").write_text(md)
 
 
 def _against(args, opts: RunOptions, common: dict) -> None:
@@ -110,6 +119,11 @@ def main(argv=None) -> None:
     if "games" in args.only:
         _games(opts, args.out)
         args.only = [s for s in args.only if s != "games"]
+        if not args.only:
+            return
+    if "snooker" in args.only:
+        _snooker(opts, args.out)
+        args.only = [s for s in args.only if s != "snooker"]
         if not args.only:
             return
     common = dict(timestamp=datetime.datetime.now().isoformat(timespec="seconds"), quick=args.quick)

@@ -1,0 +1,293 @@
+"""Snooker (WPBSA Official Rules of the Games of Snooker and English
+Billiards, Section 2 Definitions and Section 3 The Game; simplifications in
+docs/rules.md).
+
+Balls: 0 the cue ball, 1..15 the reds (1 point each), 16..21 the colours
+yellow, green, brown, blue, pink, black (2..7 points). A player's turn
+(a break) continues while each stroke scores. While reds remain, the ball
+on is any red, and after each potted red a colour the striker nominates
+(``ShotInput.called_ball``); a potted colour is respotted while reds remain
+(and the colour taken after the last red). With no reds left the colours
+are on in ascending value and stay down when potted. A foul (the cue ball
+pocketed, no ball hit, a ball not on hit first, a ball not on pocketed)
+gives the opponent its value: at least 4, or the value of the ball on, of
+the ball hit first or of a ball pocketed, whichever is highest; colours
+pocketed on a foul are respotted, reds stay down. After a foul the incoming
+player may play, or put the offender back in (``ShotInput.passed``); if
+the cue ball lies snookered on every ball on (``snookered``, decided from
+the position), the incoming player may nominate a free ball
+(``called_ball``): it counts as the ball on and is respotted when potted.
+After an in-off the cue ball is in hand in the D. With only the black left
+the first score or foul ends the frame; on equal scores the black is
+respotted and played again with the cue ball in hand.
+"""
+from __future__ import annotations
+
+import numpy as np
+import numba
+
+from ..physics.state import SPOT_CLEAR, SPOT_EDGE, free_spot, spot_free
+from .common import Rules, next_state
+from .records import (END_LAST_BLACK, END_NONE, FOUL_NO_CONTACT, FOUL_NONE, FOUL_SCRATCH, FOUL_WRONG_BALL,
+                      FOUL_WRONG_POT, IN_HAND_D, IN_HAND_NONE, PHASE_BREAK, PHASE_COLOUR, PHASE_OPTION, PHASE_PLAY,
+                      Constraints, GameState, ShotInput, ShotRecord)
+
+N_REDS = 15
+REDS = slice(1, 1 + N_REDS)
+FIRST_COLOUR = 1 + N_REDS          # the yellow; the colours are FIRST_COLOUR .. BLACK in ascending value
+BLACK = FIRST_COLOUR + 5
+N_BALLS = BLACK                    # object balls
+VALUE = np.array([0] + [1] * N_REDS + [2, 3, 4, 5, 6, 7], dtype=np.int64)  # points of each ball
+MIN_FOUL = 4                       # the least penalty of a foul (WPBSA Section 3, rule 12)
+SCORE_SCALE = 147.0                # observed scores and points left are divided by the maximum break
+SNOOKER_R = 0.02625                # m, the ball radius of PhysicsParams.snooker() (the default for ``snookered``)
+# A grazing path is obstructed if a ball not on comes nearer to it than 2R less this (m): balls touching the
+# path at exactly 2R (a frozen neighbour) do not obstruct, as the rules' "wholly or partially obstructed" reads.
+OBSTRUCT_TOL = 1e-9
+
+
+def colour_on_table(before: np.ndarray) -> np.ndarray:
+    """The lowest-valued colour on each table [E] (-1 none); ``before`` [E, B] balls on the table."""
+    on = before[:, FIRST_COLOUR:]
+    return np.where(on.any(axis=1), FIRST_COLOUR + np.argmax(on, axis=1), -1).astype(np.int64)
+
+
+def balls_on(phase: np.ndarray, before: np.ndarray, nominated: np.ndarray | None = None) -> np.ndarray:
+    """[E, B] the balls on: the reds while reds remain, a colour after a red
+    (the ``nominated`` one [E], -1: any colour), the lowest colour when no
+    reds remain."""
+    E, B = before.shape
+    on = np.zeros((E, B), dtype=bool)
+    reds_left = before[:, REDS].any(axis=1)
+    colour = phase == PHASE_COLOUR
+    red = reds_left & ~colour
+    on[:, REDS] = before[:, REDS] & red[:, None]
+    nom = np.full(E, -1, dtype=np.int64) if nominated is None else nominated
+    any_colour = colour & (nom < 0)
+    on[:, FIRST_COLOUR:] |= before[:, FIRST_COLOUR:] & any_colour[:, None]
+    ar = np.arange(E)
+    one = colour & (nom >= 0)
+    on[ar[one], nom[one]] = True
+    low = colour_on_table(before)
+    clear = ~reds_left & ~colour & (low >= 0)
+    on[ar[clear], low[clear]] = True
+    return on
+
+
+def snookered(pos: np.ndarray, before: np.ndarray, on: np.ndarray, R: float = SNOOKER_R) -> np.ndarray:
+    """[E] whether the cue ball (ball 0 at ``pos [E, B, 2]``) is snookered
+    (WPBSA Section 2: a straight stroke to every ball on is wholly or partly
+    obstructed by balls not on): for every ball on, at least one of the two
+    straight paths that graze its extreme edges passes within 2R of a ball
+    not on before the cue ball reaches it. ``before`` [E, B] balls on the
+    table, ``on`` [E, B] the balls on. Cushions never obstruct here."""
+    E, B = before.shape
+    c = pos[:, 0]                                             # [E, 2]
+    d = pos - c[:, None]                                      # [E, B, 2]
+    L = np.hypot(d[..., 0], d[..., 1])
+    L = np.where(L > 0, L, 1.0)
+    base = np.arctan2(d[..., 1], d[..., 0])
+    half = np.arcsin(np.clip(2 * R / L, 0.0, 1.0))            # grazing paths at base +- half
+    reach = L * np.cos(half)                                  # cue-centre travel to the grazing contact
+    blockers = before & ~on
+    blockers[:, 0] = False
+    clear = np.ones((E, B), dtype=bool)
+    for sgn in (1.0, -1.0):
+        a = base + sgn * half
+        u = np.stack([np.cos(a), np.sin(a)], axis=-1)          # [E, T, 2]
+        # every ball q against every path to target t: projection and distance
+        rel = pos[:, None, :, :] - c[:, None, None, :]        # [E, 1, Q, 2]
+        s = np.einsum("etk,eqk->etq", u, rel[:, 0])           # [E, T, Q] along the path
+        perp = np.abs(u[..., 0][..., None] * rel[..., 1] - u[..., 1][..., None] * rel[..., 0])  # [E, T, Q]
+        sc = np.clip(s, 0.0, reach[..., None])
+        dist = np.sqrt(np.maximum(perp ** 2 + (s - sc) ** 2, 0.0))
+        hit = blockers[:, None, :] & (dist < 2 * R - OBSTRUCT_TOL)
+        hit &= ~np.eye(B, dtype=bool)[None]                   # a ball never obstructs its own path
+        clear &= ~hit.any(axis=2)
+    return on.any(axis=1) & ~(clear & on).any(axis=1)
+
+
+@numba.njit(cache=True, nogil=True)
+def _respot(pos, on, balls, spots, width, length, R, pockets):
+    edge, md = R + SPOT_EDGE, 2 * R + SPOT_CLEAR
+    for e in range(pos.shape[0]):
+        for k in range(5, -1, -1):                            # the highest value first (WPBSA Section 3, rule 4)
+            b = FIRST_COLOUR + k
+            if not balls[e, b]:
+                continue
+            x, y, found = spots[k, 0], spots[k, 1], False
+            if spot_free(x, y, pos[e], on[e], width, length, edge, pockets, md):
+                found = True
+            else:                                             # the highest free spot
+                for j in range(5, -1, -1):
+                    if spot_free(spots[j, 0], spots[j, 1], pos[e], on[e], width, length, edge, pockets, md):
+                        x, y, found = spots[j, 0], spots[j, 1], True
+                        break
+            if not found:                                     # as near its own spot as possible, along the long axis
+                x, y, found = free_spot(pos[e], on[e], spots[k, 0], spots[k, 1], 0.0, 1.0, width, length, R, pockets)
+            if not found:
+                return False
+            pos[e, b, 0], pos[e, b, 1] = x, y
+            on[e, b] = True
+    return True
+
+
+def respot_colours(pos: np.ndarray, pocket: np.ndarray, balls: np.ndarray, table, R: float,
+                   pockets: np.ndarray) -> None:
+    """Put the colours marked in ``balls`` [n, B] back in place (WPBSA
+    Section 3, rule 4): each on its own spot, or, if that is occupied, the
+    highest-valued free spot, or else the nearest free point to its own spot
+    along the table's long axis; the highest-valued colour first."""
+    if not balls.any():
+        return
+    on = pocket < 0
+    ok = _respot(pos, on, np.ascontiguousarray(balls), np.ascontiguousarray(table.marks.spots, dtype=np.float64),
+                 table.width, table.length, R, pockets)
+    if not ok:
+        raise RuntimeError("no free spot on the table to respot a colour")
+    pocket[balls] = -1
+
+
+class SnookerRules(Rules):
+    name = "snooker"
+    n_balls = N_BALLS
+    calls_ball = True   # the nominated colour, or the free ball, in ``ShotInput.called_ball``
+    scored = True       # a game of points: ``GameState.score``
+    reads_position = True
+    table_style = "snooker"   # Table.snooker()
+    physics = "snooker"       # PhysicsParams.snooker(): snooker balls
+    extra_obs = 4             # observation: both scores, the points left, a free ball (``observe_extra``)
+
+    def __init__(self, R: float = SNOOKER_R):
+        self.R = R
+
+    def new_game(self, breaker) -> GameState:
+        g = GameState.new(breaker)
+        g.ball_in_hand[:] = IN_HAND_D
+        return g
+
+    def observe_extra(self, game: GameState, pocket=None, constraints=None) -> np.ndarray:
+        """[E, 4] in [0, 1]: the shooter's score, the opponent's, the face value of the balls on the
+        table (each / SCORE_SCALE, clipped), and 1 where a free ball may be nominated."""
+        E = game.n
+        ar = np.arange(E)
+        out = np.zeros((E, 4), dtype=np.float32)
+        out[:, 0] = np.minimum(game.score[ar, game.shooter] / SCORE_SCALE, 1.0)
+        out[:, 1] = np.minimum(game.score[ar, 1 - game.shooter] / SCORE_SCALE, 1.0)
+        if pocket is not None:
+            out[:, 2] = np.minimum(((np.asarray(pocket) < 0) * VALUE[None, :]).sum(axis=1) / SCORE_SCALE, 1.0)
+        if constraints is not None:
+            out[:, 3] = constraints.call_needed & constraints.may_pass  # a nomination right after a foul
+        return out
+
+    def free_ball(self, game: GameState, pos: np.ndarray | None, before: np.ndarray) -> np.ndarray:
+        """[E] a free ball is awarded: after a foul, the cue ball on the table (not in hand) and snookered."""
+        E = game.n
+        if pos is None:
+            return np.zeros(E, dtype=bool)
+        after_foul = (game.phase == PHASE_OPTION) & (game.ball_in_hand == IN_HAND_NONE) & ~game.over
+        out = np.zeros(E, dtype=bool)
+        if after_foul.any():
+            r = np.nonzero(after_foul)[0]
+            out[r] = snookered(pos[r], before[r], balls_on(game.phase[r], before[r]), self.R)
+        return out
+
+    def check(self, game: GameState, shot: ShotInput) -> None:
+        """``Rules.check``, except that a pass (the offender put back in) needs no cue ball on the table."""
+        passed = np.asarray(shot.passed, dtype=bool) & (game.phase == PHASE_OPTION)
+        if passed.any():
+            pb = np.array(shot.pocket_before, copy=True)
+            pb[passed, 0] = -1
+            shot = ShotInput(pb, shot.pocket_after, shot.first_contact, shot.rails)
+        super().check(game, shot)
+
+    def judge(self, game: GameState, shot: ShotInput) -> tuple[ShotRecord, GameState]:
+        self.check(game, shot)
+        E, s = game.n, game.shooter
+        ar = np.arange(E)
+        before = np.asarray(shot.pocket_before) < 0
+        pk = shot.pocketed
+        phase = game.phase
+        passed = np.asarray(shot.passed, dtype=bool) & (phase == PHASE_OPTION)  # put the offender back in
+        played = ~passed
+        first = np.asarray(shot.first_contact, dtype=np.int64)
+        nom = np.asarray(shot.called_ball, dtype=np.int64)
+        nom_ok = (nom >= 1) & (nom <= N_BALLS)
+        nom_on = nom_ok & before[ar, np.clip(nom, 0, N_BALLS)]
+        colour = phase == PHASE_COLOUR
+        # the nominated colour; none declared: the colour hit first (an "obvious" nomination)
+        nominated = np.where(colour, np.where(nom_on & (nom >= FIRST_COLOUR), nom,
+                                              np.where(first >= FIRST_COLOUR, first, -1)), -1)
+        on = balls_on(phase, before, nominated)
+        reds_left = before[:, REDS].any(axis=1)
+        low = colour_on_table(before)
+        on_value = np.where(colour, VALUE[np.maximum(nominated, 0)] * (nominated >= 0),
+                            np.where(reds_left, 1, VALUE[np.maximum(low, 0)]))
+        free_ok = self.free_ball(game, shot.pos_before, before) & played
+        free = np.where(free_ok & nom_on & ~on[ar, np.clip(nom, 0, N_BALLS)], nom, -1)   # the nominated free ball
+        is_free = np.zeros_like(on)
+        is_free[ar[free >= 0], free[free >= 0]] = True
+        value = np.where(is_free, on_value[:, None], VALUE[None, :])                  # a free ball is worth the ball on
+        first_ok = (first >= 1) & (on | is_free)[ar, np.clip(first, 0, N_BALLS)]
+        bad_pot = (pk[:, 1:] & ~(on | is_free)[:, 1:]).any(axis=1)
+        foul = np.full(E, FOUL_NONE, dtype=np.int64)
+        foul[bad_pot] = FOUL_WRONG_POT
+        foul[(first >= 1) & ~first_ok] = FOUL_WRONG_BALL
+        foul[first < 1] = FOUL_NO_CONTACT
+        foul[pk[:, 0]] = FOUL_SCRATCH
+        foul[~played] = FOUL_NONE
+        fouled = foul > 0
+        involved = np.where(first >= 1, value[ar, np.clip(first, 0, N_BALLS)], 0)
+        potted_value = np.where(pk, value, 0).max(axis=1)
+        penalty = np.where(fouled, np.maximum.reduce([np.full(E, MIN_FOUL), on_value, involved, potted_value]), 0)
+        # the points of a legal stroke: every red (and a free ball taken as a red) potted; otherwise the ball on,
+        # or the free ball when the ball on stayed up (WPBSA Section 3, rule 12 (c)-(e))
+        red_turn = reds_left & ~colour
+        reds_potted = pk[:, REDS].sum(axis=1) + (pk & is_free).any(axis=1)
+        ball_on_potted = (pk & on).any(axis=1)
+        colour_points = np.where(ball_on_potted, on_value, np.where((pk & is_free).any(axis=1), on_value, 0))
+        points = np.where(played & ~fouled, np.where(red_turn, reds_potted, colour_points), 0).astype(np.int64)
+        g = game.copy()
+        g.score[ar, s] += points
+        g.score[ar, 1 - s] += penalty
+        # colours back on the table: any colour pocketed on a foul, the colour taken after a red, a free ball
+        respot = np.zeros_like(pk)
+        col = pk[:, FIRST_COLOUR:]
+        keep_down = played & ~fouled & ~colour & ~red_turn                      # the clearance: the colour on stays down
+        respot[:, FIRST_COLOUR:] = col & ~(keep_down[:, None] & on[:, FIRST_COLOUR:])
+        # the frame: with only the black left, the first score or foul ends it (a tie respots the black)
+        last_black = before[:, 1:].sum(axis=1) == 1
+        last_black &= before[:, BLACK] & played & (fouled | (points > 0))
+        tie = last_black & (g.score[:, 0] == g.score[:, 1])
+        over = last_black & ~tie
+        winner = np.where(over, np.argmax(g.score, axis=1), -1)
+        respot[tie, BLACK] = pk[tie, BLACK]
+        turn_over = (fouled | (points == 0) | passed) & ~over
+        rec = ShotRecord(legal=played & ~fouled, foul=foul, turn_over=turn_over, game_over=over, winner=winner,
+                         end=np.where(over, END_LAST_BLACK, END_NONE), push_out=np.zeros(E, dtype=bool),
+                         passed=passed, respot=respot, shooter=s.copy(), option=fouled & ~over,
+                         points=points, penalty=penalty)
+        g2 = next_state(g, rec, foul, played)
+        g2.score = g.score
+        # the re-spotted black: the cue ball in hand in the D; the player who did not break off plays first
+        g2.shooter = np.where(tie, 1 - game.breaker, g2.shooter)
+        pot_red = played & ~fouled & red_turn & (points > 0)
+        g2.phase = np.where(fouled, PHASE_OPTION, np.where(pot_red, PHASE_COLOUR, PHASE_PLAY)).astype(np.int64)
+        g2.phase = np.where(tie, PHASE_PLAY, g2.phase)
+        hand = np.where(passed, game.ball_in_hand, np.where(played & pk[:, 0], IN_HAND_D, IN_HAND_NONE))
+        g2.ball_in_hand = np.where(tie, IN_HAND_D, hand).astype(np.int64)
+        return rec, g2
+
+    def constraints(self, game: GameState, pocket: np.ndarray, pos: np.ndarray | None = None) -> Constraints:
+        before = np.asarray(pocket) < 0
+        live = ~game.over
+        free = self.free_ball(game, pos, before)
+        targets = balls_on(game.phase, before)
+        targets[free, 1:] = before[free, 1:]          # a free ball: any ball may be hit first
+        targets &= live[:, None]
+        E = game.n
+        return Constraints(shooter=game.shooter.copy(), ball_in_hand=np.where(live, game.ball_in_hand, IN_HAND_NONE),
+                           targets=targets, push_out_allowed=np.zeros(E, dtype=bool),
+                           may_pass=live & (game.phase == PHASE_OPTION),
+                           call_needed=live & ((game.phase == PHASE_COLOUR) | free),
+                           is_break=live & (game.phase == PHASE_BREAK), over=game.over.copy())

@@ -1,0 +1,132 @@
+#!/usr/bin/env python
+"""The ladder's cross table: the shipped learned agents against the built-in bots.
+
+    python scripts/ladder_table.py                        # every game and noise level, 20 racks per pairing
+    python scripts/ladder_table.py --racks 50 --noise tournament high
+    python scripts/ladder_table.py --quick --out /tmp/ladder   # smoke test: ladder-1 v ghost, 2 racks, no noise
+    python scripts/ladder_table.py --games eight_ball --noise high &   # one part per process, then
+    python scripts/ladder_table.py --collect                           # the CSV, summary and docs of every part
+
+For each game (9-ball, 8-ball) and noise level (``none``, ``tournament``,
+``high``, ``variable``) every pairing of the game's ladder agents
+(``billiards_env.bots.learned.ladder``) and ``--bots`` (default ``ghost``,
+``ghost-safety``, ``search64``, ``lookahead``) plays ``--racks`` paired racks
+(each rack twice, each side breaking once; ``studies.matches``), and
+Bradley-Terry ratings with 95% bootstrap intervals are fitted. Writes
+``<out>/<game>_<noise>.json/.md/.png`` (every pairing and the ratings),
+``<out>/ratings.csv``, ``<out>/pairings.csv``, ``<out>/summary.md`` (one
+table of every rating) and ``<out>/ladder.md`` (the agents' cards and the
+summary); with the default ``--out`` the summary also goes into
+``docs/ladder.md`` between its markers. ``--collect`` plays nothing: it
+writes the CSV, summary and docs from the ``<game>_<noise>.json`` already
+in ``--out`` (parts played by separate processes).
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from billiards_env.bots.learned import ladder as L  # noqa: E402
+from billiards_env.studies import match_report  # noqa: E402
+from billiards_env.studies.matches import tournament  # noqa: E402
+
+GAMES = ("nine_ball", "eight_ball")
+BOTS = ("ghost", "ghost-safety", "search64", "lookahead")
+DOC = ROOT / "docs" / "ladder.md"
+BEGIN, END = "<!-- ladder-table:begin -->", "<!-- ladder-table:end -->"
+
+
+def cards_table(games) -> str:
+    lines = ["| game | agent | version | training steps | training wall (s) | trained against | checked positions |",
+             "|---|---|---|---|---|---|---|"]
+    for g in games:
+        for n in L.ladder_names(g):
+            c = L.card(g, n)
+            lines.append(f"| {g} | {n} | {c['version']} | {c['training_steps']:,} | {c['training_wall_s']:.0f} | "
+                         f"{c['trained_against']} | {c['checked_positions']} |")
+    return "\n".join(lines) + "\n"
+
+
+def write_csv(out: Path, docs: list) -> None:
+    with open(out / "ratings.csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["game", "noise", "entrant", "elo", "ci95_lo", "ci95_hi"])
+        for d in docs:
+            for r in d["ratings"]:
+                w.writerow([d["game"], d["noise"], r["name"], f"{r['elo']:.1f}", f"{r['ci95'][0]:.1f}",
+                            f"{r['ci95'][1]:.1f}"])
+    with open(out / "pairings.csv", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["game", "noise", "a", "b", "games", "a_wins", "b_wins", "draws", "a_win_rate", "ci95_lo",
+                    "ci95_hi", "mean_shots"])
+        for d in docs:
+            for p in d["pairings"]:
+                w.writerow([d["game"], d["noise"], p["a"], p["b"], p["games"], p["a_wins"], p["b_wins"], p["draws"],
+                            f"{p['a_win_rate']:.3f}", f"{p['ci95'][0]:.3f}", f"{p['ci95'][1]:.3f}",
+                            f"{p['mean_shots']:.1f}"])
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--games", nargs="+", choices=GAMES, default=list(GAMES))
+    ap.add_argument("--noise", nargs="+", choices=match_report.NOISES, default=list(match_report.NOISES))
+    ap.add_argument("--bots", nargs="+", default=list(BOTS), help="the built-in bots beside the ladder")
+    ap.add_argument("--racks", type=int, default=20, help="racks per pairing (each played twice)")
+    ap.add_argument("--seed", type=int, default=2026, help="match seed (not a training seed)")
+    ap.add_argument("--max-shots", type=int, default=200)
+    ap.add_argument("--out", type=Path, default=ROOT / "results" / "ladder")
+    ap.add_argument("--quick", action="store_true", help="ladder-1 v ghost, 2 racks, no noise (the test's run)")
+    ap.add_argument("--collect", action="store_true", help="play nothing: tables and docs from the JSON in --out")
+    args = ap.parse_args(argv)
+    if args.quick:
+        args.bots, args.racks, args.noise = ["ghost"], 2, ["none"]
+    command = " ".join(["python", "scripts/ladder_table.py"] + (argv if argv is not None else sys.argv[1:]))
+    docs = []
+    for game in [] if args.collect else args.games:
+        rungs = L.ladder_names(game)[:1] if args.quick else L.ladder_names(game)
+        if not rungs:
+            raise SystemExit(f"no ladder agents shipped for {game} (scripts/export_ladder.py writes them)")
+        names = rungs + list(args.bots)
+        for noise in args.noise:
+            t0 = time.perf_counter()
+            results, table = tournament(names, game, args.racks, args.seed, noise, max_shots=args.max_shots)
+            doc = dict(command=command, game=game, noise=noise, racks=args.racks, seed=args.seed,
+                       seconds=time.perf_counter() - t0, pairings=[r.summary() for r in results], ratings=table)
+            match_report.write(args.out / f"{game}_{noise}", doc, results, table)
+            print(f"{game} {noise}: " + ", ".join(f"{t['name']} {t['elo']:.0f}" for t in table)
+                  + f" ({doc['seconds']:.0f} s)", flush=True)
+            docs.append(doc)
+    if args.collect:
+        docs = [json.loads(p.read_text()) for p in sorted(args.out.glob("*_*.json"))]
+        if not docs:
+            raise SystemExit(f"no <game>_<noise>.json in {args.out} to collect")
+        args.racks, args.seed = docs[0]["racks"], docs[0]["seed"]
+        parts = sorted({d["command"] for d in docs})
+        command = (parts[0] if len(parts) == 1 else
+                   f"python scripts/ladder_table.py --racks {args.racks}` (played as {len(parts)} processes, one per "
+                   f"game and noise level, then `python scripts/ladder_table.py --collect")
+        args.games = [g for g in GAMES if any(d["game"] == g for d in docs)]
+    write_csv(args.out, docs)
+    summary = match_report.summary(args.out)
+    (args.out / "summary.md").write_text(summary)
+    body = (f"`{command}`: {args.racks} racks per pairing, each played twice (each side breaks once), seed "
+            f"{args.seed}.\n\nThe agents:\n\n{cards_table(args.games)}\nBradley-Terry ratings (Elo scale, mean 0 per "
+            f"game and noise level; 95% bootstrap intervals over games):\n\n{summary}")
+    (args.out / "ladder.md").write_text("# The ladder's cross table\n\n" + body)
+    if args.out.resolve() == (ROOT / "results" / "ladder").resolve() and DOC.exists():
+        text = DOC.read_text()
+        a, b = text.index(BEGIN) + len(BEGIN), text.index(END)
+        DOC.write_text(text[:a] + "\n" + body + text[b:])
+    print(summary)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

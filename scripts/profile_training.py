@@ -1,0 +1,96 @@
+#!/usr/bin/env python
+"""Where the time of a training run goes: a cProfile of PPO rollouts and updates.
+
+    python scripts/profile_training.py --env Billiards-NineBall2P-v0 --rollouts 4
+    python scripts/profile_training.py --quick --out /tmp/prof.txt    # 8 tables, 1 rollout (the test's run)
+
+Trains the config's model (``configs/ppo_games.yaml`` by default) for one
+warm-up rollout, then profiles ``--rollouts`` more and splits their wall
+time into the PPO updates, the agent's network in the rollouts, the
+agent-side features, the opponent's decisions and the simulator (every
+``physics.simulate`` call: the shots played and the bots' previews), from
+the profile's cumulative times. Writes the split and the top of the profile
+to ``--out`` (default stdout only).
+"""
+from __future__ import annotations
+
+import argparse
+import cProfile
+import io
+import pstats
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from agents.config import load_config  # noqa: E402
+from agents.sb3.training import build_env, build_model  # noqa: E402
+
+# (label, file suffix, function name) of the cumulative times the split reads
+PARTS = (("updates (PPO train)", "ppo/ppo.py", "train"),
+         ("rollouts (collect_rollouts)", "on_policy_algorithm.py", "collect_rollouts"),
+         ("env step (all of it)", "vec_env/base_vec_env.py", "step"),
+         ("simulator (physics.simulate)", "physics/simulate.py", "simulate"),
+         ("opponent decisions (bot act)", "envs/games/play.py", "bot_actions"),
+         ("agent features", "bots/learned/features.py", "agent_features"),
+         ("agent action transform", "bots/learned/features.py", "transform_actions"))
+
+
+def split(stats: pstats.Stats, wall: float) -> list[tuple[str, float]]:
+    cum = {}
+    for (file, _, fn), (_, _, _, ct, _) in stats.stats.items():
+        for label, suffix, name in PARTS:
+            if fn == name and file.endswith(suffix):
+                cum[label] = max(cum.get(label, 0.0), ct)
+    rows = [(label, cum.get(label, 0.0)) for label, _, _ in PARTS]
+    d = dict(rows)
+    rows.append(("agent network in rollouts (rollouts - env step)",
+                 d["rollouts (collect_rollouts)"] - d["env step (all of it)"]))
+    rows.append(("wall", wall))
+    return rows
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--config", default=str(ROOT / "configs" / "ppo_games.yaml"))
+    ap.add_argument("--env", default="Billiards-NineBall2P-v0")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
+    ap.add_argument("--rollouts", type=int, default=4)
+    ap.add_argument("--out", type=Path, default=None)
+    ap.add_argument("--quick", action="store_true", help="8 tables, 1 rollout")
+    args = ap.parse_args(argv)
+    sets = list(args.set) + (["n_envs=8", "ppo.batch_size=64"] if args.quick else [])
+    rollouts = 1 if args.quick else args.rollouts
+    import torch
+
+    cfg = load_config(args.config, args.env, sets)
+    torch.set_num_threads(cfg.train.torch_threads)
+    env, _ = build_env(cfg, cfg.train.seed)
+    model = build_model(cfg, env, None)
+    per = cfg.n_envs * int(cfg.algo_kwargs.get("n_steps", 2048))
+    model.learn(per)  # compiles the kernels, fills the normaliser
+    prof = cProfile.Profile()
+    t0 = time.perf_counter()
+    prof.enable()
+    model.learn(per * rollouts, reset_num_timesteps=False)
+    prof.disable()
+    wall = time.perf_counter() - t0
+    stats = pstats.Stats(prof)
+    lines = [f"{args.env}, {cfg.n_envs} tables, {rollouts} rollouts of {per} env steps: "
+             f"{per * rollouts / wall:,.0f} env steps/s including updates", "",
+             "| part | seconds | share of wall |", "|---|---|---|"]
+    lines += [f"| {label} | {s:.2f} | {s / wall:.0%} |" for label, s in split(stats, wall)]
+    text = io.StringIO()
+    pstats.Stats(prof, stream=text).sort_stats("cumulative").print_stats(40)
+    report = "\n".join(lines) + "\n\n```\n" + text.getvalue() + "```\n"
+    print("\n".join(lines))
+    if args.out:
+        args.out.parent.mkdir(parents=True, exist_ok=True)
+        args.out.write_text(report)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

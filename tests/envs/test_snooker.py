@@ -1,0 +1,202 @@
+"""Snooker through the envs and the simulator: thousands of random frames
+(ending within the cap, no ball lost or duplicated, scores equal to the
+shot records), bot frames played to their end, rules that read contacts
+played through the simulator on constructed positions, the bot, the match
+script. PettingZoo's api_test, check_env and vector = singles for
+Billiards-Snooker-v0: tests/envs/test_games.py."""
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from billiards_env.bots import make_bot
+from billiards_env.bots.plan import ShotPlan
+from billiards_env.envs.games import GameConfig, GameCore
+from billiards_env.physics.strike import Shots
+from billiards_env.rules import records as R
+from billiards_env.rules.snooker import BLACK, FIRST_COLOUR
+from billiards_env.testing.positions import game_table
+
+ROOT = Path(__file__).resolve().parents[2]
+BLUE, PINK = FIRST_COLOUR + 3, FIRST_COLOUR + 4
+
+
+def check_shot(core, idx, out, on_before, score_before, shooter_before):
+    """One shot's invariants on tables ``idx``."""
+    rec, info = out["record"], out["info"]
+    on = core.state.pocket[idx] < 0
+    reds_before, reds = on_before[:, 1:16], on[:, 1:16]
+    assert not (reds & ~reds_before).any(), "a red came back"
+    came_back = on & ~on_before
+    assert not came_back[:, 1:][~rec.respot[:, 1:]].any(), "a ball came back without a respot"
+    # colours are off the table only when every red is, and then only the lowest ones (the clearance)
+    col_off = ~on[:, FIRST_COLOUR:]
+    assert not (col_off.any(axis=1) & reds.any(axis=1)).any()
+    assert (np.sort(col_off, axis=1)[:, ::-1] == col_off).all(), "a colour off out of order"
+    pos = core.state.pos[idx]
+    d = np.linalg.norm(pos[:, :, None] - pos[:, None], axis=-1)
+    both = on[:, :, None] & on[:, None]
+    d[:, np.arange(d.shape[1]), np.arange(d.shape[1])] = np.inf
+    assert (d[both] >= 2 * core.params.R - 1e-9).all(), "two balls overlap (a duplicated ball)"
+    ar = np.arange(len(idx))
+    gain = np.zeros_like(score_before)
+    gain[ar, shooter_before] += rec.points
+    gain[ar, 1 - shooter_before] += rec.penalty
+    assert (core.game.score[idx] == score_before + gain).all(), "scores differ from the shot records"
+    assert (info["score"] == core.game.score[idx]).all()
+    assert (rec.penalty[rec.foul > 0] >= 4).all() and (rec.penalty[rec.foul == 0] == 0).all()
+    over = rec.game_over
+    assert (core.game.winner[idx][over] == np.argmax(core.game.score[idx][over], axis=1)).all()
+
+
+def test_random_frames_properties():
+    """1,000 frames of random actions (ball in hand anywhere asked, the D given; random declarations)."""
+    n, cap = 1000, 40
+    core = GameCore(GameConfig(game="snooker", max_shots=cap, noise="tournament"), n)
+    core.streams.seed(np.arange(n), np.arange(n) + 3)
+    core.reset_tables(np.arange(n))
+    rng = np.random.default_rng(2)
+    live = np.ones(n, dtype=bool)
+    steps = 0
+    while live.any():
+        idx = np.nonzero(live)[0]
+        hand = core.constraints().ball_in_hand[idx] == R.IN_HAND_D
+        on_before = core.state.pocket[idx] < 0
+        score, shooter = core.game.score[idx].copy(), core.game.shooter[idx].copy()
+        out = core.step(rng.uniform(-1.1, 1.1, (len(idx), core.action_dim)), idx)
+        placed = out["info"]["placement"][hand & ~out["info"]["passed"]]  # a pass places nothing
+        assert core.table.marks.in_d(placed[:, 0], placed[:, 1]).all(), "ball in hand outside the D"
+        check_shot(core, idx, out, on_before, score, shooter)
+        live[idx[out["terminated"] | out["truncated"]]] = False
+        steps += 1
+        assert steps <= 2 * cap + 1  # a pass (the offender put back in) is a step but no shot; one per foul at most
+    assert (core.game.over | (core.game.shots >= cap)).all()
+    assert core.game.score.sum() > 0
+
+
+def test_bot_frames_end_on_the_last_black():
+    """Frames between the snooker bots end by the rules (the last black), well inside the cap."""
+    n = 6
+    core = GameCore(GameConfig(game="snooker", max_shots=200, noise="tournament"), n)
+    core.streams.seed(np.arange(n), np.arange(n) + 1)
+    core.reset_tables(np.arange(n))
+    bot = make_bot("snooker", seed=0)
+    live = np.ones(n, dtype=bool)
+    while live.any():
+        idx = np.nonzero(live)[0]
+        on_before = core.state.pocket[idx] < 0
+        score, shooter = core.game.score[idx].copy(), core.game.shooter[idx].copy()
+        view = core.view(idx)
+        out = core.step(core.actions_of(bot.act(view), idx, view.codec), idx)
+        check_shot(core, idx, out, on_before, score, shooter)
+        live[idx[out["terminated"] | out["truncated"]]] = False
+    g = core.game
+    assert g.over.all() and (g.shots < 200).all()
+    assert (core.state.pocket[:, 1:BLACK] >= 0).all()  # the frame ended with only the black left (or potted)
+
+
+def shoot(core, phi, speed, ball=R.CALL_NONE, placement=None, declare=False, b=0.0):
+    plan = ShotPlan.of(Shots(np.array([phi]), np.array([speed]), np.zeros(1), np.full(1, b)),
+                       placement=None if placement is None else np.array([placement], dtype=np.float64),
+                       declare=np.array([declare]), ball=np.array([ball]))
+    return core.step(core.actions_of(plan, [0]), [0])
+
+
+def aim(core, a, b):
+    d = np.asarray(b, dtype=np.float64) - np.asarray(a, dtype=np.float64)
+    return math.atan2(d[1], d[0])
+
+
+def test_sim_red_then_nominated_colour_respotted():
+    w = 1.778
+    core = game_table("snooker", {0: (w - 0.4, 0.4), 1: (w - 0.2, 0.2), BLUE: (w - 0.2, 0.6), BLACK: (0.9, 3.245)})
+    out = shoot(core, aim(core, (w - 0.4, 0.4), (w, 0.0)), 1.5)
+    assert out["record"].legal[0] and out["info"]["points"][0] == 1 and core.game.phase[0] == R.PHASE_COLOUR
+    assert core.constraints().call_needed[0]
+    pk = core.pockets[np.argmin(np.linalg.norm(core.pockets[:, :2] - core.state.pos[0, BLUE], axis=1))]
+    # the blue nominated and potted on a straight line from wherever the cue ball came to rest
+    core.state.pos[0, 0] = core.state.pos[0, BLUE] + 0.3 * (core.state.pos[0, BLUE] - pk[:2]) / np.linalg.norm(
+        core.state.pos[0, BLUE] - pk[:2])
+    core._changed()
+    out = shoot(core, aim(core, core.state.pos[0, 0], pk[:2]), 1.5, ball=BLUE)
+    assert out["record"].legal[0] and out["info"]["points"][0] == 5 and core.game.score[0, 0] == 6
+    assert out["record"].respot[0, BLUE] and np.allclose(core.state.pos[0, BLUE], core.table.marks.spots[3])
+
+
+def test_sim_in_off_gives_ball_in_hand_in_the_d():
+    core = game_table("snooker", {0: (0.3, 0.3), 1: (0.9, 2.0), BLACK: (0.9, 3.245)})
+    out = shoot(core, aim(core, (0.3, 0.3), (0.0, 0.0)), 1.0)  # straight into the corner
+    assert out["record"].foul[0] == R.FOUL_SCRATCH and out["info"]["penalty"][0] == 4
+    c = core.constraints()
+    assert c.ball_in_hand[0] == R.IN_HAND_D and c.shooter[0] == 1
+    out = shoot(core, math.pi / 2, 1.0, placement=(0.2, 3.0))  # asks for a spot far from the D
+    placed = out["info"]["placement"][0]
+    assert out["info"]["placement_moved"][0] and core.table.marks.in_d(placed[0], placed[1])
+
+
+def test_sim_free_ball_after_a_foul_that_snookers():
+    """After player 0's foul the cue ball lies snookered on the last red (the pink in the way): player 1
+    nominates the black as the free ball and pots it in the corner: one point, the black respotted,
+    a colour on next."""
+    cue, corner = np.array([0.889, 2.2]), np.array([1.778, 3.569])
+    black = cue + 0.4 * (corner - cue) / np.linalg.norm(corner - cue)
+    core = game_table("snooker", {0: tuple(cue), 1: (0.889, 3.0), PINK: (0.889, 2.6), BLACK: tuple(black)},
+                      phase=R.PHASE_OPTION)
+    core.game.shooter[0] = 1
+    core._changed()
+    c = core.constraints()
+    assert c.call_needed[0] and c.may_pass[0] and c.targets[0, BLACK] and c.targets[0, PINK]
+    out = shoot(core, aim(core, cue, black), 1.5, ball=BLACK, b=-0.4)
+    rec = out["record"]
+    assert rec.legal[0] and out["info"]["points"][0] == 1 and rec.respot[0, BLACK]
+    assert np.allclose(core.state.pos[0, BLACK], core.table.marks.spots[5]) and core.game.phase[0] == R.PHASE_COLOUR
+    # the same shot without nominating the black: hitting it first is a foul worth 7
+    core2 = game_table("snooker", {0: tuple(cue), 1: (0.889, 3.0), PINK: (0.889, 2.6), BLACK: tuple(black)},
+                       phase=R.PHASE_OPTION)
+    out = shoot(core2, aim(core2, cue, black), 1.5, b=-0.4)
+    assert out["record"].foul[0] == R.FOUL_WRONG_BALL and out["info"]["penalty"][0] == 7
+
+
+def test_sim_offender_put_back_in():
+    core = game_table("snooker", {0: (0.9, 0.5), 1: (0.9, 2.0), BLACK: (0.9, 3.245)})
+    out = shoot(core, math.pi, 0.5)  # away from the red: no ball hit
+    assert out["record"].foul[0] == R.FOUL_NO_CONTACT and core.constraints().may_pass[0]
+    pos = core.state.pos.copy()
+    out = shoot(core, 0.0, 1.0, declare=True)  # player 1 puts player 0 back in
+    assert out["record"].passed[0] and core.game.shooter[0] == 0 and (core.state.pos == pos).all()
+
+
+def test_bot_pots_the_ball_on_and_nominates_the_colour():
+    w = 1.778
+    core = game_table("snooker", {0: (w - 0.4, 0.4), 1: (w - 0.2, 0.2), BLUE: (0.9, 1.5), BLACK: (0.9, 3.245)})
+    bot = make_bot("snooker")
+    view = core.view([0])
+    plan = bot.act(view)
+    assert bot.last_mode[0] == "pot"
+    out = core.step(core.actions_of(plan, [0], view.codec), [0])
+    assert out["info"]["pocketed"][0, 1] and core.game.phase[0] == R.PHASE_COLOUR
+    view = core.view([0])
+    plan = bot.act(view)
+    assert plan.ball[0] >= FIRST_COLOUR  # a colour nominated
+
+
+def test_bot_plays_a_legal_safety_when_nothing_is_on():
+    # the only red frozen to the top cushion, far away: no pot; a safety that hits it
+    core = game_table("snooker", {0: (0.5, 0.5), 1: (1.3, 3.569 - 0.02625 - 1e-4), BLACK: (0.9, 3.245)})
+    bot = make_bot("snooker")
+    view = core.view([0])
+    plan = bot.act(view)
+    assert bot.last_mode[0] == "safety"
+    out = core.step(core.actions_of(plan, [0], view.codec), [0])
+    assert out["record"].legal[0]
+
+
+def test_match_script_quick(tmp_path):
+    r = subprocess.run([sys.executable, str(ROOT / "scripts" / "match.py"), "--game", "snooker", "--policies",
+                        "random", "snooker", "--racks", "1", "--max-shots", "60", "--out", str(tmp_path)],
+                       capture_output=True, text=True, cwd=ROOT, timeout=600)
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "snooker_tournament.json").exists()

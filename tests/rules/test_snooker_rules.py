@@ -1,0 +1,227 @@
+"""Snooker, one test per rule: a constructed position and a constructed shot
+(first contact, which balls fell, the nomination, the pass) judged by the
+rules layer; the free ball's "snookered" is decided from constructed
+positions. The rules through the simulator: tests/envs/test_snooker.py."""
+import numpy as np
+import pytest
+
+from billiards_env.physics import PhysicsParams, Table
+from billiards_env.rules import GameState, ShotInput, SnookerRules
+from billiards_env.rules import records as R
+from billiards_env.rules.snooker import BLACK, FIRST_COLOUR, balls_on, respot_colours, snookered
+
+SNK = SnookerRules()
+YELLOW, GREEN, BROWN, BLUE, PINK = range(FIRST_COLOUR, FIRST_COLOUR + 5)
+RED = 1
+B = 22
+TABLE = Table.snooker()
+P = PhysicsParams.snooker()
+
+
+def position(off=(), phase=R.PHASE_PLAY, shooter=0, score=(0, 0), in_hand=R.IN_HAND_NONE, pos=None):
+    """One table: balls ``off`` already pocketed; a game state in ``phase``."""
+    pocket = np.full((1, B), -1, dtype=np.int64)
+    pocket[0, list(off)] = 0
+    g = GameState.new([shooter])
+    g.phase[:] = phase
+    g.ball_in_hand[:] = in_hand
+    g.score[0] = score
+    return g, pocket
+
+
+def shot(pocket, first, potted=(), nominate=R.CALL_NONE, passed=False, pos=None):
+    after = pocket.copy()
+    for b in potted:
+        after[0, b] = 2
+    z = np.zeros(pocket.shape, dtype=np.int64)
+    return ShotInput(pocket, after, np.array([first]), z, z, None, None, np.array([passed]), np.array([nominate]),
+                     pos_before=pos)
+
+
+def reds_off(keep=()):
+    return [b for b in range(1, 16) if b not in keep]
+
+
+def judge(g, s):
+    rec, g2 = SNK.judge(g, s)
+    return rec, g2, SNK.constraints(g2, s.pocket_after)
+
+
+def test_a_red_scores_one_and_a_colour_is_on_next():
+    g, p = position()
+    rec, g2, c = judge(g, shot(p, RED, potted=[RED, 2]))
+    assert rec.legal[0] and rec.points[0] == 2 and g2.score[0].tolist() == [2, 0]
+    assert not rec.turn_over[0] and g2.phase[0] == R.PHASE_COLOUR
+    assert c.targets[0, FIRST_COLOUR:].all() and not c.targets[0, 1:16].any() and c.call_needed[0]
+
+
+def test_the_nominated_colour_scores_and_is_respotted_while_reds_remain():
+    g, p = position(off=[RED], phase=R.PHASE_COLOUR)
+    rec, g2, c = judge(g, shot(p, BLUE, potted=[BLUE], nominate=BLUE))
+    assert rec.legal[0] and rec.points[0] == 5 and rec.respot[0, BLUE] and not rec.turn_over[0]
+    assert g2.phase[0] == R.PHASE_PLAY and c.targets[0, 2:16].all() and not c.targets[0, FIRST_COLOUR:].any()
+
+
+def test_hitting_another_colour_than_the_nominated_one_is_a_foul_worth_the_higher():
+    g, p = position(off=[RED], phase=R.PHASE_COLOUR)
+    rec, g2, _ = judge(g, shot(p, BLACK, nominate=GREEN))
+    assert rec.foul[0] == R.FOUL_WRONG_BALL and rec.penalty[0] == 7 and g2.score[0].tolist() == [0, 7]
+    assert rec.turn_over[0]
+
+
+def test_without_a_nomination_the_colour_hit_first_is_the_nominated_one():
+    g, p = position(off=[RED], phase=R.PHASE_COLOUR)
+    rec, _, _ = judge(g, shot(p, PINK, potted=[PINK]))
+    assert rec.legal[0] and rec.points[0] == 6
+
+
+def test_a_colour_potted_on_a_red_is_a_foul_and_respotted_reds_stay_down():
+    g, p = position()
+    rec, g2, c = judge(g, shot(p, RED, potted=[RED, PINK]))
+    assert rec.foul[0] == R.FOUL_WRONG_POT and rec.penalty[0] == 6 and rec.points[0] == 0
+    assert rec.respot[0, PINK] and not rec.respot[0, RED] and g2.score[0].tolist() == [0, 6]
+
+
+@pytest.mark.parametrize("first, potted, value", [
+    (-1, (), 4),                 # no ball hit: the least penalty, 4
+    (RED, (0,), 4),              # an in-off off a red
+    (BROWN, (), 4),              # a colour first when a red is on: its value, at least 4
+    (BLUE, (), 5),
+    (RED, (RED, BLACK), 7),      # a ball pocketed: its value
+])
+def test_foul_values(first, potted, value):
+    g, p = position()
+    rec, g2, _ = judge(g, shot(p, first, potted=potted))
+    assert rec.foul[0] > 0 and rec.penalty[0] == value and g2.score[0, 1] == value and rec.points[0] == 0
+
+
+def test_foul_value_is_the_ball_on_when_higher():
+    g, p = position(off=reds_off() + [YELLOW, GREEN, BROWN, BLUE])  # pink and black left: the pink is on
+    rec, _, _ = judge(g, shot(p, -1))
+    assert rec.penalty[0] == 6
+
+
+def test_clearance_in_order_colours_stay_down():
+    g, p = position(off=reds_off())
+    c = SNK.constraints(g, p)
+    assert c.targets[0].tolist() == [i == YELLOW for i in range(B)]
+    rec, g2, c2 = judge(g, shot(p, YELLOW, potted=[YELLOW]))
+    assert rec.points[0] == 2 and not rec.respot[0].any() and c2.targets[0, GREEN] and c2.targets[0].sum() == 1
+    rec, _, _ = judge(g, shot(p, GREEN, potted=[GREEN]))  # out of order: a foul, the green respotted
+    assert rec.foul[0] == R.FOUL_WRONG_BALL and rec.penalty[0] == 4 and rec.respot[0, GREEN]
+
+
+def test_the_colour_after_the_last_red_is_respotted_then_the_clearance_starts():
+    g, p = position(off=reds_off() , phase=R.PHASE_COLOUR)
+    rec, g2, c = judge(g, shot(p, BLACK, potted=[BLACK], nominate=BLACK))
+    assert rec.points[0] == 7 and rec.respot[0, BLACK] and g2.phase[0] == R.PHASE_PLAY
+    assert c.targets[0, YELLOW] and c.targets[0].sum() == 1
+
+
+def test_the_incoming_player_may_put_the_offender_back_in():
+    g, p = position()
+    rec, g2, c = judge(g, shot(p, -1))  # player 0 misses everything
+    assert rec.option[0] and g2.shooter[0] == 1 and g2.phase[0] == R.PHASE_OPTION and c.may_pass[0]
+    rec2, g3, c3 = judge(g2, shot(p, -1, passed=True))
+    assert rec2.passed[0] and g3.shooter[0] == 0 and g3.shots[0] == g2.shots[0] and not c3.may_pass[0]
+    assert g3.score[0].tolist() == [0, 4]
+
+
+def test_cue_ball_in_hand_in_the_d_after_an_in_off():
+    g, p = position()
+    rec, g2, c = judge(g, shot(p, RED, potted=[0]))
+    assert rec.foul[0] == R.FOUL_SCRATCH and c.ball_in_hand[0] == R.IN_HAND_D
+    g0 = SNK.new_game(np.array([0]))
+    assert SNK.constraints(g0, p).ball_in_hand[0] == R.IN_HAND_D  # the break-off too
+
+
+def test_the_frame_ends_on_the_last_black():
+    g, p = position(off=[b for b in range(1, BLACK)], score=(40, 45))
+    rec, g2, _ = judge(g, shot(p, BLACK, potted=[BLACK]))
+    assert rec.game_over[0] and rec.winner[0] == 0 and g2.score[0].tolist() == [47, 45]
+    assert rec.end[0] == R.END_LAST_BLACK
+    rec, g2, _ = judge(g, shot(p, -1))  # a foul on the last black ends it too: 7 to the opponent
+    assert rec.game_over[0] and rec.winner[0] == 1 and g2.score[0].tolist() == [40, 52]
+
+
+def test_a_tie_respots_the_black_with_the_cue_ball_in_hand():
+    g, p = position(off=[b for b in range(1, BLACK)], score=(40, 47))
+    rec, g2 = SNK.judge(g, shot(p, BLACK, potted=[BLACK]))
+    assert not rec.game_over[0] and rec.respot[0, BLACK] and g2.score[0].tolist() == [47, 47]
+    c = SNK.constraints(g2, p)  # the black back on its spot
+    assert c.ball_in_hand[0] == R.IN_HAND_D and c.targets[0, BLACK]
+    assert g2.shooter[0] == 1 - g.breaker[0]
+
+
+def _line(*xy):
+    pos = np.zeros((1, B, 2))
+    pos[0, :] = (0.1, 0.1)  # every ball not placed is pocketed below
+    for b, (x, y) in xy:
+        pos[0, b] = (x, y)
+    return pos
+
+
+def test_snookered_is_decided_from_the_position():
+    R_ = P.R
+    # the only red behind the black, the cue ball in line: snookered
+    before = np.zeros((1, B), dtype=bool)
+    before[0, [0, RED, BLACK]] = True
+    pos = _line((0, (0.9, 1.0)), (RED, (0.9, 2.0)), (BLACK, (0.9, 1.5)))
+    on = balls_on(np.array([R.PHASE_PLAY]), before)
+    assert snookered(pos, before, on, R_)[0]
+    # the black 3R to the side: the red's near edge is visible, but its far edge is not -> still snookered
+    pos2 = _line((0, (0.9, 1.0)), (RED, (0.9, 2.0)), (BLACK, (0.9 + 1.2 * R_, 1.5)))
+    assert snookered(pos2, before, on, R_)[0]
+    # the black well clear of both grazing paths: not snookered
+    pos3 = _line((0, (0.9, 1.0)), (RED, (0.9, 2.0)), (BLACK, (0.9 + 4 * R_, 1.5)))
+    assert not snookered(pos3, before, on, R_)[0]
+    # a ball on never snookers: a second red in the way is itself on
+    before4 = before.copy(); before4[0, 2] = True; before4[0, BLACK] = False
+    pos4 = _line((0, (0.9, 1.0)), (RED, (0.9, 2.0)), (2, (0.9, 1.5)))
+    assert not snookered(pos4, before4, balls_on(np.array([R.PHASE_PLAY]), before4), R_)[0]
+
+
+def test_free_ball_after_a_foul_that_leaves_a_snooker():
+    pos = _line((0, (0.9, 1.0)), (RED, (0.9, 2.0)), (BLACK, (0.9, 1.5)))
+    off = [b for b in range(2, BLACK)]
+    g, p = position(off=off, phase=R.PHASE_OPTION)
+    c = SNK.constraints(g, p, pos=pos)
+    assert c.call_needed[0] and c.targets[0, BLACK] and c.targets[0, RED]   # any ball may be nominated
+    # the black nominated as the free ball, potted: worth a red (1), respotted, then a colour is on
+    rec, g2 = SNK.judge(g, shot(p, BLACK, potted=[BLACK], nominate=BLACK, pos=pos))
+    assert rec.legal[0] and rec.points[0] == 1 and rec.respot[0, BLACK] and g2.phase[0] == R.PHASE_COLOUR
+    # without nominating it, hitting the black first is a foul worth 7
+    rec, _ = SNK.judge(g, shot(p, BLACK, pos=pos))
+    assert rec.foul[0] == R.FOUL_WRONG_BALL and rec.penalty[0] == 7
+    # not snookered: no free ball
+    pos3 = _line((0, (0.9, 1.0)), (RED, (0.9, 2.0)), (BLACK, (0.5, 1.5)))
+    assert not SNK.constraints(g, p, pos=pos3).call_needed[0]
+    rec, _ = SNK.judge(g, shot(p, BLACK, potted=[BLACK], nominate=BLACK, pos=pos3))
+    assert rec.foul[0] == R.FOUL_WRONG_BALL
+
+
+def test_the_free_ball_call_is_void_when_the_offender_is_put_back_in():
+    pos = _line((0, (0.9, 1.0)), (RED, (0.9, 2.0)), (BLACK, (0.9, 1.5)))
+    g, p = position(off=[b for b in range(2, BLACK)], phase=R.PHASE_OPTION)
+    _, g2 = SNK.judge(g, shot(p, -1, passed=True, pos=pos))
+    assert g2.phase[0] == R.PHASE_PLAY and not SNK.constraints(g2, p, pos=pos).call_needed[0]
+
+
+def test_colours_respot_on_their_spot_or_the_highest_free_one():
+    pos = np.zeros((1, B, 2))
+    pocket = np.full((1, B), 0, dtype=np.int64)
+    spots = TABLE.marks.spots
+    pocket[0, 0] = -1
+    pos[0, 0] = spots[5]                       # the cue ball on the black spot
+    balls = np.zeros((1, B), dtype=bool)
+    balls[0, [BLACK, PINK]] = True
+    respot_colours(pos, pocket, balls, TABLE, P.R, TABLE.pockets)
+    # the black first (the highest value): its own spot is taken, so the highest free spot, the pink's;
+    # then the pink: its own spot is taken now, the highest free one is the blue's
+    assert np.allclose(pos[0, BLACK], spots[4]) and np.allclose(pos[0, PINK], spots[3])
+    assert (pocket[0, [BLACK, PINK]] == -1).all()
+    balls[0, PINK] = False
+    pocket[0, BLACK] = 0
+    pos[0, 0] = (0.3, 0.3)
+    respot_colours(pos, pocket, balls, TABLE, P.R, TABLE.pockets)
+    assert np.allclose(pos[0, BLACK], spots[5])          # its own spot when free
