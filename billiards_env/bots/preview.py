@@ -99,7 +99,7 @@ def play_shots(view, start: BallState, shots, noise=None, rng=None, rows=None):
     struck = strike_velocity(start, *shots, view.params)
     # the cue ball's contacts in order where the rules read them (three-cushion)
     return simulate(struck, view.table, view.params, effects=view.effects, models=view.models,
-                    options=SimOptions(validate=False, contacts=getattr(view.rules, "contacts", 0)))
+                    options=SimOptions(validate=False, contacts=getattr(view.rules, "contacts", 0), inplace=True))
 
 
 def preview(view, plan, rows=None, noise=None, rng=None, start: BallState | None = None):

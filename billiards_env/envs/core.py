@@ -264,12 +264,13 @@ class BilliardsCore:
 
     # --- simulation -------------------------------------------------------
     def simulate(self, state: BallState):
-        """Simulate struck tables to rest with this env's table, physics, solver, effects and models."""
+        """Simulate struck tables to rest with this env's table, physics, solver, effects and models.
+        ``state``: a struck state the caller has just made; the kernel works in its arrays."""
         c = self.cfg
         k = getattr(getattr(self, "task", None), "contacts", 0)  # the contact order, where the task reads it
         return simulate(state, self.table, self.params, solver=c.solver, dt=c.dt,
                         record=self.record, effects=self.effects, models=self.models,
-                        options=SimOptions(validate=False, contacts=k))  # states are ours, already checked
+                        options=SimOptions(validate=False, contacts=k, inplace=True))  # states are ours, checked
 
     @staticmethod
     def at_rest(s: BallState) -> BallState:

@@ -396,7 +396,7 @@ class GameCore(BilliardsCore):
         c = self.cfg
         return simulate(state, self.table, self.params, solver=c.solver, dt=c.dt, record=self.record,
                         effects=self.effects, models=self.models,
-                        options=SimOptions(validate=False, contacts=self.rules.contacts))
+                        options=SimOptions(validate=False, contacts=self.rules.contacts, inplace=True))
 
     # --- bots ------------------------------------------------------------------------
     def view(self, idx) -> GameView:
