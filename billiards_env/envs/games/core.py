@@ -47,7 +47,8 @@ import time
 import numpy as np
 
 from ...bots.view import GameView
-from ...physics import BallState, Effects, Models, PhysicsParams, SimOptions, Table, simulate, strike_velocity
+from ...physics import BallState, Effects, Models, PhysicsParams, SimOptions, Table, simulate
+from ...physics.strike import apply_strike
 from ...rules import GameState, ShotInput, get_rules
 from ...rules import records as R
 from ..config import NoiseConfig, _number
@@ -348,7 +349,9 @@ class GameCore(BilliardsCore):
             shots = self.apply_noise(self.actions_to_shots(np.ascontiguousarray(a[shoot, :4]), sel), sel,
                                      self.noise_scale[sel])
             t0 = time.perf_counter()
-            res = self.simulate(strike_velocity(start.take(shoot), *shots, self.params))
+            struck = start.take(shoot)  # a copy, struck in place: the actions were checked at the boundary
+            apply_strike(struck, *shots, self.params.R)
+            res = self.simulate(struck)
             self.timers["simulate"] += time.perf_counter() - t0
             pocket_after[shoot], pos_after[shoot] = res.state.pocket, res.state.pos
             first[shoot] = res.first_contact
