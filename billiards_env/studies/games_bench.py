@@ -88,8 +88,8 @@ def games_per_second(game: str = "nine_ball", n_tables: int = 1024, n_games: int
         restore()
     t_pol = clock["bots"]
     sim, rules = core.timers["simulate"], core.timers["rules"]
-    return dict(game=game, tables=n_tables, policies=list(policies), noise=noise, games=games, steps=steps,
-                seconds=wall, games_per_second=games / wall, shots_per_game=float(np.mean(shots)),
+    return dict(game=game, tables=n_tables, policies=list(policies), noise=noise, rule_options=dict(rule_options or {}),
+                games=games, steps=steps, seconds=wall, games_per_second=games / wall, shots_per_game=float(np.mean(shots)),
                 split=dict(simulate=sim, rules=rules, policies=t_pol - psim["t"], policy_simulate=psim["t"],
                            other=wall - sim - rules - t_pol))
 
@@ -168,6 +168,10 @@ def warm(game: str) -> None:
 
 
 QUICK_RULES = {"three_cushion": {"max_innings": 3}}  # a quick run's games: three innings each
+# A full run's three-cushion games end after 10 innings each (an innings limit, as UMB events set one): games to
+# the default target take about 110 shots, and 3 x 1,024 of them took half an hour on 2 cores; one game per table.
+FULL_RULES = {"three_cushion": {"max_innings": 10}}
+GAMES_PER_TABLE = {"three_cushion": 1}
 
 
 def rows(games=("nine_ball",), n_tables: int = 1024, n_games: int = 3072, n_steps: int = 30,
@@ -175,7 +179,8 @@ def rows(games=("nine_ball",), n_tables: int = 1024, n_games: int = 3072, n_step
     out = []
     for g in games:
         warm(g)
-        out.append(games_per_second(g, n_tables, n_games, rule_options=QUICK_RULES.get(g) if quick else None))
+        games = n_tables * GAMES_PER_TABLE[g] if g in GAMES_PER_TABLE else n_games
+        out.append(games_per_second(g, n_tables, games, rule_options=(QUICK_RULES if quick else FULL_RULES).get(g)))
         out.append(vector_steps_per_second(g, n_tables, n_steps))
     return out
 
@@ -186,7 +191,8 @@ def markdown(results: list[dict]) -> str:
     for r in results:
         s = r["split"]
         if "games_per_second" in r:
-            lines.append(f"| games/s, {' vs '.join(r['policies'])} | {r['game']} | {r['tables']} | "
+            opts = ", ".join(f"{k}={v}" for k, v in r.get("rule_options", {}).items())
+            lines.append(f"| games/s, {' vs '.join(r['policies'])} | {r['game']}{f' ({opts})' if opts else ''} | {r['tables']} | "
                          f"**{r['games_per_second']:,.0f}** ({r['games']} games) | {r['shots_per_game']:.1f} | "
                          f"{s['simulate']:.2f} | {s['rules']:.2f} | "
                          f"{s['policies']:.2f} (+{s['policy_simulate']:.2f}) | "
