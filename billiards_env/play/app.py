@@ -30,7 +30,8 @@ from pathlib import Path
 import numpy as np
 
 from ..bots.registry import BOT_NAMES, DEFAULT_SEARCH_K, is_bot_name
-from ..bots.registry import default_bot, make_bot
+from ..bots.registry import DEFAULT_BOTS, default_bot, make_bot
+from ..bots.learned.ladder import ladder_names
 from ..envs.games import GAMES
 from ..envs.games.core import NOISE_LEVELS
 from ..rendering.game_words import game_words
@@ -44,7 +45,18 @@ MAX_SEED = 2 ** 63 - 1    # seeds are taken modulo 2**64 by the streams; larger 
 # server is started with it, ``--bot``: a request never makes the server import code)
 OFFERED_BOTS = tuple(sorted((f"search{DEFAULT_SEARCH_K}" if n == "search<K>" else n for n in BOT_NAMES
                              if "<" not in n or n == "search<K>"), key=lambda n: n != "ghost"))  # ghost first
+# the bots that play the pool games (the games without a bot of their own in bots.registry.DEFAULT_BOTS)
+POOL_BOTS = ("ghost", "ghost-safety", f"search{DEFAULT_SEARCH_K}", "lookahead", "random")
 HERE = Path(__file__).resolve().parent
+
+
+def game_bots(game: str) -> list[str]:
+    """The opponents the lobby offers for ``game``: its default bot first, then the pool bots on the pool
+    games (a game with a bot of its own, snooker or three-cushion, adds ``random`` only), then the game's
+    shipped ladder rungs (``ladder-1``..: 9-ball and 8-ball)."""
+    own = default_bot(game)
+    rest = ("random",) if game in DEFAULT_BOTS else POOL_BOTS
+    return [own] + [b for b in rest if b != own] + ladder_names(game)
 DECLARATIONS = ("push_out", "pass")
 SHOT_FIELDS = {"player", "aim", "speed", "side", "height", "placement", "declare", "pocket", "ball"}
 NEW_FIELDS = {"game", "opponent", "players", "seed", "breaker", "noise"}
@@ -101,7 +113,7 @@ def shot_request(req, lim: dict) -> dict:
     if req.get("pocket") is not None:
         out["pocket"] = _integer(req, "pocket", 0, 5)
     if req.get("ball") is not None:
-        out["ball"] = _integer(req, "ball", 0, 15)
+        out["ball"] = _integer(req, "ball", 0, lim["max_ball"])
     return out
 
 
@@ -203,8 +215,11 @@ def create_app(max_games: int = MAX_GAMES, extra_bots=()):
         return HTMLResponse((HERE / "lobby.html").read_text())
 
     async def options(request):
-        return JSONResponse({"games": [{"id": g, "title": game_words(g)} for g in GAMES],
-                             "bots": list(OFFERED_BOTS) + list(extra_bots), "bot_names": list(BOT_NAMES), "human": HUMAN,
+        per_game = {g: game_bots(g) + list(extra_bots) for g in GAMES}
+        offered = list(dict.fromkeys(list(OFFERED_BOTS) + [b for g in GAMES for b in per_game[g]]))
+        return JSONResponse({"games": [{"id": g, "title": game_words(g), "default_bot": default_bot(g),
+                                        "bots": per_game[g]} for g in GAMES],
+                             "bots": offered, "bot_names": list(BOT_NAMES), "human": HUMAN,
                              "noise": list(NOISE_LEVELS), "max_games": store.limit})
 
     async def new_game(request):

@@ -30,6 +30,7 @@ import numpy as np
 from .browser import PagePerson
 
 FPS_SECONDS = 2.5        # s of break animation timed at 1x
+WARM_TURNS = 40         # untimed turns per bot before its timings (its kernels compiled; numba caches them on disk)
 PHONE = {"width": 390, "height": 844, "deviceScaleFactor": 3, "mobile": True}
 
 
@@ -57,6 +58,20 @@ def _new_game(client, bot: str, seed: int) -> str:
     if status != 201:
         raise RuntimeError(f"could not start a game: {g}")
     return g["id"]
+
+
+def warm(client, bot: str, turns: int = WARM_TURNS) -> None:
+    """Play ``turns`` turns of ``bot`` against itself through the API (new racks as games end), so that the
+    kernels of its rarer paths (safeties, kicks, ball in hand) are compiled before anything is timed."""
+    gid, seed = None, 0
+    for _ in range(turns):
+        if gid is None:
+            status, g = client("POST", "/api/games", {"game": "nine_ball", "players": [bot, bot], "seed": seed})
+            seed += 1
+            gid = g["id"]
+        status, r = client("POST", f"/api/games/{gid}/bot")
+        if status != 200 or r["state"]["over"]:
+            gid = None
 
 
 def measure_bot(driver, client, bot: str, shots: int, seed0: int = 100, progress=print) -> dict:
@@ -157,10 +172,8 @@ def run(bots, shots: int, out: Path | None, docs: Path | None = None, fps: bool 
     rows = []
     try:
         for bot in bots:
-            progress(f"{bot}: warming up its kernels")
-            gid = _new_game(client, bot, 0)
-            client("POST", f"/api/games/{gid}/shot", {"player": 0, "aim": 1.5707963267948966, "speed": 8.0})
-            client("POST", f"/api/games/{gid}/bot")
+            progress(f"{bot}: warming up its kernels ({WARM_TURNS} turns of the bot against itself, not timed)")
+            warm(client, bot)
             got = measure_bot(driver, client, bot, shots, progress=progress)
             rows.append({"bot": bot, "shot": summary(got["shot"]), "bot_reply": summary(got["bot"]),
                          "think": summary(got["think"])})

@@ -24,12 +24,14 @@ from ..rendering.game_replay import GameRecorder, state_words
 from ..rendering.game_words import game_words, pocket_names
 from ..rendering.replay import Replay
 from ..rules import records as R
-from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP
+from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP, d_of
+from ..rules.snooker import FIRST_COLOUR
 from ..physics.params import draw_to_speed
 from ..physics.state import SPOT_CLEAR, SPOT_EDGE
 
 HUMAN = "human"          # a player's name for a person at the screen
 MAX_SHOTS = 200          # shot cap of a played game (GameConfig.max_shots): a draw after this many shots
+NOMINATING = ("snooker",)  # games whose call is a ball alone (snooker's nominated colour or free ball), no pocket
 
 
 class PlayError(Exception):
@@ -54,6 +56,11 @@ def placement_problem(core: GameCore, xy) -> str | None:
         return f"the cue ball at {where} is off the bed or touches a cushion (its centre must keep {edge:.4f} m inside)"
     if core.constraints().ball_in_hand[0] == R.IN_HAND_KITCHEN and y > HEAD_STRING * t.length - KITCHEN_GAP:
         return f"the cue ball at {where} is beyond the head string (y must be below {HEAD_STRING * t.length:.4f} m)"
+    d = d_of(t)
+    if core.constraints().ball_in_hand[0] == R.IN_HAND_D and not (y <= d[1] - KITCHEN_GAP and
+                                                                   math.hypot(x - d[0], y - d[1]) <= d[2]):
+        return (f"the cue ball at {where} is outside the D (within {d[2]:.4f} m of ({d[0]:.4f}, {d[1]:.4f}) m, "
+                "on the baulk side of the line)")
     d = np.hypot(s.pos[0, 1:, 0] - x, s.pos[0, 1:, 1] - y)
     on = s.pocket[0, 1:] < 0
     hit = np.nonzero(on & (d < 2 * Rb + SPOT_CLEAR))[0]
@@ -142,15 +149,19 @@ class Session:
             "id": self.id, "game": self.game, "title": game_words(self.game), "seed": self.seed,
             "players": self.players, "names": self.names, "over": over, "truncated": over and not bool(g.over[k]),
             "human_to_move": not over and self.bots[to_move] is None, "in_hand_code": int(cons.ball_in_hand[k]),
-            "calls_ball": bool(c.rules.calls_ball), "n_shots": self.n_shots(),
+            "calls_ball": bool(c.rules.calls_ball), "calls_pocket": self.game not in NOMINATING,
+            "n_shots": self.n_shots(), "points": g.score[k].astype(int).tolist() if c.rules.extra_obs else None,
+            "target": getattr(c.rules, "target", None),
             "pos": c.state.pos[k].tolist(), "on_table": (c.state.pocket[k] < 0).tolist(),
             "limits": {"speed_min": float(draw_to_speed(c.cfg.min_draw, p)), "speed_max": float(p.max_speed),
                        "tip_max": float(p.miscue_limit), "R": float(p.R), "width": float(t.width),
                        "length": float(t.length), "head_string": HEAD_STRING * t.length,
                        "foot_spot": [t.width / 2, FOOT_SPOT * t.length],
                        "kitchen_y_max": HEAD_STRING * t.length - KITCHEN_GAP, "edge": float(p.R + SPOT_EDGE),
-                       "clear": float(2 * p.R + SPOT_CLEAR)},
-            "pockets": c.pockets.tolist(), "pocket_names": pocket_names(c.pockets),
+                       "clear": float(2 * p.R + SPOT_CLEAR),
+                       "d": None if d_of(t) is None else d_of(t).tolist(), "kitchen_gap": KITCHEN_GAP,
+                       "max_ball": int(c.n_balls - 1)},
+            "pockets": c.pockets.tolist(), "hint_bot": default_bot(self.game), "pocket_names": pocket_names(c.pockets),
         })
         return st
 
@@ -179,8 +190,10 @@ class Session:
         cons = c.constraints()
         declare = req.get("declare")
         if declare == "pass" and not cons.may_pass[0]:
-            raise PlayError(400, "passing the shot back is not allowed now (only right after the opponent's "
-                                 "push-out, or in 10-ball after an illegal pot)")
+            raise PlayError(400, "putting the opponent back in is not allowed now (only right after the opponent's "
+                                 "foul)" if self.game in NOMINATING else
+                            "passing the shot back is not allowed now (only right after the opponent's "
+                            "push-out, or in 10-ball after an illegal pot)")
         if declare == "push_out" and not cons.push_out_allowed[0]:
             raise PlayError(400, "a push-out is not allowed now (only on the shot right after the break)")
         placement = None
@@ -195,7 +208,10 @@ class Session:
         elif req.get("placement") is not None and declare != "pass":
             raise PlayError(400, "the cue ball is not in hand: it is played from where it lies (leave out placement)")
         pocket = req.get("pocket")
-        if cons.call_needed[0] and declare != "pass" and pocket is None:
+        nominating = self.game in NOMINATING
+        if pocket is not None and nominating:
+            raise PlayError(400, f"{game_words(self.game)} has no called pockets (leave out pocket; nominate a ball)")
+        if cons.call_needed[0] and declare != "pass" and pocket is None and not nominating:
             raise PlayError(400, "this shot needs a called pocket: click a pocket (pocket 0..5)")
         ball = req.get("ball")
         if ball is not None and (not c.rules.calls_ball or ball > c.n_balls - 1):
@@ -203,6 +219,10 @@ class Session:
                             f"{game_words(self.game)} has no called balls")
         if ball is not None and ball > 0 and c.state.pocket[0, ball] >= 0:
             raise PlayError(400, f"ball {ball} is not on the table")
+        if nominating and ball is not None:
+            ball = self._nomination(ball, cons)
+        elif nominating:  # none nominated: the colour hit first counts (an obvious nomination), as a bot's -1
+            ball = 0
         codec = c.codec([0])
         actions = codec.encode((req["aim"], req["speed"], req.get("side", 0.0), req.get("height", 0.0)),
                                placement=placement, declare=np.array([declare is not None]),
@@ -210,6 +230,17 @@ class Session:
                                ball=None if ball is None else np.array([ball]))
         self.inputs.append(dict(req))
         return self._play(actions, 0.0)
+
+    def _nomination(self, ball: int, cons) -> int:
+        """Snooker: check a nominated ``ball`` (a colour after a red; a free ball: any ball on the table)."""
+        if not cons.call_needed[0]:
+            raise PlayError(400, "no nomination is asked for now (only a colour after a potted red, or a free ball)")
+        free = not bool(self.core.game.phase[0] == R.PHASE_COLOUR)
+        if ball == 0 or (not free and ball < FIRST_COLOUR):
+            raise PlayError(400, f"ball {ball} cannot be nominated: after a red, nominate a colour "
+                                 f"({FIRST_COLOUR}..{self.core.n_balls - 1}: yellow .. black)" if not free else
+                            f"ball {ball} cannot be nominated as the free ball: nominate an object ball on the table")
+        return ball
 
     def bot_shot(self) -> list[dict]:
         """Let the bot to move play its turn: returns the new replay entries."""
@@ -238,6 +269,12 @@ class Session:
                "height": float(plan.b[0])}
         if not np.isnan(plan.placement[0, 0]):
             out["placement"] = plan.placement[0].tolist()
-        if plan.pocket[0] >= 0:
+        if plan.pocket[0] >= 0 and self.game not in NOMINATING:
             out["pocket"] = int(plan.pocket[0])
+        if self.game in NOMINATING:  # snooker: the bot's nomination, and its choice to put the offender back in
+            cons = self.core.constraints()
+            if plan.ball[0] > 0 and cons.call_needed[0]:
+                out["ball"] = int(plan.ball[0])
+            if plan.declare[0] and cons.may_pass[0]:
+                out["declare"] = "pass"
         return out

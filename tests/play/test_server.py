@@ -207,3 +207,82 @@ def test_every_game_of_the_library_plays(server):
         status, r = server("POST", f"/api/games/{g['id']}/bot")
         assert status == 200 and r["shots"][0]["info"]["game"]["before"]["break"], r
         assert server("GET", f"/api/games/{g['id']}/hint")[0] in (200, 409)
+
+
+def _play_hints_until(server, gid, done, turns=40):
+    """Play the hint's shot (the game's default bot's) for whoever is to move until ``done(state)``."""
+    st = server("GET", f"/api/games/{gid}")[1]["state"]
+    for _ in range(turns):
+        if done(st) or st["over"]:
+            return st
+        h = server("GET", f"/api/games/{gid}/hint")[1]
+        h.pop("declare", None)
+        status, r = server("POST", f"/api/games/{gid}/shot", {"player": st["to_move"], **h})
+        assert status == 200, r
+        st = r["state"]
+    pytest.fail(f"not reached in {turns} turns")
+
+
+def test_snooker_nomination_put_back_and_the_d(server):
+    """Snooker between two people: the break-off from outside the D is refused; after a potted red the
+    nomination must be a colour (no pocket), and a nominated black played at another colour is a foul worth 7;
+    the incoming player then puts the offender back in (the page's button: declare "pass")."""
+    g = new_game(server, game="snooker", opponent="human", seed=2)
+    gid, lim = g["id"], g["limits"]
+    assert g["ball_in_hand"] == "in the D" and g["points"] == [0, 0] and not g["calls_pocket"] and lim["d"]
+    status, r = server("POST", f"/api/games/{gid}/shot", {"player": 0, "aim": 1.5, "speed": 3.0,
+                                                           "placement": [lim["width"] / 2, lim["length"] / 2]})
+    assert status == 400 and "outside the D" in r["error"], r
+    st = _play_hints_until(server, gid, lambda s: s["call_needed"] and not s["may_pass"])
+    assert st["targets"] == list(range(16, 22)), st["targets"]   # the colours are on after a red
+    h = server("GET", f"/api/games/{gid}/hint")[1]
+    shot = {"player": st["to_move"], **{k: v for k, v in h.items() if k not in ("ball", "declare")}}
+    assert "pocket" not in h and h.get("ball", 16) in st["targets"], h
+    red = next(b for b in range(1, 16) if st["on_table"][b])
+    status, r = server("POST", f"/api/games/{gid}/shot", {**shot, "ball": red})
+    assert status == 400 and "nominate a colour" in r["error"], r
+    status, r = server("POST", f"/api/games/{gid}/shot", {**shot, "ball": 21, "pocket": 2})
+    assert status == 400 and "no called pockets" in r["error"], r
+    if h.get("ball") == 21:
+        pytest.fail("the hint plays at the black: pick another seed")
+    shooter, before = st["to_move"], st["points"]
+    status, r = server("POST", f"/api/games/{gid}/shot", {**shot, "ball": 21})   # the black nominated
+    assert status == 200, r
+    st, ruled = r["state"], r["shots"][-1]["info"]["game"]
+    assert ruled["foul"] and st["points"][1 - shooter] == before[1 - shooter] + 7, (ruled["ruling"], st["points"])
+    assert st["to_move"] == 1 - shooter and st["may_pass"]
+    status, r = server("POST", f"/api/games/{gid}/shot", {"player": 1 - shooter, "declare": "pass"})
+    assert status == 200 and r["shots"][-1]["info"]["game"]["passed"], r
+    assert r["state"]["to_move"] == shooter and not r["state"]["may_pass"]
+    status, r = server("POST", f"/api/games/{gid}/shot", {"player": shooter, "declare": "pass"})
+    assert status == 400 and "putting the opponent back in is not allowed now" in r["error"], r
+
+
+def test_three_cushion_turn_scores_and_no_pockets(server):
+    """Three-cushion against the game's own bot (``carom`` when no opponent is named): no pockets to call,
+    the points and the target in the state, and a person's turn then the bot's reply."""
+    status, g = server("POST", "/api/games", {"game": "three_cushion", "seed": 3})
+    assert status == 201 and g["players"] == ["human", "carom"] and g["hint_bot"] == "carom", g
+    assert g["pockets"] == [] and not g["call_needed"] and g["points"] == [0, 0] and g["target"] >= 1
+    gid = g["id"]
+    h = server("GET", f"/api/games/{gid}/hint")[1]
+    assert "pocket" not in h and "placement" not in h, h
+    status, r = server("POST", f"/api/games/{gid}/shot", {"player": 0, **h})
+    assert status == 200, r
+    ruled, st = r["shots"][-1]["info"]["game"], r["state"]
+    assert st["points"] == ruled["score"] and sum(st["points"]) == ruled["points"] in (0, 1), (ruled, st["points"])
+    if not st["human_to_move"]:
+        status, r = server("POST", f"/api/games/{gid}/bot")
+        assert status == 200 and r["state"]["points"] == r["shots"][-1]["info"]["game"]["score"], r
+
+
+def test_the_lobby_offers_each_game_its_bots(server):
+    """Each game's opponents: its default bot first, the pool bots on the pool games, the ladder where shipped."""
+    games = {g["id"]: g for g in server("GET", "/api/options")[1]["games"]}
+    for game in ("nine_ball", "eight_ball"):
+        assert games[game]["bots"][0] == "ghost" and games[game]["bots"][-3:] == ["ladder-1", "ladder-2", "ladder-3"]
+    assert not any(b.startswith("ladder") for b in games["ten_ball"]["bots"] + games["snooker"]["bots"])
+    assert games["three_cushion"]["default_bot"] == "carom" and "ghost" not in games["three_cushion"]["bots"]
+    assert games["snooker"]["bots"][0] == "snooker"
+    status, g = server("POST", "/api/games", {"game": "nine_ball", "opponent": "ladder-3", "seed": 1, "breaker": 1})
+    assert status == 201 and server("POST", f"/api/games/{g['id']}/bot")[0] == 200
