@@ -14,7 +14,7 @@ saying what is wrong; nothing else is served):
 ``POST /api/games/{id}/shot``            a person's turn: ``{player, aim, speed, side?, height?,
                                          placement?, declare?, pocket?, ball?}``
 ``POST /api/games/{id}/bot``             the bot to move plays its turn
-``GET /api/games/{id}/hint``             the ``ghost`` bot's shot for the player to move
+``GET /api/games/{id}/hint``             the game's own bot's shot for the player to move
 ``GET /api/games/{id}/replay.html``      the game so far as one self-contained replay page
 =======================================  ==================================================
 """

@@ -16,7 +16,8 @@ from billiards_env.play.browser import PagePerson
 from billiards_env.play.session import MAX_SHOTS
 from billiards_env.rendering.game_replay import GameRecorder
 
-SEED = 6  # a rack where the person breaks and pots (a push-out is offered), later has ball in hand, and the bot wins
+SEED = 5  # a rack where the person breaks and pots (a push-out is offered) and later has ball in hand (seed 6
+#          offered no push-out once main's pool racks changed: the test failed on main at c5e64d6)
 
 
 def direct_record(seed: int, sent: list[dict]) -> list[dict]:
