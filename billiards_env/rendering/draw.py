@@ -157,11 +157,12 @@ def positions_at(log, params, n_balls: int, t: float, effects=None):
 
 
 def render_table(table, params, pos, pocket=None, paths=None, ppm: float = PPM,
-                 border: float = BORDER) -> np.ndarray:
+                 border: float = BORDER, ids=None) -> np.ndarray:
     """RGB uint8 image [H, W, 3] (see ``image_size``) of the table with its
     cushions, pockets and the balls at ``pos [B, 2]`` (those with
     ``pocket >= 0`` are not drawn); ``paths`` (list of [K, 2]) are drawn
-    under the balls in each ball's colour."""
+    under the balls in each ball's colour; ``ids`` [B]: the ball in each
+    slot, whose colour it is drawn in (default: slot i is ball i)."""
     H, W = image_size(table, ppm, border)
     img = Image.new("RGB", (W, H), RAIL_COLOR)
     d = ImageDraw.Draw(img)
@@ -190,14 +191,14 @@ def render_table(table, params, pos, pocket=None, paths=None, ppm: float = PPM,
         for i in reversed(range(len(paths))):  # cue-ball path on top
             pth = paths[i]
             if len(pth) > 1:
-                d.line(P(pth), fill=ball_color(i, style), width=max(1, int(ppm * 0.006)))
+                d.line(P(pth), fill=ball_color(i if ids is None else ids[i], style), width=max(1, int(ppm * 0.006)))
     rp = R * ppm
     for i in range(len(pos)):
         if pocket[i] >= 0:
             continue
         cx, cy = world_to_pixel(table, pos[i], ppm, border)
         box = [cx - rp, cy - rp, cx + rp, cy + rp]
-        col = ball_color(i, style)
+        col = ball_color(i if ids is None else ids[i], style)
         d.ellipse(box, fill=col, outline=(0, 0, 0))
         if i >= 9 and numbered:  # stripe: white caps above and below a coloured band of 1.3 R
             d.chord(box, 180 + STRIPE_ANGLE, 360 - STRIPE_ANGLE, fill=(255, 255, 255))

@@ -16,7 +16,7 @@ from PIL import Image, ImageDraw, ImageFont
 
 from ..rules import END_NAMES, FOUL_NAMES
 from ..rules import records as R
-from .game_words import GROUP_WORDS, IN_HAND_WORDS
+from .game_words import GROUP_WORDS, IN_HAND_WORDS, ball_ids
 from .draw import BORDER, PPM, Animation, positions_at, render_table, world_to_pixel, write_animation
 
 PANEL_LINES = 4
@@ -72,7 +72,9 @@ def render_game(core, k: int = 0, info: dict | None = None, pos=None, on=None, p
     s, c, t = core.state, core.constraints(), core.table
     pos = s.pos[k] if pos is None else pos
     on = (s.pocket[k] < 0) if on is None else on
-    img = render_table(t, core.params, pos, np.where(on, -1, 0), paths=paths, ppm=ppm)
+    # balls drawn in their owners' colours (three-cushion); during a shot's frames, the shot's shooter's
+    shooter = int(info["shooter"][k]) if pos is not None and info is not None else None
+    img = render_table(t, core.params, pos, np.where(on, -1, 0), paths=paths, ppm=ppm, ids=ball_ids(core, k, shooter))
     H, W, _ = img.shape
     canvas = Image.new("RGB", (W, H + PANEL_LINES * LINE_PX + 4), (20, 20, 20))
     canvas.paste(Image.fromarray(img), (0, 0))

@@ -24,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..rules import HEAD_STRING
-from .game_words import (end_words, foul_words, game_words, group_words, in_hand_words, player_labels,
+from .game_words import (ball_ids, end_words, foul_words, game_words, group_words, in_hand_words, player_labels,
                          pocket_names, ruling_words)
 from .replay import Replay
 
@@ -140,7 +140,7 @@ class GameRecorder:
             rep = self._games[k][-1]
             shot_info = {"action": action.tolist(), "game": game}
             if core.rules.own_cue_balls:  # the ball in each slot: slot 0 is the shooter's (the starter's is white)
-                shot_info["ball_ids"] = [0, 1, 2] if s == int(core.game.breaker[k]) else [1, 0, 2]
+                shot_info["ball_ids"] = ball_ids(core, k, s)
             if "score" in info and core.rules.extra_obs:  # games to a score: the shot's points, the score after it
                 game["points"] = int(info["points"][j])
                 game["score"] = np.asarray(info["score"][j]).astype(int).tolist()

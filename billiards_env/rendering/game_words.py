@@ -70,6 +70,18 @@ def balls_words(balls) -> str:
     return ", ".join(b[:-1]) + " and " + b[-1]
 
 
+def ball_ids(core, k: int, shooter: int | None = None):
+    """Which ball lies in each slot of table ``k``, in games where each player
+    has their own cue ball (three-cushion): slot 0 is always the ball of the
+    player to move (``shooter``; default the core's), and ball 0 (white) is
+    the starter's, so the slots of the second player's innings hold balls
+    [1, 0, 2]. None in the other games (slot i is ball i)."""
+    if not core.rules.own_cue_balls:
+        return None
+    s = int(core.game.shooter[k]) if shooter is None else int(shooter)
+    return [0, 1, 2] if s == int(core.game.breaker[k]) else [1, 0, 2]
+
+
 def player_labels(n: int = 2) -> list[str]:
     """How the rulings name the players: 'Player 1', 'Player 2'."""
     return [f"Player {i + 1}" for i in range(n)]
