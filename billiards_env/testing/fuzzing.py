@@ -47,13 +47,22 @@ def carom_batch(rng, n_envs, pockets=False):
                 ok &= (d >= 2 * R - 1e-12).all(1)
             pos[todo[ok], b] = p[ok]
             todo = todo[~ok]
-    s = BallState.from_positions(pos)
-    phi = rng.uniform(0, 2 * np.pi, n_envs)
-    draw = params.max_draw * rng.uniform(0, 1, n_envs) ** 0.5
-    r = params.miscue_limit * np.sqrt(rng.uniform(0, 1, n_envs)) * (1 - 1e-12)
-    r = np.where(rng.random(n_envs) < CAROM_EXTREME_SPIN, params.miscue_limit * (1 - 1e-12), r)
-    ang = rng.uniform(0, 2 * np.pi, n_envs)
-    return strike(s, phi, draw, r * np.cos(ang), r * np.sin(ang), params), table, params
+    return random_strikes(BallState.from_positions(pos), rng, params, CAROM_EXTREME_SPIN), table, params
+
+
+def random_strikes(s, rng, params, extreme_spin: float = 0.0):
+    """``s`` struck at random: any aim, the draw's square root uniform, tip
+    offsets uniform over the miscue disc, a fraction ``extreme_spin`` of them
+    moved onto its edge (drawn only when asked for: the pool fuzzing's draws
+    stay as they were)."""
+    n = s.n_envs
+    phi = rng.uniform(0, 2 * np.pi, n)
+    draw = params.max_draw * rng.uniform(0, 1, n) ** 0.5
+    r = params.miscue_limit * np.sqrt(rng.uniform(0, 1, n)) * (1 - 1e-12)
+    if extreme_spin:
+        r = np.where(rng.random(n) < extreme_spin, params.miscue_limit * (1 - 1e-12), r)
+    ang = rng.uniform(0, 2 * np.pi, n)
+    return strike(s, phi, draw, r * np.cos(ang), r * np.sin(ang), params)
 # On the snooker table: the frozen 22-ball frame opening, random balls, and random balls of which about half lie
 # in a pocket's mouth or jaws (within JAW_REACH of a pocket's capture circle centre).
 SNOOKER_LAYOUTS = ("snooker", "random", "jaws")
@@ -105,12 +114,7 @@ def random_batch(rng, n_envs, layout, preset, n_balls=None, pockets=True, table_
                 pos[todo[ok], b] = p[ok]
                 todo = todo[~ok]
         s = BallState.from_positions(pos)
-    phi = rng.uniform(0, 2 * np.pi, n_envs)
-    draw = params.max_draw * rng.uniform(0, 1, n_envs) ** 0.5
-    r = params.miscue_limit * np.sqrt(rng.uniform(0, 1, n_envs)) * (1 - 1e-12)
-    ang = rng.uniform(0, 2 * np.pi, n_envs)
-    s = strike(s, phi, draw, r * np.cos(ang), r * np.sin(ang), params)
-    return s, table, params
+    return random_strikes(s, rng, params), table, params
 
 
 def run_batch(state, table, params, solver, dt=1e-3, effects=None, models=None):
