@@ -23,6 +23,7 @@ def main(argv=None) -> int:
     import billiards_env  # noqa: F401 (registers the ids)
     from billiards_env.envs.registration import ENV_IDS, GAME_IDS
     from billiards_env.rendering import RecordReplay
+    from billiards_env.bots.registry import default_bot
     from billiards_env.studies.matches import play_pairing
 
     argv = sys.argv[1:] if argv is None else argv
@@ -42,16 +43,23 @@ def main(argv=None) -> int:
         venv.step(venv.action_space.sample())
         print(f"ok  {env_id}: made, stepped, rendered {frame.shape[1]}x{frame.shape[0]}; vector env stepped")
     for env_id in GAME_IDS:
-        env = gym.make(env_id, opponent="ghost")
+        env = gym.make(env_id)
+        game = env.unwrapped.core.config.game
+        # the pool games against ghost and search16; the others against their own bot (no pockets to pot in)
+        single, vector = ("ghost", "search16") if default_bot(game) == "ghost" else (default_bot(game),) * 2
+        env = gym.make(env_id, opponent=single)
         env.reset(seed=0)
         env.step(env.action_space.sample())
-        venv = gym.make_vec(env_id, num_envs=4, vectorization_mode="vector_entry_point", opponent="search16")
+        venv = gym.make_vec(env_id, num_envs=4, vectorization_mode="vector_entry_point", opponent=vector)
         venv.reset(seed=0)
         venv.step(venv.action_space.sample())
-        print(f"ok  {env_id}: made and stepped against ghost; versus vector env against search16")
+        print(f"ok  {env_id}: made and stepped against {single}; versus vector env against {vector}")
     r = play_pairing("ghost", "ghost-safety", "eight_ball", n_racks=2, seed=0, max_shots=60)
     assert r.n == 4, r
     print(f"ok  match: ghost vs ghost-safety, {r.n} games of 8-ball, {r.shots.sum()} shots")
+    r = play_pairing("ladder-3", "ghost", "nine_ball", n_racks=1, seed=0, max_shots=60)  # the shipped weights load
+    assert r.n == 2, r
+    print(f"ok  match: ladder-3 vs ghost, {r.n} games of 9-ball (the package's ladder weights)")
     env = RecordReplay(gym.make("Billiards-PotOne-v0", render_mode="rgb_array"), out, name_prefix="smoke")
     env.reset(seed=0)
     done = False
