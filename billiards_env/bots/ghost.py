@@ -167,23 +167,29 @@ class GhostBot:
         return self.last_judged.record
 
     # --- safeties --------------------------------------------------------------
+    def target_lines(self, view, rows, pos, K: int):
+        """``K`` random legal targets per view row ``rows`` (cue ball at
+        ``pos[:, 0]``; any object ball where none is legal), for candidates
+        that hit them between their edges (a cut up to ~70 deg either side):
+        (rep [n K] the row of each, ball [n K], d [n K, 2] cue ball -> ball,
+        half [n K] the half-angle within which the cue ball still hits it)."""
+        R_, n = view.params.R, len(rows)
+        rep = np.repeat(np.arange(n), K)
+        w = (view.targets[rows] & view.on_table[rows]).astype(np.float64)
+        w[w.sum(axis=1) == 0, 1:] = 1.0
+        cdf = np.cumsum(w, axis=1) / w.sum(axis=1, keepdims=True)
+        ball = (self.rng.random((n * K, 1)) > cdf[rep]).sum(axis=1)
+        d = pos[rep, ball] - pos[rep, 0]
+        dist = np.maximum(np.linalg.norm(d, axis=1), 2 * R_)
+        return rep, ball, d, np.arcsin(np.minimum(2 * R_ / dist, 1.0)) * 0.95
+
     def safeties(self, view, rows: np.ndarray, pos: np.ndarray, k: int | None = None) -> tuple[Shots, np.ndarray]:
         """A safety per view row ``rows`` (cue ball at ``pos[:, 0]``): the best
         of ``safety_k`` soft shots at the legal targets, previewed and judged.
         Returns the shots and whether each is a legal shot."""
         R_ = view.params.R
         K, n = (k or self.safety_k), len(rows)
-        tg = view.targets[rows]
-        on = view.on_table[rows]
-        rep = np.repeat(np.arange(n), K)
-        # a random legal target per candidate, hit between its edges (cut up to ~70 deg either side)
-        w = (tg & on).astype(np.float64)
-        w[w.sum(axis=1) == 0, 1:] = 1.0
-        cdf = np.cumsum(w, axis=1) / w.sum(axis=1, keepdims=True)
-        ball = (self.rng.random((n * K, 1)) > cdf[rep]).sum(axis=1)
-        d = pos[rep, ball] - pos[rep, 0]
-        dist = np.maximum(np.linalg.norm(d, axis=1), 2 * R_)
-        half = np.arcsin(np.minimum(2 * R_ / dist, 1.0)) * 0.95
+        rep, ball, d, half = self.target_lines(view, rows, pos, K)
         phi = np.arctan2(d[:, 1], d[:, 0]) + half * self.rng.uniform(-1, 1, n * K)
         speed = np.exp(self.rng.uniform(*np.log(SAFETY_SPEEDS), n * K))
         b = self.rng.uniform(-0.3, 0.3, n * K)

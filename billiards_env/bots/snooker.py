@@ -68,17 +68,8 @@ class SnookerBot(GhostBot):
     def candidates(self, view, rows, pos, k, speeds, side_edge=False):
         """``k`` candidate soft shots per row at random balls on, between
         their edges (``side_edge``: thin on either edge): (rep, shots, ball)."""
-        R_ = view.params.R
         n = len(rows)
-        tg = view.targets[rows] & view.on_table[rows]
-        rep = np.repeat(np.arange(n), k)
-        w = tg.astype(np.float64)
-        w[w.sum(axis=1) == 0, 1:] = 1.0
-        cdf = np.cumsum(w, axis=1) / w.sum(axis=1, keepdims=True)
-        ball = (self.rng.random((n * k, 1)) > cdf[rep]).sum(axis=1)
-        d = pos[rep, ball] - pos[rep, 0]
-        dist = np.maximum(np.linalg.norm(d, axis=1), 2 * R_)
-        half = np.arcsin(np.minimum(2 * R_ / dist, 1.0)) * 0.95
+        rep, ball, d, half = self.target_lines(view, rows, pos, k)
         u = self.rng.uniform(-1, 1, n * k)
         if side_edge:
             u = np.sign(u) * (0.7 + 0.3 * np.abs(u))
