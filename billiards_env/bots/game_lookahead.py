@@ -283,9 +283,12 @@ class GameLookahead:
 
     name = "lookahead"
 
-    def __init__(self, seed: int = 0, budget: "Budget | None" = None, **changes):
+    def __init__(self, seed: int = 0, budget: "Budget | None" = None, leaf_value=None, **changes):
         """``budget``: the search's sizes and the leave model (``Budget``; the
-        default if None), with ``changes`` to its fields applied."""
+        default if None), with ``changes`` to its fields applied. ``leaf_value``: the valuer of the
+        leaves, ``leaf_value(view, pos, on, targets, ball_in_hand, ease) -> [k]`` the next shooter's chance
+        to win (``bots.learned.value``); None: ``position_value`` of the ease (the default)."""
+        self.leaf_value = leaf_value
         bud = dataclasses.replace(budget or Budget(), **changes)
         if bud.n_safe + bud.n_kick + bud.n_bank < 1:
             raise ValueError("GameLookahead needs n_safe + n_kick + n_bank >= 1 (every table keeps a candidate)")
@@ -353,7 +356,10 @@ class GameLookahead:
         rec, nxt = pv.record, pv.next
         hand = nxt.ball_in_hand != RR.IN_HAND_NONE
         e = self.leave_ease(view, pv.pos, pv.on_table, nxt.targets, hand)
-        v = self.position_value(view, e, pv.on_table, nxt.targets)
+        if self.leaf_value is None:
+            v = self.position_value(view, e, pv.on_table, nxt.targets)
+        else:
+            v = self.leaf_value(view, pv.pos, pv.on_table, nxt.targets, nxt.ball_in_hand, e)
         keep = nxt.shooter == rec.shooter
         val = np.where(keep, v, 1.0 - v)
         return np.where(rec.game_over, (rec.winner == rec.shooter).astype(np.float64), val)

@@ -13,6 +13,8 @@ games benchmark accept.
   by the point's probability under noise);
 - ``ladder-<k>`` (``bots.learned.ladder``): the k-th shipped learned agent
   of the game it is handed, weakest first (numpy only; no torch);
+- ``value-lookahead`` (``bots.learned.value``): ``lookahead`` ranking its leaves by the shipped learned
+  value of the game it is handed (trained by ``agents.league``, docs/league.md);
 - ``module:factory`` (for example ``my_bots:planner``): a bot of your own;
   ``factory(seed=...)`` must return an object with ``name`` and
   ``act(view: GameView) -> ShotPlan`` (docs/bots.md);
@@ -23,7 +25,7 @@ from __future__ import annotations
 import importlib
 
 BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "carom<K>", "snooker", "ladder-<k>",
-             "<module>:<factory>")
+             "value-lookahead", "<module>:<factory>")
 DEFAULT_SEARCH_K = 64
 # The bot a game is played by when none is named (the play app's opponent and hint): ``ghost``, but the pool
 # bots pot balls, so a game without pockets has its own.
@@ -37,7 +39,8 @@ def default_bot(game: str) -> str:
 
 def is_bot_name(name) -> bool:
     """Whether ``name`` names a built-in bot or a ``module:factory``."""
-    return isinstance(name, str) and (name in ("random", "ghost", "ghost-safety", "lookahead", "snooker") or ":" in name
+    return isinstance(name, str) and (name in ("random", "ghost", "ghost-safety", "lookahead", "snooker",
+                                                   "value-lookahead") or ":" in name
                                       or (name.startswith("search") and (name[6:].isdigit() or name == "search"))
                                       or (name.startswith("carom") and (name[5:].isdigit() or name == "carom"))
                                       or (name.startswith("ladder-") and name[7:].isdigit()))
@@ -61,6 +64,9 @@ def make_bot(spec, seed: int = 0):
     if spec == "lookahead":
         from .game_lookahead import GameLookahead
         return GameLookahead(seed=seed)
+    if spec == "value-lookahead":
+        from .learned.value import value_lookahead
+        return value_lookahead(seed=seed)
     if spec.startswith("search") and (spec[6:].isdigit() or spec == "search"):
         from .search import SearchBot
         return SearchBot(seed=seed, k=int(spec[6:]) if spec[6:] else DEFAULT_SEARCH_K)
