@@ -47,6 +47,7 @@ class JobResult:
     shots: np.ndarray     # [2 n_racks]
     x: np.ndarray | None = None  # [S, D] recorded tables (``record``)
     y: np.ndarray | None = None  # [S] their shooter's result
+    table: np.ndarray | None = None  # [S] the table (game) of the job each sample comes from
 
     @property
     def score_a(self) -> float:
@@ -84,13 +85,14 @@ class Recorder:
             self.movers.append(np.asarray(v.to_move))
         return self.bot.act(view)
 
-    def samples(self, winner: np.ndarray, d: int) -> tuple[np.ndarray, np.ndarray]:
+    def samples(self, winner: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+        """(tables [S, D], their shooter's result [S], the table of each [S]), or None if nothing was recorded."""
         if not self.x:
-            return np.zeros((0, d)), np.zeros(0)
+            return None
         rows, movers = np.concatenate(self.rows), np.concatenate(self.movers)
         w = winner[rows]
         y = np.where(w < 0, 0.5, (w == movers).astype(np.float64))
-        return np.concatenate(self.x), y
+        return np.concatenate(self.x), y, rows
 
 
 def play_job(job: Job) -> JobResult:
@@ -108,11 +110,9 @@ def play_job(job: Job) -> JobResult:
                      bot_factory=factory)
     out = JobResult(job, r.winner, r.a_broke, r.shots)
     if job.record:
-        parts = [rec.samples(r.winner, 0) for rec in recorders]
-        parts = [p for p in parts if len(p[1])]
+        parts = [p for p in (rec.samples(r.winner) for rec in recorders) if p is not None]
         if parts:
-            out.x = np.concatenate([p[0] for p in parts])
-            out.y = np.concatenate([p[1] for p in parts])
+            out.x, out.y, out.table = (np.concatenate([p[k] for p in parts]) for k in range(3))
     return out
 
 

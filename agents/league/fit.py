@@ -2,9 +2,15 @@
 
 Binary cross-entropy between the network's output and the recorded result of the shooter (1, 0, or 1/2 for a
 game cut at the shot cap), minimised by Adam over shuffled minibatches, with L2 weight decay. Inputs are
-standardised by the training set's mean and standard deviation (stored with the weights). Seeded: the same
-data, settings and seed give the same weights bit for bit. A held-out split (``val_frac``) reports the fitted
-network's log loss beside the constant predictor's (the data's mean result), so the fit shows what it learned.
+standardised by the training set's mean and standard deviation (stored with the weights). A new network's
+output layer starts at zero, so it starts as the lookahead's hand-made value (``bots.learned.value``).
+
+The samples of one game are strongly correlated (they share the label), so the held-out split (``val_frac``)
+holds out whole games (``groups``: a game id per sample; a table and its mirror image share one). The fit
+keeps the weights of the epoch with the lowest held-out log loss, the starting weights (epoch 0) included:
+a fit that cannot beat the starting value on games it did not see keeps it. The report gives that loss beside
+the starting one and the constant predictor's. Seeded: the same data, settings and seed give the same
+weights bit for bit.
 """
 from __future__ import annotations
 
@@ -12,7 +18,7 @@ import dataclasses
 
 import numpy as np
 
-from billiards_env.bots.learned.value import STD_FLOOR, ValueNet
+from billiards_env.bots.learned.value import STD_FLOOR, ValueNet, base_logit
 
 ADAM_EPS = 1e-8        # Adam's denominator guard (its paper's default)
 P_CLIP = 1e-7          # predicted probabilities kept this far from 0 and 1 in the log loss
@@ -34,22 +40,29 @@ def log_loss(p: np.ndarray, y: np.ndarray) -> float:
 
 
 def init_net(d: int, hidden, mean, std, rng) -> ValueNet:
+    """Random hidden layers (normal, 1/sqrt(fan-in)) and a zero output layer."""
     sizes = [d, *hidden, 1]
-    ws = tuple(rng.normal(0, 1 / np.sqrt(a), (b, a)) for a, b in zip(sizes[:-1], sizes[1:]))
+    ws = [rng.normal(0, 1 / np.sqrt(a), (b, a)) for a, b in zip(sizes[:-1], sizes[1:])]
+    ws[-1][:] = 0.0
+    ws = tuple(ws)
     bs = tuple(np.zeros(b) for b in sizes[1:])
     return ValueNet(ws, bs, mean, std)
 
 
 def fit_value(x: np.ndarray, y: np.ndarray, cfg: FitConfig, rng: np.random.Generator,
-              init: ValueNet | None = None) -> tuple[ValueNet, dict]:
+              init: ValueNet | None = None, groups: np.ndarray | None = None) -> tuple[ValueNet, dict]:
     """(network, report) fitted to inputs ``x`` [N, D] and results ``y`` [N]; ``init``: start from these
-    weights (its input statistics are replaced by the data's)."""
+    weights (its input statistics are replaced by the data's); ``groups`` [N]: the game of each sample (the
+    held-out split keeps games whole; default: every sample its own)."""
     x, y = np.asarray(x, np.float64), np.asarray(y, np.float64)
     if len(x) < 2:
         raise ValueError(f"fit_value needs at least 2 samples, got {len(x)}")
-    perm = rng.permutation(len(x))
-    n_val = int(round(cfg.val_frac * len(x)))
-    val, tr = perm[:n_val], perm[n_val:]
+    groups = np.arange(len(x)) if groups is None else np.asarray(groups)
+    ids = np.unique(groups)
+    held = rng.permutation(len(ids))[:int(round(cfg.val_frac * len(ids)))]
+    is_val = np.isin(groups, ids[held])
+    val, tr = np.nonzero(is_val)[0], np.nonzero(~is_val)[0]
+    n_val = len(val)
     mean, std = x[tr].mean(axis=0), np.maximum(x[tr].std(axis=0), STD_FLOOR)
     net = init_net(x.shape[1], cfg.hidden, mean, std, rng)
     if init is not None and init.in_dim == x.shape[1] and init.hidden == list(cfg.hidden):
@@ -60,31 +73,42 @@ def fit_value(x: np.ndarray, y: np.ndarray, cfg: FitConfig, rng: np.random.Gener
     v = [np.zeros_like(p) for p in params]
     b1, b2, t = 0.9, 0.999, 0
     xs = (x[tr] - mean) / std
-    for _ in range(cfg.epochs):
+    base = base_logit(x[tr])
+    val_loss = (lambda ps: log_loss(ValueNet(tuple(ps[:L]), tuple(ps[L:]), mean, std)(x[val]), y[val])) \
+        if n_val else (lambda ps: 0.0)
+    best, best_loss, best_epoch = [p.copy() for p in params], val_loss(params), 0
+    start_loss = best_loss
+    for epoch in range(1, cfg.epochs + 1):
         order = rng.permutation(len(tr))
         for lo in range(0, len(order), cfg.batch):
             idx = order[lo:lo + cfg.batch]
-            grads = _grads(params, L, xs[idx], y[tr][idx], cfg.l2)
+            grads = _grads(params, L, xs[idx], y[tr][idx], base[idx], cfg.l2)
             t += 1
             for k, g in enumerate(grads):
                 m[k] = b1 * m[k] + (1 - b1) * g
                 v[k] = b2 * v[k] + (1 - b2) * g * g
                 params[k] -= cfg.lr * (m[k] / (1 - b1 ** t)) / (np.sqrt(v[k] / (1 - b2 ** t)) + ADAM_EPS)
-    net = ValueNet(tuple(params[:L]), tuple(params[L:]), mean, std)
-    rep = dict(samples=int(len(x)), train=int(len(tr)), val=int(n_val), mean_result=float(y.mean()))
+        loss = val_loss(params)
+        if n_val and loss < best_loss:
+            best, best_loss, best_epoch = [p.copy() for p in params], loss, epoch
+    if not n_val:
+        best, best_epoch = params, cfg.epochs
+    net = ValueNet(tuple(best[:L]), tuple(best[L:]), mean, std)
+    rep = dict(samples=int(len(x)), train=int(len(tr)), val=int(n_val), val_games=int(len(held)),
+               mean_result=float(y.mean()), best_epoch=best_epoch)
     if n_val:
-        rep.update(val_log_loss=log_loss(net(x[val]), y[val]),
+        rep.update(val_log_loss=best_loss, val_log_loss_start=start_loss,
                    val_log_loss_constant=log_loss(np.full(n_val, y[tr].mean()), y[val]))
     return net, rep
 
 
-def _grads(params, L, x, y, l2):
+def _grads(params, L, x, y, base, l2):
     """Gradients of the mean cross-entropy (plus ``l2`` |W|^2 / 2) with respect to weights then biases."""
     ws, bs = params[:L], params[L:]
     hs = [x]
     for w, b in zip(ws[:-1], bs[:-1]):
         hs.append(np.tanh(hs[-1] @ w.T + b))
-    z = (hs[-1] @ ws[-1].T + bs[-1])[:, 0]
+    z = (hs[-1] @ ws[-1].T + bs[-1])[:, 0] + base
     p = 1 / (1 + np.exp(-z))
     d = ((p - y) / len(y))[:, None]
     gw, gb = [None] * L, [None] * L

@@ -39,6 +39,7 @@ from .fit import FitConfig, fit_value
 STATE = "league.json"
 STATE_VERSION = 1
 GAMES = ("nine_ball", "eight_ball")
+GAME_ID = 100_000   # a sample's game id: job seed * GAME_ID + its table in the job (jobs have fewer tables)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -173,7 +174,7 @@ def run_generation(run: Path, cfg: LeagueConfig, state: dict, address=None, log=
             f"({time.perf_counter() - t0:.0f} s)")
 
     results = play_jobs(jobs, address=address, progress=progress)
-    xs, ys, summary = [], [], []
+    xs, ys, gs, summary = [], [], [], []
     for r in results:
         j = r.job
         key = f"{label(j.a, run)} | {label(j.b, run)} | {j.noise}"
@@ -184,18 +185,20 @@ def run_generation(run: Path, cfg: LeagueConfig, state: dict, address=None, log=
         if r.y is not None:
             xs.append(r.x)
             ys.append(r.y)
+            gs.append(j.seed * GAME_ID + r.table)
     data = run / "data"
     data.mkdir(parents=True, exist_ok=True)
-    np.savez(data / f"gen_{g:03d}.npz", x=np.concatenate(xs), y=np.concatenate(ys))
+    np.savez(data / f"gen_{g:03d}.npz", x=np.concatenate(xs), y=np.concatenate(ys), game=np.concatenate(gs))
     # the fit: the newest `window` generations, mirrored
     parts = [np.load(data / f"gen_{k:03d}.npz", allow_pickle=False) for k in range(max(0, g + 1 - cfg.window), g + 1)]
     x = np.concatenate([p["x"] for p in parts])
     y = np.concatenate([p["y"] for p in parts])
+    game = np.concatenate([p["game"] for p in parts])
     B = (x.shape[1] - 5) // 4
-    x, y = np.concatenate([x, mirror_features(x, B)]), np.concatenate([y, y])
+    x, y, game = np.concatenate([x, mirror_features(x, B)]), np.concatenate([y, y]), np.concatenate([game, game])
     init = load_value(run / state["snapshots"][-1]["stem"])[0] if state["snapshots"] else None
     tf = time.perf_counter()
-    net, rep = fit_value(x, y, cfg.fit, rng, init=init)
+    net, rep = fit_value(x, y, cfg.fit, rng, init=init, groups=game)
     rep["fit_seconds"] = time.perf_counter() - tf
     stem = f"snapshots/gen_{g + 1:03d}"
     net.save(run / stem, dict(game=cfg.game, version=f"league-gen{g + 1}", generation=g + 1, fit=rep,
@@ -207,10 +210,10 @@ def run_generation(run: Path, cfg: LeagueConfig, state: dict, address=None, log=
     state["seconds"] += secs
     state["history"].append(dict(generation=g, jobs=summary, seconds=secs))
     save_state(run, state)
-    vl = rep.get("val_log_loss")
-    log(f"generation {g} done in {secs:.0f} s: {rep['samples']} samples (mirrored), held-out log loss "
-        f"{vl if vl is None else round(vl, 4)} vs constant {rep.get('val_log_loss_constant', float('nan')):.4f}; "
-        f"froze {stem}")
+    log(f"generation {g} done in {secs:.0f} s: {rep['samples']} samples (mirrored); held-out games' log loss "
+        f"{rep.get('val_log_loss', float('nan')):.4f} (epoch {rep['best_epoch']}), the starting value's "
+        f"{rep.get('val_log_loss_start', float('nan')):.4f}, a constant's "
+        f"{rep.get('val_log_loss_constant', float('nan')):.4f}; froze {stem}")
 
 
 def run_league(run, cfg: LeagueConfig | None = None, resume: bool = False, generations: int | None = None,

@@ -13,8 +13,11 @@ here. Its input (``value_features``, one row per table, in the shooter's frame):
 Fouls in a row are not an input: the previewed leaves (``bots.preview.Preview``) carry the next shooter's
 constraints but not the fouls count, and the value must be computed the same way at the leaves as in training.
 
-The network runs in numpy float64: inputs standardised by the training set's mean and standard deviation, tanh
-hidden layers, a logistic output. It is stored as an ``.npz`` of plain arrays (``numpy.load`` with
+The network is a correction to the lookahead's own leave model: its output is
+``sigmoid(logit(position_value(ease)) + f(x))``, where ``position_value`` is ``bots.game_lookahead``'s
+(``V_NONE + (V_FULL - V_NONE) ease``) and ``f`` an MLP (tanh hidden layers, one linear output unit) of the
+standardised inputs. With ``f``'s output layer at zero it is exactly the hand-made value, which is where the
+league's fit starts. It runs in numpy float64. It is stored as an ``.npz`` of plain arrays (``numpy.load`` with
 ``allow_pickle=False``) beside a JSON card (format, version, game, feature size, hidden sizes, how it was
 trained), like the ladder (``bots.learned.ladder``). The shipped values are ``value/<game>.npz`` and ``.json``;
 ``agents.league`` trains them (docs/league.md).
@@ -34,13 +37,26 @@ from pathlib import Path
 import numpy as np
 
 from ...rules import records as RR
-from ..game_lookahead import GameLookahead, balls_left
+from ..game_lookahead import V_FULL, V_NONE, GameLookahead, balls_left
 
 VALUE_DIR = Path(__file__).with_name("value")
 FORMAT = "billiards_env value network"
 FORMAT_VERSION = 1
 STD_FLOOR = 1e-6   # an input's standard deviation is at least this (a constant input is not blown up)
+BASE_CLIP = 1e-6   # the hand-made value is kept this far from 0 and 1 before its logit
 HAND_CODES = (RR.IN_HAND_NONE, RR.IN_HAND_ANYWHERE, RR.IN_HAND_KITCHEN)
+
+
+def ease_index(n_balls: int) -> int:
+    """The column of ``value_features`` that holds the ease."""
+    return 4 * n_balls + len(HAND_CODES)
+
+
+def base_logit(x: np.ndarray, v_none: float = V_NONE, v_full: float = V_FULL) -> np.ndarray:
+    """[N] the logit of the lookahead's ``position_value`` of feature rows ``x`` (from their ease column)."""
+    n_balls = (x.shape[1] - len(HAND_CODES) - 2) // 4
+    p = np.clip(v_none + (v_full - v_none) * x[:, ease_index(n_balls)], BASE_CLIP, 1 - BASE_CLIP)
+    return np.log(p / (1 - p))
 
 
 def feature_size(n_balls: int) -> int:
@@ -74,7 +90,7 @@ def mirror_features(x: np.ndarray, n_balls: int) -> np.ndarray:
 @dataclasses.dataclass(frozen=True)
 class ValueNet:
     """``weights[k]`` [out, in] and ``biases[k]`` [out] (float64) of the tanh hidden layers and the one-unit
-    logistic output; ``mean`` and ``std`` [D] standardise the inputs."""
+    output of the correction ``f``; ``mean`` and ``std`` [D] standardise the inputs."""
     weights: tuple
     biases: tuple
     mean: np.ndarray
@@ -101,7 +117,7 @@ class ValueNet:
         h = (x - self.mean) / self.std
         for w, b in zip(self.weights[:-1], self.biases[:-1]):
             h = np.tanh(h @ w.T + b)
-        return (h @ self.weights[-1].T + self.biases[-1])[:, 0]
+        return (h @ self.weights[-1].T + self.biases[-1])[:, 0] + base_logit(x)
 
     def __call__(self, x: np.ndarray) -> np.ndarray:
         """[N] the shooter's chance to win."""

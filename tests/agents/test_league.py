@@ -1,0 +1,76 @@
+"""The league's bookkeeping (agents.league) and play_jobs (agents.evaluation.distributed)."""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from agents.evaluation.distributed import Job, play_jobs
+from agents.league import LeagueConfig, fit_value, load_state, run_league
+from agents.league.fit import FitConfig, log_loss
+
+ROOT = Path(__file__).resolve().parents[2]
+TINY = dict(game="nine_ball", generations=2, racks=1, opponents=["ghost"], noises=["tournament", "variable"],
+            max_shots=10, fit=dict(hidden=[6], epochs=2), max_snapshots=1)
+
+
+def test_resumed_league_ends_as_an_uninterrupted_one(tmp_path):
+    cfg = LeagueConfig.from_dict(TINY)
+    quiet = lambda s: None
+    whole = run_league(tmp_path / "whole", cfg, log=quiet)
+    run_league(tmp_path / "parts", cfg, generations=1, log=quiet)
+    assert load_state(tmp_path / "parts")["generation"] == 1
+    parts = run_league(tmp_path / "parts", resume=True, log=quiet)
+    assert [s["sha256"] for s in parts["snapshots"]] == [s["sha256"] for s in whole["snapshots"]]
+    assert parts["games"] == whole["games"] and parts["seeds"] == whole["seeds"] and parts["rng"] == whole["rng"]
+    assert len(parts["snapshots"]) == 2 and sum(c["games"] for c in parts["games"].values()) == 8
+    # generation 1's learner is generation 0's snapshot
+    assert any(k.startswith("snapshots/gen_001 | ghost") for k in parts["games"])
+    with pytest.raises(FileExistsError, match="--resume"):
+        run_league(tmp_path / "whole", cfg, log=quiet)
+
+
+def test_play_jobs_records_every_decision_with_its_shooters_result():
+    job = Job("ghost", "ghost-safety", "nine_ball", seed=5, n_racks=2, noise="tournament", max_shots=14, record=True)
+    r, again = play_jobs([job]), play_jobs([job])
+    r = r[0]
+    assert r.winner.shape == (4,) and np.array_equal(r.winner, again[0].winner)
+    assert np.array_equal(r.x, again[0].x)
+    # one sample per shot but the breaks
+    assert len(r.y) == int(r.shots.sum()) - 4
+    assert set(np.unique(r.y)) <= {0.0, 0.5, 1.0} and set(r.table) <= set(range(4))
+    with pytest.raises(NotImplementedError):
+        play_jobs([job], address="ray://nowhere:1")
+
+
+def test_fit_learns_a_planted_value():
+    rng = np.random.default_rng(0)
+    x = rng.normal(size=(3000, 9))   # the feature rows of a one-ball table: column 7 is the ease
+    x[:, 7] = 0.0                     # the starting (hand-made) value: 1/2 everywhere
+    p = 1 / (1 + np.exp(-3 * x[:, 0]))
+    y = (rng.random(3000) < p).astype(float)
+    net, rep = fit_value(x, y, FitConfig(hidden=(8,), epochs=20, lr=1e-2, val_frac=0.2), np.random.default_rng(1),
+                         groups=np.arange(3000) // 3)
+    assert rep["val_log_loss_start"] == pytest.approx(np.log(2))
+    assert rep["val_log_loss"] < rep["val_log_loss_constant"] - 0.15 and rep["best_epoch"] > 0
+    assert log_loss(net(x), y) < log_loss(np.full(len(y), y.mean()), y)
+
+
+def test_config_errors_name_the_key():
+    with pytest.raises(ValueError, match="unknown league config keys \\['rackz'\\]"):
+        LeagueConfig.from_dict(dict(rackz=3))
+    with pytest.raises(ValueError, match="the league trains"):
+        LeagueConfig(game="snooker")
+
+
+def test_league_script_quick(tmp_path):
+    res = subprocess.run([sys.executable, "scripts/league.py", "--quick", "--run", str(tmp_path / "q")], cwd=ROOT,
+                         capture_output=True, text=True, timeout=600, env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"})
+    assert res.returncode == 0, res.stderr[-2000:]
+    assert "generation 0 done" in res.stdout
+    state = json.loads((tmp_path / "q" / "league.json").read_text())
+    assert state["generation"] == 1 and (tmp_path / "q" / "snapshots" / "gen_001.npz").exists()

@@ -1,0 +1,126 @@
+"""The learned leaf value (bots.learned.value) and the lookahead's leaf_value hook."""
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from billiards_env.bots import is_bot_name, make_bot
+from billiards_env.bots.game_lookahead import GameLookahead
+from billiards_env.bots.learned import value as V
+from billiards_env.envs.games import GameConfig, GameCore
+
+ROOT = Path(__file__).resolve().parents[2]
+GAMES = ("nine_ball", "eight_ball")
+
+
+def _views(game, n=6, seed=3):
+    """Views of ``n`` seeded tables a few random shots into a game (not breaks)."""
+    core = GameCore(GameConfig(game=game, noise="tournament"), n)
+    core.streams.seed(np.arange(n), seed + np.arange(n))
+    core.reset_tables(np.arange(n), np.zeros(n, dtype=np.int64))
+    ghost = make_bot("ghost", seed=seed)
+    from billiards_env.envs.games.play import play_round
+    for _ in range(3):
+        live = np.nonzero(~core.game.over)[0]
+        play_round(core, [ghost, ghost], live)
+    live = np.nonzero(~core.game.over)[0]
+    return core.view(live)
+
+
+def _plans_equal(p, q):
+    for f in ("shots", "placement", "declare", "pocket"):
+        a, b = getattr(p, f), getattr(q, f)
+        if hasattr(a, "phi"):
+            for g in ("phi", "speed", "a", "b"):
+                np.testing.assert_array_equal(getattr(a, g), getattr(b, g))
+        else:
+            np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize("game", GAMES)
+def test_hook_default_is_position_value(game):
+    """leaf_value=None (the default) plays exactly what an explicit position_value valuer plays, and a
+    different valuer changes the choice somewhere (the hook is used)."""
+    view = _views(game)
+    base = GameLookahead(seed=4, n_pots=3, n_eval=6, n_eval_safe=2, n_samples=3)
+    explicit = GameLookahead(seed=4, n_pots=3, n_eval=6, n_eval_safe=2, n_samples=3,
+                             leaf_value=lambda v, pos, on, tg, hand, e: base.position_value(v, e, on, tg))
+    _plans_equal(base.act(view), explicit.act(view))
+    other = GameLookahead(seed=4, n_pots=3, n_eval=6, n_eval_safe=2, n_samples=3,
+                          leaf_value=lambda v, pos, on, tg, hand, e: 1.0 - base.position_value(v, e, on, tg))
+    assert not np.array_equal(other.act(view).shots.phi, base.act(view).shots.phi)
+
+
+def test_features_mirror_and_network_round_trip(tmp_path):
+    view = _views("nine_ball")
+    geo = GameLookahead()
+    ease = geo.leave_ease(view, view.pos, view.on_table, view.targets, view.in_hand)
+    x = V.value_features(view.game, view.table.width, view.table.length, view.pos, view.on_table, view.targets,
+                         view.ball_in_hand, ease)
+    B = view.n_balls
+    assert x.shape == (view.n, V.feature_size(B)) and np.isfinite(x).all()
+    m = V.mirror_features(x, B)
+    np.testing.assert_allclose(V.mirror_features(m, B), x)
+    on = view.on_table
+    np.testing.assert_allclose(m[:, 0:2 * B:2][on], 1.0 - x[:, 0:2 * B:2][on])
+    rng = np.random.default_rng(0)
+    from agents.league.fit import init_net
+    net = init_net(x.shape[1], (5, 4), x.mean(0), x.std(0) + 1.0, rng)
+    net.save(tmp_path / "v", dict(game="nine_ball"))
+    back, doc = V.load_value(tmp_path / "v")
+    np.testing.assert_array_equal(back(x), net(x))
+    assert doc["hidden"] == [5, 4] and 0 < net(x).min() and net(x).max() < 1
+    # with the correction's output layer at zero the value is the lookahead's position_value
+    zero = V.ValueNet(net.weights[:-1] + (0 * net.weights[-1],), net.biases[:-1] + (0 * net.biases[-1],),
+                      net.mean, net.std)
+    np.testing.assert_allclose(zero(x), geo.position_value(view, ease, view.on_table, view.targets), rtol=1e-12)
+    with pytest.raises(ValueError, match="no value network"):
+        V.load_value(tmp_path / "missing")
+    with pytest.raises(ValueError, match="takes inputs"):
+        net(x[:, :3])
+
+
+BLOCKED = r'''
+import sys, importlib.abc
+class Block(importlib.abc.MetaPathFinder):
+    def find_spec(self, name, path=None, target=None):
+        if name.split(".")[0] in ("torch", "stable_baselines3"):
+            raise ImportError(f"blocked: {name}")
+sys.meta_path.insert(0, Block())
+import json
+from billiards_env.studies.matches import play_pairing
+out = {}
+for game in %s:
+    runs = [play_pairing("value-lookahead", "ghost", game, n_racks=1, seed=11, noise="tournament", max_shots=16)
+            for _ in range(2)]
+    out[game] = [[r.winner.tolist(), r.shots.tolist()] for r in runs]
+assert "torch" not in sys.modules and "stable_baselines3" not in sys.modules
+print(json.dumps(out))
+'''
+
+
+def test_value_lookahead_loads_by_name_without_torch_and_replays_identically():
+    games = [g for g in GAMES if (V.VALUE_DIR / f"{g}.json").exists()]
+    if not games:
+        pytest.skip("no value network shipped")
+    assert is_bot_name("value-lookahead")
+    res = subprocess.run([sys.executable, "-c", BLOCKED % repr(games)], cwd=ROOT, capture_output=True, text=True,
+                         timeout=600, env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"})
+    assert res.returncode == 0, res.stderr[-2000:]
+    out = json.loads(res.stdout.strip().splitlines()[-1])
+    for g in games:
+        first, second = out[g]
+        assert first == second and sum(first[1]) > 4
+
+
+def test_shipped_cards_match_their_weights():
+    for g in GAMES:
+        if (V.VALUE_DIR / f"{g}.json").exists():
+            net, doc = V.load_value(V.VALUE_DIR / g)
+            assert doc["game"] == g and net.in_dim == V.feature_size(16 if g == "eight_ball" else 10)
+            assert doc["league"]["generations"] >= 1 and doc["league"]["wall_seconds"] > 0
