@@ -44,6 +44,9 @@ class Timed:
 
 def bot_of(budget: str, seed: int):
     from billiards_env.bots.game_lookahead import BUDGETS, GameLookahead
+    if budget == "value":  # value-lookahead: the default search, its leaves ranked by the shipped learned value
+        from billiards_env.bots.learned.value import value_lookahead
+        return value_lookahead(seed=seed)
     if budget != "default" and budget not in BUDGETS:
         raise SystemExit(f"unknown budget {budget!r}; choose default or one of {sorted(BUDGETS)}")
     bot = GameLookahead(seed=seed, **({} if budget == "default" else BUDGETS[budget]))
@@ -103,7 +106,7 @@ def main(argv=None) -> int:
     ap.add_argument("--tables", type=int, default=0, help="time one decision on this many tables")
     ap.add_argument("--rounds", type=int, default=3, help="shots played into the games before timing")
     ap.add_argument("--repeats", type=int, default=3)
-    ap.add_argument("--budget", default="default", help="the budget timed with --tables")
+    ap.add_argument("--budget", default="default", help="the budget timed with --tables (value: value-lookahead)")
     ap.add_argument("--budgets", nargs="*", default=[], help="budgets played against --opponent")
     ap.add_argument("--racks", type=int, default=60)
     ap.add_argument("--opponent", default="search64")

@@ -6,8 +6,10 @@ saved model's path, or ``value@<stem>``, a league snapshot: ``value-lookahead`` 
 ``<stem>.npz`` / ``.json``), the game, ``seed`` and ``n_racks`` (``studies.matches.play_pairing``: the racks
 ``seed * 1_000_003 + k``, each played twice, each side breaking once), the noise level, the shot cap and
 whether to ``record`` the positions. Recorded, every decision but the breaks gives one sample: the table seen
-by its shooter (``bots.learned.value.value_features``) and whether that shooter went on to win the game (1,
-0; a game cut at the shot cap counts 1/2).
+by its shooter (``bots.learned.value.value_features``), whether that shooter went on to win the game (1,
+0; a game cut at the shot cap counts 1/2) and, for a searching bot (``lookahead``, ``value-lookahead``), the
+value its search gave the shot it chose (``last_value``: the mean over noisy previews of its leaves' values;
+NaN for other bots).
 
 Jobs are independent and seeded, so their results do not depend on where or in which order they run.
 ``address=None`` plays them here, one after the other.
@@ -48,6 +50,7 @@ class JobResult:
     x: np.ndarray | None = None  # [S, D] recorded tables (``record``)
     y: np.ndarray | None = None  # [S] their shooter's result
     table: np.ndarray | None = None  # [S] the table (game) of the job each sample comes from
+    search: np.ndarray | None = None  # [S] the shooter's search value of its shot (NaN: the bot does not search)
 
     @property
     def score_a(self) -> float:
@@ -72,7 +75,7 @@ class Recorder:
     def __init__(self, bot):
         self.bot, self.name = bot, getattr(bot, "name", type(bot).__name__)
         self.geo = bot if isinstance(bot, GameLookahead) else GameLookahead()  # the pot model, for the ease
-        self.rows, self.movers, self.x = [], [], []
+        self.rows, self.movers, self.x, self.search = [], [], [], []
 
     def act(self, view):
         keep = np.nonzero(~view.is_break)[0]
@@ -83,16 +86,21 @@ class Recorder:
                                          v.ball_in_hand, ease))
             self.rows.append(np.asarray(v.rows))
             self.movers.append(np.asarray(v.to_move))
-        return self.bot.act(view)
+        plan = self.bot.act(view)
+        if len(keep):
+            sv = getattr(self.bot, "last_value", None)
+            self.search.append(np.full(len(keep), np.nan) if sv is None else np.asarray(sv, np.float64)[keep])
+        return plan
 
-    def samples(self, winner: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
-        """(tables [S, D], their shooter's result [S], the table of each [S]), or None if nothing was recorded."""
+    def samples(self, winner: np.ndarray) -> tuple | None:
+        """(tables [S, D], their shooter's result [S], the table of each [S], the search value [S]), or None if
+        nothing was recorded."""
         if not self.x:
             return None
         rows, movers = np.concatenate(self.rows), np.concatenate(self.movers)
         w = winner[rows]
         y = np.where(w < 0, 0.5, (w == movers).astype(np.float64))
-        return np.concatenate(self.x), y, rows
+        return np.concatenate(self.x), y, rows, np.concatenate(self.search)
 
 
 def play_job(job: Job) -> JobResult:
@@ -112,7 +120,7 @@ def play_job(job: Job) -> JobResult:
     if job.record:
         parts = [p for p in (rec.samples(r.winner) for rec in recorders) if p is not None]
         if parts:
-            out.x, out.y, out.table = (np.concatenate([p[k] for p in parts]) for k in range(3))
+            out.x, out.y, out.table, out.search = (np.concatenate([p[k] for p in parts]) for k in range(4))
     return out
 
 

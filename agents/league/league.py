@@ -8,7 +8,10 @@ Generation g (``run_generation``):
    ``noises``: the built-in bots of ``opponents`` and the frozen snapshots of earlier generations (the newest
    ``max_snapshots`` of them), so it cannot just learn to exploit one.
 2. Every decision of both sides but the breaks is recorded: the table seen by its shooter and whether that
-   shooter won (``agents.evaluation.distributed``). The samples go to ``<run>/data/gen_<g>.npz``.
+   shooter won (``agents.evaluation.distributed``), and for the searching sides the value their search gave
+   the chosen shot. The samples go to ``<run>/data/gen_<g>.npz``. A sample's target is its shooter's result,
+   or, where the shooter searched, ``(1 - search_weight) result + search_weight search value`` (the search's
+   one-shot backup of the current value: lower variance than the result alone).
 3. A value network is fitted (``agents.league.fit``) to the newest ``window`` generations' samples, each
    also mirrored across the table's long axis, starting from the previous snapshot's weights, and frozen as
    ``<run>/snapshots/gen_<g+1>.npz`` / ``.json``.
@@ -52,6 +55,7 @@ class LeagueConfig:
     noises: tuple = ("tournament", "variable")
     max_shots: int = 120
     window: int = 3                     # generations of samples each fit uses
+    search_weight: float = 0.0          # the search value's weight in a searching shooter's target
     seed: int = 0                       # the league's RNG
     seed_base: int = 1000               # the first job's rack seed
     fit: FitConfig = FitConfig()
@@ -174,7 +178,7 @@ def run_generation(run: Path, cfg: LeagueConfig, state: dict, address=None, log=
             f"({time.perf_counter() - t0:.0f} s)")
 
     results = play_jobs(jobs, address=address, progress=progress)
-    xs, ys, gs, summary = [], [], [], []
+    xs, ys, gs, ss, summary = [], [], [], [], []
     for r in results:
         j = r.job
         key = f"{label(j.a, run)} | {label(j.b, run)} | {j.noise}"
@@ -186,14 +190,19 @@ def run_generation(run: Path, cfg: LeagueConfig, state: dict, address=None, log=
             xs.append(r.x)
             ys.append(r.y)
             gs.append(j.seed * GAME_ID + r.table)
+            ss.append(r.search)
     data = run / "data"
     data.mkdir(parents=True, exist_ok=True)
-    np.savez(data / f"gen_{g:03d}.npz", x=np.concatenate(xs), y=np.concatenate(ys), game=np.concatenate(gs))
+    np.savez(data / f"gen_{g:03d}.npz", x=np.concatenate(xs), y=np.concatenate(ys), game=np.concatenate(gs),
+             search=np.concatenate(ss))
     # the fit: the newest `window` generations, mirrored
     parts = [np.load(data / f"gen_{k:03d}.npz", allow_pickle=False) for k in range(max(0, g + 1 - cfg.window), g + 1)]
     x = np.concatenate([p["x"] for p in parts])
     y = np.concatenate([p["y"] for p in parts])
     game = np.concatenate([p["game"] for p in parts])
+    sv = np.concatenate([p["search"] if "search" in p.files else np.full(len(p["y"]), np.nan) for p in parts])
+    w = cfg.search_weight
+    y = np.where(np.isnan(sv), y, (1 - w) * y + w * np.nan_to_num(sv))
     B = (x.shape[1] - 5) // 4
     x, y, game = np.concatenate([x, mirror_features(x, B)]), np.concatenate([y, y]), np.concatenate([game, game])
     init = load_value(run / state["snapshots"][-1]["stem"])[0] if state["snapshots"] else None
