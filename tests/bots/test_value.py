@@ -124,3 +124,23 @@ def test_shipped_cards_match_their_weights():
             net, doc = V.load_value(V.VALUE_DIR / g)
             assert doc["game"] == g and net.in_dim == V.feature_size(16 if g == "eight_ball" else 10)
             assert doc["league"]["generations"] >= 1 and doc["league"]["wall_seconds"] > 0
+
+
+def test_blind_leaf_value_changes_only_the_tables_without_a_pot(tmp_path):
+    from agents.league.fit import init_net
+    view = _views("nine_ball", n=12)
+    geo = GameLookahead()
+    ease = geo.leave_ease(view, view.pos, view.on_table, view.targets, view.in_hand)
+    ease[::3] = 0.0  # some tables as if no pot were open
+    x = V.value_features(view.game, view.table.width, view.table.length, view.pos, view.on_table, view.targets,
+                         view.ball_in_hand, ease)
+    net = init_net(x.shape[1], (4,), x.mean(0), x.std(0) + 1.0, np.random.default_rng(2))
+    net = V.ValueNet(net.weights[:-1] + (net.weights[-1] + 0.5,), net.biases, net.mean, net.std)  # nonzero output
+    args = (view, view.pos, view.on_table, view.targets, view.ball_in_hand, ease)
+    blind, every = V.LeafValue({"nine_ball": net})(*args), V.LeafValue({"nine_ball": net}, where="all")(*args)
+    pv = geo.position_value(view, ease, view.on_table, view.targets)
+    np.testing.assert_array_equal(blind[ease > 0], pv[ease > 0])
+    np.testing.assert_allclose(blind[ease <= 0], every[ease <= 0])
+    assert not np.allclose(blind[ease <= 0], pv[ease <= 0])
+    with pytest.raises(ValueError, match="where must be one of"):
+        V.LeafValue(where="some")

@@ -22,10 +22,14 @@ league's fit starts. It runs in numpy float64. It is stored as an ``.npz`` of pl
 trained), like the ladder (``bots.learned.ladder``). The shipped values are ``value/<game>.npz`` and ``.json``;
 ``agents.league`` trains them (docs/league.md).
 
-``ValueLookahead`` (``make_bot("value-lookahead")``) is ``GameLookahead`` with the network as its leaf valuer
+``ValueLookahead`` (``make_bot("value-lookahead")``) is ``GameLookahead`` with the network in its leaf valuer
 (the lookahead's ``leaf_value`` hook): it searches at decision time exactly as ``lookahead`` does (the same
-candidates, the same noisy previews) and ranks the leaves by the learned value instead of
-``position_value``.
+candidates, the same noisy previews). ``LeafValue(where=...)`` says which leaves the network values:
+
+- ``"blind"`` (the default): the leaves where the hand-made value has nothing to say, the tables whose next
+  shooter has no open pot (ease 0; ``position_value`` calls every one of them ``V_NONE``, an even safety
+  battle); every other leaf keeps ``position_value``. The network tells a good safety from a poor one there;
+- ``"all"``: every leaf (measured weaker than ``lookahead``: docs/league.md).
 """
 from __future__ import annotations
 
@@ -37,7 +41,7 @@ from pathlib import Path
 import numpy as np
 
 from ...rules import records as RR
-from ..game_lookahead import V_FULL, V_NONE, GameLookahead, balls_left
+from ..game_lookahead import V_FULL, V_NONE, GameLookahead, balls_left, position_value
 
 VALUE_DIR = Path(__file__).with_name("value")
 FORMAT = "billiards_env value network"
@@ -167,12 +171,18 @@ def _shipped(game: str, root: str) -> tuple[ValueNet, dict]:
     return load_value(Path(root) / game)
 
 
+WHERE = ("blind", "all")
+
+
 class LeafValue:
     """The lookahead's ``leaf_value`` hook backed by value networks: ``nets`` maps a game to its network, or
-    ``root`` (a folder of ``<game>.npz`` / ``.json``) supplies them (read once per process)."""
+    ``root`` (a folder of ``<game>.npz`` / ``.json``) supplies them (read once per process); ``where``: the
+    leaves the network values (module docstring), the others keep ``position_value``."""
 
-    def __init__(self, nets: dict | None = None, root=VALUE_DIR):
-        self.nets, self.root = dict(nets or {}), Path(root)
+    def __init__(self, nets: dict | None = None, root=VALUE_DIR, where: str = "blind"):
+        if where not in WHERE:
+            raise ValueError(f"where must be one of {WHERE}, got {where!r}")
+        self.nets, self.root, self.where = dict(nets or {}), Path(root), where
 
     def net(self, game: str) -> ValueNet:
         net = self.nets.get(game)
@@ -182,9 +192,20 @@ class LeafValue:
             net = self.nets[game] = _shipped(game, str(self.root))[0]
         return net
 
-    def __call__(self, view, pos, on, targets, ball_in_hand, ease) -> np.ndarray:
+    def values(self, view, pos, on, targets, ball_in_hand, ease) -> np.ndarray:
+        """[k] the network's value of every given table."""
         x = value_features(view.game, view.table.width, view.table.length, pos, on, targets, ball_in_hand, ease)
         return self.net(view.game)(x)
+
+    def __call__(self, view, pos, on, targets, ball_in_hand, ease) -> np.ndarray:
+        if self.where == "all":
+            return self.values(view, pos, on, targets, ball_in_hand, ease)
+        v = position_value(ease)
+        blind = np.nonzero(ease <= 0)[0]
+        if len(blind):
+            v[blind] = self.values(view, pos[blind], on[blind], targets[blind], np.asarray(ball_in_hand)[blind],
+                                   ease[blind])
+        return v
 
 
 class ValueLookahead(GameLookahead):
@@ -192,8 +213,8 @@ class ValueLookahead(GameLookahead):
 
     name = "value-lookahead"
 
-    def __init__(self, seed: int = 0, nets: dict | None = None, root=VALUE_DIR, **changes):
-        super().__init__(seed=seed, leaf_value=LeafValue(nets, root), **changes)
+    def __init__(self, seed: int = 0, nets: dict | None = None, root=VALUE_DIR, where: str = "blind", **changes):
+        super().__init__(seed=seed, leaf_value=LeafValue(nets, root, where), **changes)
 
 
 def value_lookahead(seed: int = 0, **kw) -> ValueLookahead:
