@@ -52,7 +52,7 @@ def init_net(d: int, hidden, mean, std, rng) -> ValueNet:
 def fit_value(x: np.ndarray, y: np.ndarray, cfg: FitConfig, rng: np.random.Generator,
               init: ValueNet | None = None, groups: np.ndarray | None = None) -> tuple[ValueNet, dict]:
     """(network, report) fitted to inputs ``x`` [N, D] and results ``y`` [N]; ``init``: start from these
-    weights (its input statistics are replaced by the data's); ``groups`` [N]: the game of each sample (the
+    weights (and its input statistics); ``groups`` [N]: the game of each sample (the
     held-out split keeps games whole; default: every sample its own)."""
     x, y = np.asarray(x, np.float64), np.asarray(y, np.float64)
     if len(x) < 2:
@@ -66,7 +66,7 @@ def fit_value(x: np.ndarray, y: np.ndarray, cfg: FitConfig, rng: np.random.Gener
     mean, std = x[tr].mean(axis=0), np.maximum(x[tr].std(axis=0), STD_FLOOR)
     net = init_net(x.shape[1], cfg.hidden, mean, std, rng)
     if init is not None and init.in_dim == x.shape[1] and init.hidden == list(cfg.hidden):
-        net = ValueNet(init.weights, init.biases, mean, std)
+        net, mean, std = init, init.mean, init.std   # epoch 0 is the starting network exactly
     params = [np.array(a) for a in (*net.weights, *net.biases)]
     L = len(net.weights)
     m = [np.zeros_like(p) for p in params]
