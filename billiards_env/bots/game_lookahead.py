@@ -25,7 +25,10 @@ For every table where the bot is to move (all tables at once, in batched ``GameV
    ease ``e`` is worth ``min(v, 1 - v)`` with ``v = position_value(e)`` (the opponent chooses whether to shoot),
    and is declared when it beats the best shot's value. After the opponent's push-out, the shot is passed back
    when the best shot's value is below 1/2 (the opponent would then shoot the same table).
-6. **Breaks** are ``GhostBot``'s seeded standard break.
+6. **Breaks** are searched once per game and table and kept (``searched_break``): ``break_search`` candidate
+   strikes (the cue ball along the head string, the aim across the front ball, speed, tip height), each
+   previewed under noise on the first ``break_racks`` breaking racks and valued as any shot; with
+   ``break_search=0``, ``GhostBot``'s seeded standard break.
 
 ``pot_table`` and ``leave_ease`` are the geometric part (numba kernels here): the ghost-ball shot of a ball into a
 pocket; a pot is open when both paths are clear of other balls (by 2R + ``BLOCK_CLEAR``), the cut is below
