@@ -128,6 +128,7 @@ class Rules:
     own_cue_balls: bool = False
     extra_obs: int = 0
     scored: bool = False      # a game of points (``GameState.score``, ``ShotRecord.points``; snooker)
+    to_points: bool = False   # won on points (``GameState.score``: snooker, three-cushion), not by a last ball
     reads_position: bool = False  # ``constraints`` and ``judge`` read where the balls lie (snooker's free ball)
 
     def new_game(self, breaker) -> GameState:
