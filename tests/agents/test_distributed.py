@@ -9,7 +9,7 @@ each) the jobs give the same per-game results as in this process, and a
 job whose bot kills its own worker process once (a marker file says it has)
 has its chunk played again, with totals equal to the local path's: nothing
 counted twice. ``scripts/match.py`` gives the same JSON with and without
-``--address local``.
+``--address local``; ``scripts/match_throughput.py --quick`` runs.
 """
 from __future__ import annotations
 
@@ -138,6 +138,18 @@ def test_match_script_gives_the_same_results_with_and_without_ray(tmp_path):
         assert "chunks played: 2/2" in r.stderr
         docs.append(json.loads((out / "nine_ball_tournament.json").read_text()))
     assert docs[0]["pairings"] == docs[1]["pairings"] and docs[0]["ratings"] == docs[1]["ratings"]
+
+
+@pytest.mark.slow
+def test_throughput_script_quick_mode(tmp_path):
+    _ray()
+    r = subprocess.run([sys.executable, str(ROOT / "scripts" / "match_throughput.py"), "--quick", "--num-cpus", "2",
+                        "--out", str(tmp_path)], cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)},
+                       capture_output=True, text=True, timeout=240)
+    assert r.returncode == 0, r.stderr[-2000:]
+    doc = json.loads((tmp_path / "match_throughput.json").read_text())
+    assert doc["games"] == 4 and doc["chunks"] == 2 and doc["ray_cpus"] == 2 and doc["same_results"]
+    assert all(v > 0 for v in doc["median_games_per_s"].values())
 
 
 @pytest.fixture(scope="module")
