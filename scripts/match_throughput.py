@@ -8,13 +8,15 @@
 Every pairing of ``--entrants`` (default: the game's ladder agents and
 ``ghost``, ``ghost-safety``, ``search64``) plays ``--racks`` paired racks at
 ``--noise``, in chunks of ``--chunk-racks`` racks, through
-``agents.evaluation.distributed.play_jobs``: in this process, and as Ray
-tasks on a local Ray instance of ``--num-cpus`` CPUs (started once, before
+``agents.evaluation.distributed.play_jobs`` three ways: in this process
+with numba's default threads (``here``), in this process with one numba
+thread (``here-1-thread``), and as Ray tasks (one numba thread each) on a
+local Ray instance of ``--num-cpus`` CPUs (``ray``; started once, before
 the timing; one warm-up pass of each path loads the workers' kernels). The
-two paths alternate ``--repeats`` times (which goes first alternates too);
-each pass's games must equal the first local pass's, else the script fails.
-Prints and writes to ``--out`` (``match_throughput.json``) the median games
-per second of each path and their ratio.
+paths take turns ``--repeats`` times (the order rotating); each pass's
+games must equal the first pass's, else the script fails. Prints and writes
+to ``--out`` (``match_throughput.json``) the median games per second of
+each path and the ratios to ``here``.
 """
 from __future__ import annotations
 
@@ -59,29 +61,37 @@ def main(argv=None) -> int:
     print(f"{len(jobs)} pairings, {n_games} games in {n_chunks} chunks", flush=True)
     import ray
 
-    paths = {"here": None, "ray": "local"}  # Ray starts on the first pass there and stays up
+    import numba
+
+    threads = numba.get_num_threads()
+    paths = {"here": (None, threads), "here-1-thread": (None, 1), "ray": ("local", threads)}  # (address, numba here)
     reference = play_jobs(jobs)  # the warm-up pass here, and the results every pass must give
-    if play_jobs(jobs, "local", num_cpus=args.num_cpus) != reference:
+    if play_jobs(jobs, "local", num_cpus=args.num_cpus) != reference:  # Ray starts here and stays up
         raise SystemExit("the Ray path's games differ from this process's")
     cpus = int(ray.cluster_resources().get("CPU", 0))
     rates = {k: [] for k in paths}
+    names = list(paths)
     for r in range(args.repeats):
-        for name in (("here", "ray") if r % 2 == 0 else ("ray", "here")):
+        for name in names[r % 3:] + names[:r % 3]:
+            address, n_threads = paths[name]
+            numba.set_num_threads(n_threads)
             t0 = time.perf_counter()
-            games = play_jobs(jobs, paths[name])
+            games = play_jobs(jobs, address)
             rates[name].append(n_games / (time.perf_counter() - t0))
+            numba.set_num_threads(threads)
             if games != reference:
                 raise SystemExit(f"pass {r} {name}: the games differ from the first pass's")
             print(f"pass {r + 1} {name}: {rates[name][-1]:.2f} games/s", flush=True)
     med = {k: statistics.median(v) for k, v in rates.items()}
     doc = dict(command=" ".join(["python", "scripts/match_throughput.py"] + (argv if argv is not None else sys.argv[1:])),
                game=args.game, noise=args.noise, entrants=entrants, racks=args.racks, chunk_racks=args.chunk_racks,
-               games=n_games, chunks=n_chunks, ray_cpus=cpus, games_per_s=rates, median_games_per_s=med,
-               ray_over_here=med["ray"] / med["here"], same_results=True)
+               games=n_games, chunks=n_chunks, ray_cpus=cpus, numba_threads_here=threads, games_per_s=rates,
+               median_games_per_s=med, over_here={k: v / med["here"] for k, v in med.items()}, same_results=True)
     args.out.mkdir(parents=True, exist_ok=True)
     (args.out / "match_throughput.json").write_text(json.dumps(doc, indent=2) + "\n")
-    print(f"median games/s: here {med['here']:.2f}, Ray ({cpus} CPUs) {med['ray']:.2f}, "
-          f"ratio {doc['ray_over_here']:.2f}; the same games on both paths")
+    print(f"median games/s: here ({threads} numba threads) {med['here']:.2f}, here (1 thread) "
+          f"{med['here-1-thread']:.2f}, Ray ({cpus} CPUs) {med['ray']:.2f}; Ray / here {doc['over_here']['ray']:.2f}, "
+          f"Ray / here with 1 thread {med['ray'] / med['here-1-thread']:.2f}; the same games on every path")
     return 0
 
 

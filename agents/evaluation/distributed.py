@@ -94,17 +94,28 @@ def chunks(job: MatchJob) -> list[tuple[int, int]]:
     return [(s, min(s + size, job.racks)) for s in range(0, job.racks, size)]
 
 
-def play_chunk(job: MatchJob, start: int, stop: int, save_replays: int = 0, bot_factory=None) -> dict:
+def play_chunk(job: MatchJob, start: int, stop: int, save_replays: int = 0, bot_factory=None, extra=None):
     """Racks [start, stop) of ``job``, both sides: ``{(rack, side): GameResult}``.
     ``save_replays``: the job's first that many games (rack 0 with a
-    breaking, rack 0 with b breaking, rack 1, ...) carry their replay."""
+    breaking, rack 0 with b breaking, rack 1, ...) carry their replay.
+    ``extra(job, bots, result)``: called with the chunk's two bots and its
+    ``PairingResult`` (tables: racks start .. stop - 1 with a breaking, then
+    with b breaking); with it, returns (games, what it returned)."""
     from billiards_env.studies.matches import play_racks
 
     if bot_factory is None:
-        from .entrants import bot_factory
+        from .entrants import bot_factory as base
+    else:
+        base = bot_factory
+    bots = []
+
+    def factory(spec, seed):
+        bots.append(base(spec, seed))
+        return bots[-1]
+
     m = stop - start
     save = int(np.clip(save_replays - 2 * start, 0, 2 * m))
-    r = play_racks(job.a, job.b, job.game, np.arange(start, stop), job.seed, job.noise, job.max_shots, bot_factory,
+    r = play_racks(job.a, job.b, job.game, np.arange(start, stop), job.seed, job.noise, job.max_shots, factory,
                    save, **job.config)
     # play_racks records, in order, rack start with each side breaking, then rack start + 1, ...
     replays = {(start + i // 2, i % 2): rep for i, rep in enumerate(r.replays)}
@@ -113,7 +124,7 @@ def play_chunk(job: MatchJob, start: int, stop: int, save_replays: int = 0, bot_
         key = (start + t % m, t // m)
         out[key] = GameResult(int(r.winner[t]), int(r.shots[t]), tuple(int(x) for x in r.score[t]),
                               tuple(int(x) for x in r.innings[t]), replays.get(key))
-    return out
+    return out if extra is None else (out, extra(job, bots, r))
 
 
 def _worker_paths() -> None:
@@ -132,11 +143,17 @@ def play_jobs(jobs, address: str | None = None, **opts) -> dict:
     ``"auto"`` or ``HOST:PORT`` (a running cluster). Options: ``num_cpus``
     (of a local Ray instance; default all cores), ``retries`` (plays again of
     a chunk whose worker died; default ``RETRIES``), ``save_replays`` (per
-    job, as ``play_chunk``), ``bot_factory`` (``spec, seed -> bot``, a
-    module-level function; default ``entrants.bot_factory``), ``progress(done,
-    total)`` after each chunk, ``on_retry(chunk, error)`` when a chunk is
-    played again (its ``chunk`` is (job index, start, stop))."""
-    unknown = set(opts) - {"num_cpus", "retries", "save_replays", "bot_factory", "progress", "on_retry"}
+    job, as ``play_chunk``), ``bot_factory`` (``spec, seed -> bot``; default
+    ``entrants.bot_factory``), ``progress(done, total)`` after each chunk,
+    ``on_retry(chunk, error)`` when a chunk is played again (``chunk``: (job
+    index, start, stop)). ``extra(job, bots, result)`` runs after each chunk
+    where the chunk ran (``play_chunk``; for example the league's samples of
+    the tables its bots saw) and ``on_extra(chunk, value)`` gets what it
+    returned, here, once per chunk (from the chunk's complete run), in chunk
+    order. Functions sent to Ray must pickle (module-level functions,
+    closures over picklable values)."""
+    unknown = set(opts) - {"num_cpus", "retries", "save_replays", "bot_factory", "progress", "on_retry", "extra",
+                           "on_extra"}
     if unknown:
         raise TypeError(f"play_jobs: unknown options {sorted(unknown)}")
     jobs = list(jobs)
@@ -145,7 +162,10 @@ def play_jobs(jobs, address: str | None = None, **opts) -> dict:
             raise TypeError(f"jobs[{j}] is a {type(job).__name__}, not a MatchJob")
     _check_entrants(jobs, opts.get("bot_factory"))
     plan = [(j, s, e) for j, job in enumerate(jobs) for s, e in chunks(job)]
-    args = [(jobs[j], s, e, opts.get("save_replays", 0), opts.get("bot_factory")) for j, s, e in plan]
+    extra, on_extra = opts.get("extra"), opts.get("on_extra")
+    if (extra is None) != (on_extra is None):
+        raise TypeError("play_jobs: extra and on_extra go together")
+    args = [(jobs[j], s, e, opts.get("save_replays", 0), opts.get("bot_factory"), extra) for j, s, e in plan]
     progress = opts.get("progress")
     if address is None:
         parts = []
@@ -163,7 +183,11 @@ def play_jobs(jobs, address: str | None = None, **opts) -> dict:
         parts = ray_map(play_chunk, args, retries=opts.get("retries", RETRIES), on_done=progress,
                         on_retry=None if on_retry is None else (lambda i, exc: on_retry(plan[i], exc)))
     games = {}
-    for (j, _, _), part in zip(plan, parts):
+    for chunk, part in zip(plan, parts):
+        j = chunk[0]
+        if extra is not None:
+            part, value = part
+            on_extra(chunk, value)
         for (rack, side), g in part.items():
             if (j, rack, side) in games:
                 raise RuntimeError(f"game (job {j}, rack {rack}, side {side}) came back twice")
@@ -194,7 +218,8 @@ def pairing_results(jobs, games: dict) -> list:
         out.append(PairingResult(
             job.a, job.b, job.game, job.noise, np.array([g.winner for g in order]),
             np.repeat([True, False], job.racks), np.array([g.shots for g in order]),
-            [g.replay for rack in range(job.racks) for side in (0, 1) if (g := games[(j, rack, side)]).replay],
+            [g.replay for rack in range(job.racks) for side in (0, 1)
+             if (g := games[(j, rack, side)]).replay is not None],
             np.array([g.score for g in order]), np.array([g.innings for g in order])))
     return out
 
