@@ -108,6 +108,23 @@ def test_chunks_key_every_game_once():
     assert all(g.winner in (-1, 0, 1) and 1 <= g.shots <= SHOTS for g in games.values())
 
 
+def _decisions(job, bots, result):
+    """What a chunk's bots saw: their names and the tables it played."""
+    return [b.name for b in bots], result.n
+
+
+def test_extra_runs_per_chunk_and_comes_back_once_in_chunk_order():
+    jobs = _jobs()
+    got = []
+    games = play_jobs(jobs, extra=_decisions, on_extra=lambda chunk, value: got.append((chunk, value)))
+    assert [c for c, _ in got] == [(0, 0, 2), (0, 2, 3), (1, 0, 1), (1, 1, 2)]
+    assert [v for _, v in got] == [(["ghost", "ghost-safety"], 4), (["ghost", "ghost-safety"], 2),
+                                   (["ladder-1", "random"], 2), (["ladder-1", "random"], 2)]
+    assert games == play_jobs(jobs)  # looking does not change the games
+    with pytest.raises(TypeError, match="go together"):
+        play_jobs(jobs, extra=_decisions)
+
+
 def test_bad_jobs_fail_before_any_game():
     with pytest.raises(ValueError, match="racks must be at least 1"):
         MatchJob("ghost", "random", racks=0)
@@ -202,9 +219,15 @@ def test_a_killed_worker_has_its_games_replayed_and_counted_once(two_nodes):
             MatchJob("ghost-safety", "random", "nine_ball", racks=2, seed=22, noise="none", max_shots=SHOTS)]
     local = play_jobs(jobs)  # in this process: the killer never kills here
     assert not marker.exists()
-    retried = []
-    on_ray = play_jobs(jobs, cluster.address, on_retry=lambda chunk, exc: retried.append((chunk, type(exc).__name__)))
+    retried, extras = [], []
+
+    def tables(job, bots, result):  # nested: sent to the workers by value
+        return result.n
+
+    on_ray = play_jobs(jobs, cluster.address, on_retry=lambda chunk, exc: retried.append((chunk, type(exc).__name__)),
+                       extra=tables, on_extra=lambda chunk, n: extras.append((chunk, n)))
     assert marker.exists()  # a worker did die
+    assert extras == [((0, 0, 1), 2), ((0, 1, 2), 2), ((0, 2, 3), 2), ((1, 0, 2), 4)]  # once per chunk
     assert len(retried) == 1 and retried[0][0][0] == 0 and retried[0][1] == "WorkerCrashedError", retried
     assert on_ray == local and len(on_ray) == 10
     a, b = pairing_results(jobs, local), pairing_results(jobs, on_ray)
