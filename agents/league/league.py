@@ -8,7 +8,7 @@ Generation g (``run_generation``):
    ``noises``: the built-in bots of ``opponents`` and the frozen snapshots of earlier generations (the newest
    ``max_snapshots`` of them), so it cannot just learn to exploit one.
 2. Every decision of both sides but the breaks is recorded: the table seen by its shooter and whether that
-   shooter won (``agents.evaluation.distributed``), and for the searching sides the value their search gave
+   shooter won (``agents.league.games``), and for the searching sides the value their search gave
    the chosen shot. The samples go to ``<run>/data/gen_<g>.npz``. A sample's target is its shooter's result,
    or, where the shooter searched, ``(1 - search_weight) result + search_weight search value`` (the search's
    one-shot backup of the current value: lower variance than the result alone).
@@ -36,7 +36,8 @@ import yaml
 
 from billiards_env.bots.learned.value import VALUE_DIR, load_value, mirror_features
 
-from ..evaluation.distributed import SNAPSHOT, Job, play_jobs
+from ..evaluation.distributed import MatchJob
+from .games import SNAPSHOT, play_league_jobs
 from .fit import FitConfig, fit_value
 
 STATE = "league.json"
@@ -143,7 +144,7 @@ def learner_spec(run: Path, state: dict) -> str:
     return SNAPSHOT + str(run / state["snapshots"][-1]["stem"]) if state["snapshots"] else "lookahead"
 
 
-def league_jobs(run: Path, cfg: LeagueConfig, state: dict) -> list[Job]:
+def league_jobs(run: Path, cfg: LeagueConfig, state: dict) -> list[MatchJob]:
     """Generation ``state['generation']``'s jobs (module docstring, step 1); takes their seeds."""
     learner = learner_spec(run, state)
     frozen = [SNAPSHOT + str(run / s["stem"]) for s in state["snapshots"][:-1]][-cfg.max_snapshots:]
@@ -152,7 +153,7 @@ def league_jobs(run: Path, cfg: LeagueConfig, state: dict) -> list[Job]:
         if opp == learner:
             continue
         for noise in cfg.noises:
-            jobs.append(Job(learner, opp, cfg.game, state["next_seed"], cfg.racks, noise, cfg.max_shots, True))
+            jobs.append(MatchJob(learner, opp, cfg.game, cfg.racks, state["next_seed"], noise, cfg.max_shots))
             state["seeds"].append(state["next_seed"])
             state["next_seed"] += 1
     return jobs
@@ -174,10 +175,11 @@ def run_generation(run: Path, cfg: LeagueConfig, state: dict, address=None, log=
     def progress(i, r):
         j = r.job
         log(f"  [{i + 1}/{len(jobs)}] vs {label(j.b, run)} ({j.noise}, seed {j.seed}): learner "
-            f"{r.score_a:.1f}/{len(r.winner)}, {0 if r.y is None else len(r.y)} samples "
-            f"({time.perf_counter() - t0:.0f} s)")
+            f"{r.score_a:.1f}/{len(r.winner)}, {0 if r.samples is None else len(r.samples.y)} samples")
 
-    results = play_jobs(jobs, address=address, progress=progress)
+    results = play_league_jobs(jobs, address=address, progress=progress,
+                               chunk_progress=lambda n, total: log(f"  {n}/{total} jobs played "
+                                                                   f"({time.perf_counter() - t0:.0f} s)"))
     xs, ys, gs, ss, summary = [], [], [], [], []
     for r in results:
         j = r.job
@@ -186,11 +188,11 @@ def run_generation(run: Path, cfg: LeagueConfig, state: dict, address=None, log=
         c["games"] += len(r.winner)
         c["a_score"] += r.score_a
         summary.append(dict(pairing=key, games=len(r.winner), a_score=r.score_a, seed=j.seed))
-        if r.y is not None:
-            xs.append(r.x)
-            ys.append(r.y)
-            gs.append(j.seed * GAME_ID + r.table)
-            ss.append(r.search)
+        if r.samples is not None:
+            xs.append(r.samples.x)
+            ys.append(r.samples.y)
+            gs.append(j.seed * GAME_ID + r.samples.table)
+            ss.append(r.samples.search)
     data = run / "data"
     data.mkdir(parents=True, exist_ok=True)
     np.savez(data / f"gen_{g:03d}.npz", x=np.concatenate(xs), y=np.concatenate(ys), game=np.concatenate(gs),

@@ -9,7 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from agents.evaluation.distributed import Job, play_jobs
+from agents.evaluation.distributed import MatchJob
+from agents.league.games import play_league_jobs
 from agents.league import LeagueConfig, fit_value, load_state, run_league
 from agents.league.fit import FitConfig, log_loss
 
@@ -34,17 +35,26 @@ def test_resumed_league_ends_as_an_uninterrupted_one(tmp_path):
         run_league(tmp_path / "whole", cfg, log=quiet)
 
 
-def test_play_jobs_records_every_decision_with_its_shooters_result():
-    job = Job("ghost", "ghost-safety", "nine_ball", seed=5, n_racks=2, noise="tournament", max_shots=14, record=True)
-    r, again = play_jobs([job]), play_jobs([job])
-    r = r[0]
-    assert r.winner.shape == (4,) and np.array_equal(r.winner, again[0].winner)
-    assert np.array_equal(r.x, again[0].x)
-    # one sample per shot but the breaks
-    assert len(r.y) == int(r.shots.sum()) - 4
-    assert set(np.unique(r.y)) <= {0.0, 0.5, 1.0} and set(r.table) <= set(range(4))
-    with pytest.raises(NotImplementedError):
-        play_jobs([job], address="ray://nowhere:1")
+def test_league_jobs_record_every_decision_with_its_shooters_result():
+    """Through play_jobs: one sample per shot but the breaks, labelled by the shooter's game; the same in
+    chunks of one rack as in one batch of the job's racks, apart from the order of the samples."""
+    from billiards_env.studies.matches import play_pairing
+    job = MatchJob("lookahead", "ghost-safety", "nine_ball", racks=2, seed=5, noise="tournament", max_shots=14)
+    r, again = play_league_jobs([job]), play_league_jobs([job])
+    r, again = r[0], again[0]
+    ref = play_pairing("lookahead", "ghost-safety", "nine_ball", 2, 5, "tournament", max_shots=14)
+    assert np.array_equal(r.winner, ref.winner) and np.array_equal(r.winner, again.winner)
+    s = r.samples
+    assert np.array_equal(s.x, again.samples.x)
+    assert len(s.y) == int(ref.shots.sum()) - 4
+    assert set(np.unique(s.y)) <= {0.0, 0.5, 1.0} and set(s.table) <= set(range(4))
+    w = ref.winner[s.table]
+    assert np.all((s.y == 0.5) == (w < 0))
+    # the lookahead's decisions carry its search value, ghost-safety's do not
+    assert np.isfinite(s.search).any() and np.isnan(s.search).any()
+    chunked = play_league_jobs([MatchJob("ghost", "ghost-safety", "nine_ball", racks=2, seed=5, max_shots=14,
+                                         chunk_racks=1)])[0]
+    assert len(chunked.samples.y) == len(chunked.samples.table) and set(chunked.samples.table) <= set(range(4))
 
 
 def test_fit_learns_a_planted_value():
