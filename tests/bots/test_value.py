@@ -144,3 +144,27 @@ def test_blind_leaf_value_changes_only_the_tables_without_a_pot(tmp_path):
     assert not np.allclose(blind[ease <= 0], pv[ease <= 0])
     with pytest.raises(ValueError, match="where must be one of"):
         V.LeafValue(where="some")
+
+
+def test_value_lookahead_is_an_opponent_of_the_game_env_and_plays_the_aec_env():
+    import gymnasium as gym
+
+    import billiards_env  # noqa: F401
+    from billiards_env.envs.games.aec import NineBallAECEnv
+
+    if not (V.VALUE_DIR / "nine_ball.json").exists():
+        pytest.skip("no value network shipped")
+    env = gym.make("Billiards-NineBall2P-v0", opponent="value-lookahead")
+    obs, _ = env.reset(seed=2)
+    obs, *_ = env.step(env.action_space.sample())
+    assert np.isfinite(obs).all()
+    aec = NineBallAECEnv()
+    aec.reset(seed=3)
+    bot = make_bot("value-lookahead", seed=1)
+    for _ in range(3):
+        *_, term, trunc, _ = aec.last()
+        if term or trunc:
+            break
+        a = aec.bot_action(bot.act(aec.bot_view()))
+        assert aec.action_space(aec.agent_selection).contains(a)
+        aec.step(a)
