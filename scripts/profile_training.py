@@ -65,8 +65,12 @@ def main(argv=None) -> int:
     rollouts = 1 if args.quick else args.rollouts
     import torch
 
+    import numba
+
     cfg = load_config(args.config, args.env, sets)
+    # the threads training uses (agents.sb3.training.train sets the same)
     torch.set_num_threads(cfg.train.torch_threads)
+    numba.set_num_threads(min(cfg.train.numba_threads, numba.config.NUMBA_NUM_THREADS))
     env, _ = build_env(cfg, cfg.train.seed)
     model = build_model(cfg, env, None)
     per = cfg.n_envs * int(cfg.algo_kwargs.get("n_steps", 2048))
