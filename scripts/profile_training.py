@@ -9,8 +9,12 @@ warm-up rollout, then profiles ``--rollouts`` more and splits their wall
 time into the PPO updates, the agent's network in the rollouts, the
 agent-side features, the opponent's decisions and the simulator (every
 ``physics.simulate`` call: the shots played and the bots' previews), from
-the profile's cumulative times. Writes the split and the top of the profile
-to ``--out`` (default stdout only).
+the profile's cumulative times (by default in CPU time of the process:
+``--clock wall`` for wall time). Writes the split and the top of the profile
+to ``--out`` (default stdout only). The first line also gives the rate per
+CPU-second of the process, which a loaded machine changes less than the
+wall rate, and how many cores the process kept busy (numba's idle OpenMP
+worker spins: with 2 numba threads the process keeps two cores busy).
 """
 from __future__ import annotations
 
@@ -39,6 +43,7 @@ PARTS = (("updates (PPO train)", "ppo/ppo.py", "train"),
 
 
 def split(stats: pstats.Stats, wall: float) -> list[tuple[str, float]]:
+    """The parts' cumulative seconds (of the profile's clock) and the total."""
     cum = {}
     for (file, _, fn), (_, _, _, ct, _) in stats.stats.items():
         for label, suffix, name in PARTS:
@@ -48,7 +53,7 @@ def split(stats: pstats.Stats, wall: float) -> list[tuple[str, float]]:
     d = dict(rows)
     rows.append(("agent network in rollouts (rollouts - env step)",
                  d["rollouts (collect_rollouts)"] - d["env step (all of it)"]))
-    rows.append(("wall", wall))
+    rows.append(("total", wall))
     return rows
 
 
@@ -60,12 +65,14 @@ def main(argv=None) -> int:
     ap.add_argument("--rollouts", type=int, default=4)
     ap.add_argument("--out", type=Path, default=None)
     ap.add_argument("--quick", action="store_true", help="8 tables, 1 rollout")
+    ap.add_argument("--clock", choices=("cpu", "wall"), default="cpu",
+                    help="the profile's timer: the process's CPU time (default; a loaded machine "
+                         "stretches wall time unevenly across the parts) or wall time")
     args = ap.parse_args(argv)
-    sets = list(args.set) + (["n_envs=8", "ppo.batch_size=64"] if args.quick else [])
+    sets = list(args.set) + (["n_envs=8", "ppo.batch_size=32"] if args.quick else [])
     rollouts = 1 if args.quick else args.rollouts
-    import torch
-
     import numba
+    import torch
 
     cfg = load_config(args.config, args.env, sets)
     # the threads training uses (agents.sb3.training.train sets the same)
@@ -75,17 +82,20 @@ def main(argv=None) -> int:
     model = build_model(cfg, env, None)
     per = cfg.n_envs * int(cfg.algo_kwargs.get("n_steps", 2048))
     model.learn(per)  # compiles the kernels, fills the normaliser
-    prof = cProfile.Profile()
-    t0 = time.perf_counter()
+    prof = cProfile.Profile(time.process_time if args.clock == "cpu" else time.perf_counter)
+    t0, c0 = time.perf_counter(), time.process_time()
     prof.enable()
     model.learn(per * rollouts, reset_num_timesteps=False)
     prof.disable()
-    wall = time.perf_counter() - t0
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     stats = pstats.Stats(prof)
     lines = [f"{args.env}, {cfg.n_envs} tables, {rollouts} rollouts of {per} env steps: "
-             f"{per * rollouts / wall:,.0f} env steps/s including updates", "",
-             "| part | seconds | share of wall |", "|---|---|---|"]
-    lines += [f"| {label} | {s:.2f} | {s / wall:.0%} |" for label, s in split(stats, wall)]
+             f"{per * rollouts / wall:,.0f} env steps/s including updates (under cProfile), "
+             f"{per * rollouts / cpu:,.0f} per CPU-second of the process ({cpu / wall:.2f} cores busy; "
+             f"numba threads {cfg.train.numba_threads}, torch threads {cfg.train.torch_threads})", "",
+             f"| part | {args.clock} seconds | share |", "|---|---|---|"]
+    total = cpu if args.clock == "cpu" else wall
+    lines += [f"| {label} | {s:.2f} | {s / total:.0%} |" for label, s in split(stats, total)]
     text = io.StringIO()
     pstats.Stats(prof, stream=text).sort_stats("cumulative").print_stats(40)
     report = "\n".join(lines) + "\n\n```\n" + text.getvalue() + "```\n"

@@ -22,4 +22,6 @@ def test_profile_training_quick(tmp_path):
             if line.startswith("| ") and not line.startswith("| part")}
     assert rows["updates (PPO train)"] > 0 and rows["simulator (physics.simulate)"] > 0
     assert rows["opponent decisions (bot act)"] > 0 and rows["agent features"] > 0
-    assert rows["updates (PPO train)"] + rows["rollouts (collect_rollouts)"] <= rows["wall"] * 1.01
+    assert rows["updates (PPO train)"] + rows["rollouts (collect_rollouts)"] <= rows["total"] * 1.01
+    assert rows["simulator (physics.simulate)"] <= rows["env step (all of it)"] <= rows["rollouts (collect_rollouts)"]
+    assert "per CPU-second of the process" in text.splitlines()[0]
