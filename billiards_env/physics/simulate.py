@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import dataclasses
 import numbers
+import threading
 from typing import NamedTuple
 
 import numba
@@ -23,6 +24,11 @@ RECORD_CAPACITY = 4096  # events kept per table when record=True
 # Bytes of per-table scratch a call holds at once: larger batches run in chunks of tables (results do
 # not depend on the batch size), so 120,000 8-ball tables take ~64 MB of pair times, not ~245 MB.
 MAX_SCRATCH_BYTES = 64 * 2 ** 20
+# The event solver's scratch of calls up to this size is kept between calls (one set per thread: simulate
+# may run in several threads at once) and reused, so the bots' many small previews do not allocate,
+# clear and page in fresh buffers on every call; larger calls allocate their own.
+KEEP_SCRATCH_BYTES = 8 * 2 ** 20
+_kept = threading.local()
 
 
 class SimOptions(NamedTuple):
@@ -240,14 +246,7 @@ def _simulate_chunk(s: BallState, geo: Geometry, p: np.ndarray, kernel, solver: 
         numba.set_num_threads(E)
     try:
         if solver == "event":
-            # tt, tb and paths are read (as zeros) by the first refresh pass
-            # before every ball has been refreshed; the rest is written for
-            # every ball by that pass before anything reads it, so it need
-            # not be cleared (tpair is the big one: E x B x B).
-            scr = EventScratch(tt=np.zeros((E, B)), tb=np.zeros((E, B)), bkind=np.empty((E, B), dtype=np.int64),
-                               bidx=np.empty((E, B), dtype=np.int64), tpair=np.empty((E, B, B)),
-                               paths=np.zeros((E, B, 6)), tlast=np.empty((E, B)))
-            call(kernel, balls, geo, p, scr, out, log, int(max_events))
+            call(kernel, balls, geo, p, _event_scratch(E, B), out, log, int(max_events))
         else:
             call(kernel, balls, geo, p, out, log, int(max_events), float(dt), int(C.MAX_STEPS))
     finally:
@@ -264,6 +263,27 @@ def _simulate_chunk(s: BallState, geo: Geometry, p: np.ndarray, kernel, solver: 
     return SimResult(s, out.time, out.nev, out.first, out.cush, out.trunc, out.cush_after, events,
                      out.diag if diagnostics else None, out.order if n_contacts else None,
                      out.norder if n_contacts else None)
+
+
+def _event_scratch(E: int, B: int) -> EventScratch:
+    """The event solver's scratch for E tables of B balls: tt, tb and paths
+    zeroed (the first refresh pass reads them as zeros before every ball has
+    been refreshed); the rest is written for every ball by that pass before
+    anything reads it, so it is not cleared (tpair is the big one: E x B x B).
+    Rows of the thread's kept buffers (``KEEP_SCRATCH_BYTES``) when it fits."""
+    kept = getattr(_kept, "event", None)
+    if kept is None or kept.tt.shape[0] < E or kept.tt.shape[1] != B:
+        n = E if kept is None or kept.tt.shape[1] != B else max(E, kept.tt.shape[0])
+        kept = EventScratch(tt=np.empty((n, B)), tb=np.empty((n, B)), bkind=np.empty((n, B), dtype=np.int64),
+                            bidx=np.empty((n, B), dtype=np.int64), tpair=np.empty((n, B, B)),
+                            paths=np.empty((n, B, 6)), tlast=np.empty((n, B)))
+        if n * B * (B + 11) * 8 <= KEEP_SCRATCH_BYTES:
+            _kept.event = kept
+    scr = EventScratch(*(a[:E] for a in kept))
+    scr.tt.fill(0.0)
+    scr.tb.fill(0.0)
+    scr.paths.fill(0.0)
+    return scr
 
 
 def set_num_threads(n: int) -> None:

@@ -150,7 +150,7 @@ class Session:
             "players": self.players, "names": self.names, "over": over, "truncated": over and not bool(g.over[k]),
             "human_to_move": not over and self.bots[to_move] is None, "in_hand_code": int(cons.ball_in_hand[k]),
             "calls_ball": bool(c.rules.calls_ball), "calls_pocket": self.game not in NOMINATING,
-            "n_shots": self.n_shots(), "points": g.score[k].astype(int).tolist() if c.rules.extra_obs else None,
+            "n_shots": self.n_shots(), "points": g.score[k].astype(int).tolist() if c.rules.to_points else None,
             "target": getattr(c.rules, "target", None),
             "pos": c.state.pos[k].tolist(), "on_table": (c.state.pocket[k] < 0).tolist(),
             "limits": {"speed_min": float(draw_to_speed(c.cfg.min_draw, p)), "speed_max": float(p.max_speed),

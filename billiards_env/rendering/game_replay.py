@@ -12,7 +12,7 @@ turn on that table starts the next game.
 Each entry's ``info["game"]`` holds the game around that turn, in words as
 well as numbers: the shooter, the state before the turn and after it (who
 is to move, ball in hand and where it may go, the legal targets, fouls in a
-row, the 8-ball groups, push-out / pass / call, the score in games won on
+row, the 8-ball groups, push-out / pass / call, the score: points in the games to a score, else games won on
 that table), the declaration, the called pocket, where the cue ball was
 placed, the ruling's fields and one sentence of ruling
 (``game_words.ruling_words``). The replay's top-level ``game`` entry holds
@@ -24,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..rules import HEAD_STRING
-from .game_words import (ball_ids, end_words, foul_words, game_words, group_words, in_hand_words, player_labels,
+from .game_words import (ball_ids, call_words, end_words, foul_words, game_words, group_words, in_hand_words, player_labels,
                          pocket_names, ruling_words)
 from .replay import Replay
 
@@ -40,7 +40,9 @@ def state_words(core, k: int, score) -> dict:
             "push_out_allowed": bool(c.push_out_allowed[k]), "may_pass": bool(c.may_pass[k]),
             "call_needed": bool(c.call_needed[k]), "fouls": g.fouls[k].astype(int).tolist(), "groups": groups,
             "shots": int(g.shots[k]), "over": bool(g.over[k]), "winner": int(g.winner[k]),
-            "score": [int(x) for x in score]}
+            "score": [int(x) for x in (g.score[k] if core.rules.to_points else score)],
+            "score_of": "points" if core.rules.to_points else "games won",
+            "call": call_words(core.config.game) if c.call_needed[k] else None}
 
 
 class GameRecorder:
@@ -141,7 +143,7 @@ class GameRecorder:
             shot_info = {"action": action.tolist(), "game": game}
             if core.rules.own_cue_balls:  # the ball in each slot: slot 0 is the shooter's (the starter's is white)
                 shot_info["ball_ids"] = ball_ids(core, k, s)
-            if "score" in info and core.rules.extra_obs:  # games to a score: the shot's points, the score after it
+            if core.rules.to_points:  # games to a score: the shot's points, the score after it
                 game["points"] = int(info["points"][j])
                 game["score"] = np.asarray(info["score"][j]).astype(int).tolist()
             if info["passed"][j]:

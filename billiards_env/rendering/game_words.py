@@ -41,6 +41,15 @@ def game_words(name: str) -> str:
     return GAME_WORDS.get(name, name.replace("_", "-"))
 
 
+CALL_WORDS = {"eight_ball": "call a pocket for the 8", "ten_ball": "call the ball and its pocket",
+              "snooker": "nominate the colour"}
+
+
+def call_words(name: str) -> str:
+    """What a shooter must call when the game asks for a call."""
+    return CALL_WORDS.get(name, "call the shot")
+
+
 def pocket_names(pockets) -> list[str]:
     """Names of a table's pockets [P, 3] (x, y, r) by where they lie: the
     head (y = 0, the breaking end) or foot end, left (x < width / 2) or

@@ -37,6 +37,14 @@ class Facts:
                    first=np.asarray(shot.first_contact, dtype=np.int64))
 
 
+def in_phases(phase: np.ndarray, phases) -> np.ndarray:
+    """[E] bool: ``phase`` is one of ``phases`` (a few constants; ``np.isin`` costs more than the comparisons)."""
+    out = phase == phases[0]
+    for p in phases[1:]:
+        out |= phase == p
+    return out
+
+
 def lowest_on_table(pocket: np.ndarray) -> np.ndarray:
     """The lowest-numbered object ball on each table (-1 none)."""
     on = np.asarray(pocket)[:, 1:] < 0
@@ -82,7 +90,7 @@ class RotationShot:
     def of(cls, game: GameState, shot: ShotInput, pass_phases=(PHASE_PUSHED,)) -> "RotationShot":
         f = Facts.of(shot)
         is_break = game.phase == PHASE_BREAK
-        passed = np.asarray(shot.passed, dtype=bool) & np.isin(game.phase, pass_phases)
+        passed = np.asarray(shot.passed, dtype=bool) & in_phases(game.phase, pass_phases)
         played = ~passed
         pushed = np.asarray(shot.push_out, dtype=bool) & (game.phase == PHASE_AFTER_BREAK) & played
         lowest = lowest_on_table(shot.pocket_before)
@@ -120,6 +128,7 @@ class Rules:
     own_cue_balls: bool = False
     extra_obs: int = 0
     scored: bool = False      # a game of points (``GameState.score``, ``ShotRecord.points``; snooker)
+    to_points: bool = False   # won on points (``GameState.score``: snooker, three-cushion), not by a last ball
     reads_position: bool = False  # ``constraints`` and ``judge`` read where the balls lie (snooker's free ball)
 
     def new_game(self, breaker) -> GameState:

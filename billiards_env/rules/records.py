@@ -118,15 +118,18 @@ class GameState:
         return len(self.shooter)
 
     def copy(self) -> "GameState":
-        return GameState(**{f.name: getattr(self, f.name).copy() for f in dataclasses.fields(self)})
+        return GameState(*(getattr(self, k).copy() for k in _GAME_FIELDS))
 
     def take(self, idx) -> "GameState":
-        return GameState(**{f.name: getattr(self, f.name)[idx] for f in dataclasses.fields(self)})
+        return GameState(*(getattr(self, k)[idx] for k in _GAME_FIELDS))
 
     def put(self, idx, other: "GameState") -> None:
         """Write ``other`` (len(idx) tables) into tables ``idx``."""
-        for f in dataclasses.fields(self):
-            getattr(self, f.name)[idx] = getattr(other, f.name)
+        for k in _GAME_FIELDS:
+            getattr(self, k)[idx] = getattr(other, k)
+
+
+_GAME_FIELDS = tuple(f.name for f in dataclasses.fields(GameState))  # in order (copy, take and put run every shot)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

@@ -153,6 +153,7 @@ class SnookerRules(Rules):
     n_balls = N_BALLS
     calls_ball = True   # the nominated colour, or the free ball, in ``ShotInput.called_ball``
     scored = True       # a game of points: ``GameState.score``
+    to_points = True
     reads_position = True
     table_style = "snooker"   # Table.snooker()
     physics = "snooker"       # PhysicsParams.snooker(): snooker balls

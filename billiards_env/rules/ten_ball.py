@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .common import RotationShot, Rules, next_state
+from .common import RotationShot, Rules, in_phases, next_state
 from .nine_ball import NineBallRules
 from .records import (CALL_SAFETY, END_NONE, END_TEN, END_THREE_FOULS, IN_HAND_ANYWHERE, IN_HAND_NONE, PHASE_BREAK,
                       PHASE_OPTION, PHASE_PUSHED, Constraints, GameState, ShotInput, ShotRecord)
@@ -66,5 +66,5 @@ class TenBallRules(Rules):
         c = NineBallRules.constraints(self, game, pocket)  # the lowest ball; push-out after a legal break
         live = ~game.over
         return Constraints(shooter=c.shooter, ball_in_hand=c.ball_in_hand, targets=c.targets,
-                           push_out_allowed=c.push_out_allowed, may_pass=live & np.isin(game.phase, PASS_PHASES),
+                           push_out_allowed=c.push_out_allowed, may_pass=live & in_phases(game.phase, PASS_PHASES),
                            call_needed=live & (game.phase != PHASE_BREAK), is_break=c.is_break, over=c.over)

@@ -81,6 +81,7 @@ class ThreeCushionRules(Rules):
     contacts = CONTACTS_KEPT
     own_cue_balls = True
     extra_obs = 4
+    to_points = True
 
     def __init__(self, target: int = TARGET, max_innings: int = MAX_INNINGS, equal_innings: bool = False):
         for name, v in (("target", target), ("max_innings", max_innings)):

@@ -352,3 +352,30 @@ def test_browser_phone_frame_times(browser, game_page):
           f"{np.median(ft):.2f} ms, p95 {np.percentile(ft, 95):.2f} ms; draw median {np.median(dt):.3f} ms, "
           f"p95 {np.percentile(dt, 95):.3f} ms")
     assert len(ft) >= 30, "the viewer did not animate"
+
+
+@pytest.mark.parametrize("game,policy", [("snooker", "snooker"), ("three_cushion", "carom8"), ("ten_ball", "ghost"),
+                                         ("eight_ball", "ghost")])
+def test_game_states_show_points_and_calls_in_the_games_words(game, policy):
+    """Games to a score show each player's points (not games won), and a
+    call is worded for its game (snooker nominates a colour, 10-ball calls
+    its ball and pocket)."""
+    core = GameCore(GameConfig(game=game, noise="tournament", max_shots=14), 1, record=True)
+    core.streams.seed([0], [5])
+    core.reset_tables([0], [0])
+    rec = GameRecorder(core)
+    bots = [make_bot(policy, 1), make_bot(policy, 2)]
+    for _ in range(14):
+        out = core.step(bot_actions(core, bots[int(core.constraints().shooter[0])], [0]), [0])
+        if out["terminated"][0] or out["truncated"][0]:
+            break
+    turns = [s["info"]["game"] for s in rec.games(0)[-1].shots]
+    states = [t["after"] for t in turns]
+    want = "points" if game in ("snooker", "three_cushion") else "games won"
+    assert all(st["score_of"] == want for st in states)
+    if want == "points":
+        assert states[-1]["score"] == core.game.score[0].tolist()
+    calls = {st["call"] for st in [t["before"] for t in turns] if st["call_needed"]}
+    assert None not in calls and len(calls) <= 1
+    if game in ("snooker", "ten_ball"):
+        assert calls == {{"snooker": "nominate the colour", "ten_ball": "call the ball and its pocket"}[game]}
