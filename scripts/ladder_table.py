@@ -6,6 +6,7 @@
     python scripts/ladder_table.py --quick --out /tmp/ladder   # smoke test: ladder-1 v ghost, 2 racks, no noise
     python scripts/ladder_table.py --games eight_ball --noise high &   # one part per process, then
     python scripts/ladder_table.py --collect                           # the CSV, summary and docs of every part
+    python scripts/ladder_table.py --racks 50 --address local --chunk-racks 10   # the matches as Ray tasks
 
 For each game (9-ball, 8-ball) and noise level (``none``, ``tournament``,
 ``high``, ``variable``) every pairing of the game's ladder agents
@@ -19,7 +20,11 @@ table of every rating) and ``<out>/ladder.md`` (the agents' cards and the
 summary); with the default ``--out`` the summary also goes into
 ``docs/ladder.md`` between its markers. ``--collect`` plays nothing: it
 writes the CSV, summary and docs from the ``<game>_<noise>.json`` already
-in ``--out`` (parts played by separate processes).
+in ``--out`` (parts played by separate processes). ``--address`` plays the
+matches as Ray tasks (``local``: Ray on this machine; ``auto`` or
+``HOST:PORT``: a cluster), in chunks of ``--chunk-racks`` racks
+(``agents.evaluation.distributed``, docs/distributed.md); the results are
+the same as without it for the same chunks.
 """
 from __future__ import annotations
 
@@ -33,9 +38,9 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from agents.evaluation.distributed import tournament  # noqa: E402
 from billiards_env.bots.learned import ladder as L  # noqa: E402
 from billiards_env.studies import match_report  # noqa: E402
-from billiards_env.studies.matches import tournament  # noqa: E402
 
 GAMES = ("nine_ball", "eight_ball")
 BOTS = ("ghost", "ghost-safety", "search64", "lookahead")
@@ -84,7 +89,13 @@ def main(argv=None) -> int:
     ap.add_argument("--out", type=Path, default=ROOT / "results" / "ladder")
     ap.add_argument("--quick", action="store_true", help="ladder-1 v ghost, 2 racks, no noise (the test's run)")
     ap.add_argument("--collect", action="store_true", help="play nothing: tables and docs from the JSON in --out")
+    ap.add_argument("--address", default=None,
+                    help="play on Ray: local (a Ray instance here), auto or HOST:PORT (a cluster); default: this process")
+    ap.add_argument("--chunk-racks", type=int, default=None, metavar="N",
+                    help="racks played together (one Ray task each); default: all racks of a pairing")
     args = ap.parse_args(argv)
+    if args.chunk_racks is not None and args.chunk_racks < 1:
+        ap.error(f"--chunk-racks must be a positive integer, got {args.chunk_racks}")
     if args.quick:
         args.bots, args.racks, args.noise = ["ghost"], 2, ["none"]
     command = " ".join(["python", "scripts/ladder_table.py"] + (argv if argv is not None else sys.argv[1:]))
@@ -96,7 +107,8 @@ def main(argv=None) -> int:
         names = rungs + list(args.bots)
         for noise in args.noise:
             t0 = time.perf_counter()
-            results, table = tournament(names, game, args.racks, args.seed, noise, max_shots=args.max_shots)
+            results, table = tournament(names, game, args.racks, args.seed, noise, args.address, args.chunk_racks,
+                                        args.max_shots)
             doc = dict(command=command, game=game, noise=noise, racks=args.racks, seed=args.seed,
                        seconds=time.perf_counter() - t0, pairings=[r.summary() for r in results], ratings=table)
             match_report.write(args.out / f"{game}_{noise}", doc, results, table)

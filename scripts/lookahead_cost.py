@@ -7,7 +7,8 @@
 
 ``--tables``: N seeded tables are played ``--rounds`` shots into their games by ``ghost``; then the lookahead
 decides on all tables where a game is live, at once, ``--repeats`` times (after one warm-up call on a few tables,
-which compiles the kernels): the median wall time per decision and the previews per decision.
+which compiles the kernels): the median wall time and the process's CPU time per decision, and the previews per
+decision.
 
 ``--budgets``: for each budget (``bots.game_lookahead.BUDGETS`` or ``default``), ``--racks`` paired racks against
 ``--opponent`` (``studies.matches.play_pairing``, each rack twice, each side breaking once) at ``--noise``: the win
@@ -68,15 +69,17 @@ def cost(game: str, n: int, rounds: int, repeats: int, seed: int, budget: str) -
         live = live[~(out["terminated"] | out["truncated"])]
     bot = bot_of(budget, seed)
     bot.act(core.view(live[:4]))  # warm-up: compiles the kernels
-    times, sims = [], []
+    times, cpu, sims = [], [], []
     for _ in range(repeats):
         s0 = bot.sims
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         bot.act(core.view(live))
         times.append(time.perf_counter() - t0)
+        cpu.append(time.process_time() - c0)
         sims.append(bot.sims - s0)
     t = float(np.median(times))
     return dict(game=game, budget=budget, tables=int(len(live)), seconds=t, ms_per_decision=1e3 * t / len(live),
+                cpu_ms_per_decision=1e3 * float(np.median(cpu)) / len(live),
                 previews_per_decision=float(np.median(sims)) / len(live))
 
 

@@ -8,6 +8,7 @@
     python scripts/match.py --summary    # every game and noise level of results/matches in one table
     python scripts/match.py --policies ghost search64 --racks 20 --save-replays 4   # + 4 whole games per pairing
     python scripts/match.py --protocol championship --policies lookahead search64 ghost-safety --racks 100
+    python scripts/match.py --policies ghost ghost-safety search64 --racks 100 --address local --chunk-racks 25
 
 Every pairing plays ``--racks`` racks twice (each side breaks once on each
 rack). Writes ``<out>/<game>_<noise>.json``, ``.md`` and ``.png`` (ratings
@@ -26,6 +27,13 @@ each of the noise levels ``tournament`` (1x), ``high`` (5x) and
 compute per shot; writes ``<out>/eight_ball_<noise>.*`` and
 ``<out>/championship.md`` / ``.json`` (default out: results/matches/championship).
 ``--quick``: 2 racks, games cut at 20 shots (a smoke run).
+
+``--address``: the pairings' racks played as Ray tasks, in chunks of
+``--chunk-racks`` racks (``agents.evaluation.distributed``; ``local``
+starts Ray on this machine, ``auto`` or ``HOST:PORT`` joins a cluster;
+docs/distributed.md). Without it every chunk plays in this process. The
+results depend on the chunks, not on where they ran: the same with and
+without ``--address``; without ``--chunk-racks`` a pairing is one chunk.
 """
 from __future__ import annotations
 
@@ -39,6 +47,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(1, str(Path.cwd()))  # module:factory bots in the current directory
 
+from agents.evaluation import distributed  # noqa: E402
 from agents.evaluation.entrants import bot_factory  # noqa: E402
 from billiards_env.envs.games import GAMES  # noqa: E402
 from billiards_env.envs.games.core import BREAK_NINE  # noqa: E402
@@ -47,7 +56,6 @@ from billiards_env.rendering import save_replay_html  # noqa: E402
 from billiards_env.studies import match_report  # noqa: E402
 from billiards_env.studies.championship import GAME as CHAMPIONSHIP_GAME  # noqa: E402
 from billiards_env.studies.championship import championship, compute_table  # noqa: E402
-from billiards_env.studies.matches import tournament  # noqa: E402
 
 
 def write_replays(folder: Path, results) -> None:
@@ -59,6 +67,11 @@ def write_replays(folder: Path, results) -> None:
             rep.save(stem.with_suffix(".json"))
             save_replay_html(rep, stem.with_suffix(".html"))
             print(f"wrote {stem.with_suffix('.html')} ({len(rep)} shots)")
+
+
+def _progress(done: int, total: int) -> None:
+    if total > 1:
+        print(f"chunks played: {done}/{total}", file=sys.stderr, flush=True)
 
 
 def _safe(name: str) -> str:
@@ -84,6 +97,10 @@ def main(argv=None) -> int:
     ap.add_argument("--save-replays", type=int, default=0, metavar="N",
                     help="write the first N games of every pairing as replays (HTML and JSON)")
     ap.add_argument("--summary", action="store_true", help="only write <out>/summary.md from the JSON files there")
+    ap.add_argument("--address", default=None,
+                    help="play on Ray: local (a Ray instance here), auto or HOST:PORT (a cluster); default: this process")
+    ap.add_argument("--chunk-racks", type=int, default=None, metavar="N",
+                    help="racks played together (one Ray task each); default: all racks of a pairing")
     args = ap.parse_args(argv)
     if args.quick:
         args.racks, args.max_shots = 2, 20
@@ -100,6 +117,11 @@ def main(argv=None) -> int:
         return 0
     if len(set(args.policies)) < 2:
         ap.error("need at least two different policies")
+    if args.chunk_racks is not None and args.chunk_racks < 1:
+        ap.error(f"--chunk-racks must be a positive integer, got {args.chunk_racks}")
+    if champ and (args.address or args.chunk_racks):
+        ap.error("--address and --chunk-racks apply to the standard protocol (the championship times each entrant's "
+                 "compute per shot in this process)")
     if not 0 <= args.save_replays <= 2 * args.racks:
         ap.error(f"--save-replays must be between 0 and 2 x --racks ({2 * args.racks}), got {args.save_replays}")
     t0 = time.perf_counter()
@@ -108,8 +130,9 @@ def main(argv=None) -> int:
     command = " ".join(["python", "scripts/match.py"] + (argv if argv is not None else sys.argv[1:]))
     if champ:
         return run_championship(args, command)
-    results, table = tournament(args.policies, args.game, args.racks, args.seed, args.noise, max_shots=args.max_shots,
-                                bot_factory=bot_factory, save_replays=args.save_replays, **config)
+    results, table = distributed.tournament(args.policies, args.game, args.racks, args.seed, args.noise, args.address,
+                                            args.chunk_racks, args.max_shots, config, save_replays=args.save_replays,
+                                            progress=_progress)
     seconds = time.perf_counter() - t0
     write_replays(args.out / "replays" / f"{args.game}_{args.noise}", results)
     doc = dict(command=command, game=args.game, **config, noise=args.noise, racks=args.racks, seed=args.seed, seconds=seconds,

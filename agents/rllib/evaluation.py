@@ -7,7 +7,9 @@ task, and combines them in batch order, so its results equal the local
 evaluation's for the same seed and batch size. The search baseline's cost
 is its candidate shots (K per table, simulated in chunks): under Ray each
 chunk is a task (``RayChunkMap``), and the chunks' results are joined in
-order, so the chosen shots are the same as in one process.
+order, so the chosen shots are the same as in one process. ``ray_map``,
+under both, runs a list of calls as tasks and runs again those whose worker
+died (``agents.evaluation.distributed`` plays match chunks with it).
 
 Work goes to whatever cluster ``agents.rllib.backend.start_ray`` joined (a
 local instance by default). Each task uses one CPU and sets numba to one
@@ -38,15 +40,55 @@ def _remote(fn):
     return _remote_cache[fn]
 
 
+def _lost(exc: BaseException) -> bool:
+    """Whether ``exc`` says a task's worker or node died (not that the task
+    raised): such a task is run again from the start, and nothing it did
+    before counts."""
+    from ray import exceptions as rx
+
+    return isinstance(exc, (rx.WorkerCrashedError, rx.NodeDiedError, rx.ObjectLostError, rx.LocalRayletDiedError))
+
+
+def ray_map(fn, args: list, retries: int = 3, on_retry=None, on_done=None) -> list:
+    """``[fn(*a) for a in args]``, each call a one-CPU Ray task, results in
+    ``args`` order. A task whose worker dies (a crashed or killed process, a
+    lost node) is submitted again, up to ``retries`` times per task, and
+    only its last, complete run's result is kept: a chunk is counted once.
+    An exception the task itself raised is raised here. ``on_retry(i,
+    error)``: called when task i is submitted again; ``on_done(n, total)``
+    after each finished task."""
+    import ray
+
+    remote = _remote(fn).options(max_retries=0)  # resubmitted here, so every retry is seen
+    pending = {remote.remote(*a): i for i, a in enumerate(args)}
+    tries, out = [0] * len(args), [None] * len(args)
+    done = 0
+    while pending:
+        ready, _ = ray.wait(list(pending), num_returns=1)
+        i = pending.pop(ready[0])
+        try:
+            out[i] = ray.get(ready[0])
+        except Exception as exc:  # noqa: BLE001 (the task's own errors are raised again below)
+            if not _lost(exc) or tries[i] >= retries:
+                raise
+            tries[i] += 1
+            if on_retry is not None:
+                on_retry(i, exc)
+            pending[remote.remote(*args[i])] = i
+            continue
+        done += 1
+        if on_done is not None:
+            on_done(done, len(args))
+    return out
+
+
 class RayChunkMap:
     """``map_chunks`` for ``SearchPolicy``: each chunk of candidate shots is
-    simulated by a Ray task; results come back in chunk order."""
+    simulated by a Ray task; results come back in chunk order (``ray_map``:
+    a chunk whose worker died is simulated again)."""
 
     def __call__(self, fn, args: list) -> list:
-        import ray
-
-        remote = _remote(fn)
-        return ray.get([remote.remote(*a) for a in args])
+        return ray_map(fn, args)
 
 
 def cluster_cpus() -> int:

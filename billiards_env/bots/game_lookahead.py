@@ -25,7 +25,10 @@ For every table where the bot is to move (all tables at once, in batched ``GameV
    ease ``e`` is worth ``min(v, 1 - v)`` with ``v = position_value(e)`` (the opponent chooses whether to shoot),
    and is declared when it beats the best shot's value. After the opponent's push-out, the shot is passed back
    when the best shot's value is below 1/2 (the opponent would then shoot the same table).
-6. **Breaks** are ``GhostBot``'s seeded standard break.
+6. **Breaks** are searched once per game and table and kept (``searched_break``): ``break_search`` candidate
+   strikes (the cue ball along the head string, the aim across the front ball, speed, tip height), each
+   previewed under noise on the first ``break_racks`` breaking racks and valued as any shot; with
+   ``break_search=0``, ``GhostBot``'s seeded standard break.
 
 ``pot_table`` and ``leave_ease`` are the geometric part (numba kernels here): the ghost-ball shot of a ball into a
 pocket; a pot is open when both paths are clear of other balls (by 2R + ``BLOCK_CLEAR``), the cut is below
@@ -80,6 +83,13 @@ PUSH_SPEEDS = (0.3, 1.6)           # m/s: range of the push-outs' speeds
 COMBO_CUT = math.radians(60)       # 9-ball combinations: both cuts (cue -> legal ball, legal ball -> 9) below this
 COMBO_REACH = 1.2                  # m: and the legal ball within this of the 9's ghost ball
 COMBO_SPEEDS = (2.5, 4.5)          # m/s: the combinations' speeds
+BREAK_BEHIND = 0.02                # m: a searched break's cue ball this far behind the head string
+BREAK_X = 0.35                     # m: and within this of the table's long axis
+BREAK_OFF = 0.6                    # the aim at the front ball's centre, offset across by up to this (units of R)
+BREAK_SPEEDS = (6.0, 9.0)          # m/s: range of the searched breaks' speeds
+BREAK_HEIGHTS = (-0.5, 0.2)        # range of their tip heights (units of R): draw to follow
+BREAK_REFINE = 6                   # the best searched breaks re-judged with BREAK_REFINE_X times the samples
+BREAK_REFINE_X = 4
 CHUNK = 128                        # tables decided per batch of previews (memory stays bounded)
 
 
@@ -275,6 +285,9 @@ class Budget:
     q_run: float = Q_RUN
     combos: bool = False
     w_next: float = 0.0
+    break_search: int = 128    # candidate breaks searched once per game and table (0: ghost's standard break)
+    break_racks: int = 16      # the racks (the first breaking rows) each candidate break is judged on
+    break_samples: int = 2     # noise samples per candidate and rack
 
 
 # --- the bot ------------------------------------------------------------------------------------------------------
@@ -300,6 +313,7 @@ class GameLookahead:
         self.sigma_model, self.v_none, self.v_full = float(bud.sigma_model), float(bud.v_none), float(bud.v_full)
         self.q_run, self.combos, self.w_next = float(bud.q_run), bool(bud.combos), float(bud.w_next)
         self.model: PocketModel | None = None
+        self.break_strikes: dict = {}  # (game, table, params) -> the searched break (``search_break``)
         self.sims = 0        # shots previewed so far (cost accounting)
         self.last_value = None  # [n] the value of the played shot at the last decision (diagnostics)
         self.last_kind = None   # [n] what it is: "break", "pot", "safety" (safeties and kicks), "push", "pass"
@@ -569,6 +583,58 @@ class GameLookahead:
         pick = np.arange(n) * K + k
         return (phi[pick], speed[pick]), val[np.arange(n), k]
 
+    # --- breaks ---------------------------------------------------------------------------------------------------
+    def break_plan(self, view, rows, strikes) -> ShotPlan:
+        """Breaks on view rows ``rows`` [m] from ``strikes`` [m, 4]: (the cue ball's offset across the table's
+        long axis (m), the aim's offset across the front ball (units of R), speed, tip height); the cue ball
+        ``BREAK_BEHIND`` behind the head string (made legal), aimed at the rack's front ball (the object ball
+        nearest to it)."""
+        W, L, R_ = view.table.width, view.table.length, view.params.R
+        want = np.column_stack([W / 2 + strikes[:, 0], np.full(len(rows), view.marks.head_string - BREAK_BEHIND)])
+        cue, _ = view.legal_placement(want, rows)
+        pos, on = view.pos[rows], view.on_table[rows]
+        d = pos[:, 1:] - cue[:, None]
+        dist = np.where(on[:, 1:], np.linalg.norm(d, axis=-1), np.inf)
+        front = np.argmin(dist, axis=1)
+        u = d[np.arange(len(rows)), front] / dist[np.arange(len(rows)), front][:, None]
+        aim = pos[np.arange(len(rows)), front + 1] + (strikes[:, 1] * R_)[:, None] * np.column_stack([-u[:, 1], u[:, 0]])
+        phi = np.arctan2(aim[:, 1] - cue[:, 1], aim[:, 0] - cue[:, 0])
+        return ShotPlan.of(Shots(phi, np.minimum(strikes[:, 2], view.params.max_speed), 0.0, strikes[:, 3]),
+                           placement=cue)
+
+    def searched_break(self, view, rows) -> np.ndarray:
+        """The break strike [4] (``break_plan``) this bot plays in ``view.game`` on ``view.table``, searched on
+        the first call and kept (the racks differ only by their gaps and the balls' order): ``break_search``
+        candidates (the first one ``ghost``'s nominal break), each previewed ``break_samples`` times under noise
+        on each of up to ``break_racks`` of the breaking rows ``rows`` and valued as any shot (``values``: the
+        9 on the break wins; keeping the table is worth the leave; a foul gives the opponent ball in hand); the
+        ``BREAK_REFINE`` best judged again with ``BREAK_REFINE_X`` times the samples; the best mean is kept."""
+        key = (view.game, id(view.table), id(view.params))
+        hit = self.break_strikes.get(key)
+        if hit is not None and hit[0] is view.table and hit[1] is view.params:
+            return hit[2]
+        C, racks = self.budget.break_search, rows[:self.budget.break_racks]
+        rng = np.random.default_rng(self.rng.integers(2 ** 63))
+        cand = np.column_stack([rng.uniform(-BREAK_X, BREAK_X, C), rng.uniform(-BREAK_OFF, BREAK_OFF, C),
+                                rng.uniform(*BREAK_SPEEDS, C), rng.uniform(*BREAK_HEIGHTS, C)])
+        cand[0] = (0.0, 0.0, 8.0, -0.025)  # ghost's nominal break (bots.ghost.BREAK_SPEED, its mean tip height)
+
+        def judge(idx, samples):
+            rep = np.repeat(idx, len(racks) * samples)
+            r = np.tile(np.repeat(racks, samples), len(idx))
+            pv = view.preview(self.break_plan(view, r, cand[rep]), r, noise=self.noise(view), rng=rng)
+            self.sims += len(r)
+            return self.values(view, pv).reshape(len(idx), -1).mean(axis=1)
+
+        S = self.budget.break_samples
+        v = judge(np.arange(C), S)
+        top = np.argsort(-v, kind="stable")[:BREAK_REFINE]
+        v2 = (v[top] + BREAK_REFINE_X * judge(top, BREAK_REFINE_X * S)) / (1 + BREAK_REFINE_X)
+        best = cand[top[np.argmax(v2)]].copy()
+        self.break_strikes[key] = (view.table, view.params, best)
+        self.last_break_search = dict(candidates=cand, value=v, refined=top, refined_value=v2)
+        return best
+
     # --- acting ---------------------------------------------------------------------------------------------------
     def act(self, view) -> ShotPlan:
         if not view.table.has_pockets:
@@ -580,7 +646,11 @@ class GameLookahead:
         value = np.full(n, np.nan)
         kind = np.full(n, "break", dtype=object)
         brk = np.nonzero(view.is_break)[0]
-        if len(brk):
+        if len(brk) and self.budget.break_search:
+            g = self.break_plan(view, brk, np.broadcast_to(self.searched_break(view, brk), (len(brk), 4)))
+            phi[brk], speed[brk], a[brk], b[brk] = g.phi, g.speed, g.a, g.b
+            placement[brk] = g.placement
+        elif len(brk):
             g = self.ghost.act(view.take(brk))
             phi[brk], speed[brk], a[brk], b[brk] = g.phi, g.speed, g.a, g.b
             placement[brk], pocket[brk] = g.placement, g.pocket

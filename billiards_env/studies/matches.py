@@ -5,7 +5,8 @@ with each breaking, on one ``GameCore`` of 2 * n_racks tables: table k and
 table n_racks + k share their seed, so both sides meet the same racks (and,
 with ``variable`` noise, the same noise factor). Each step shoots every live
 table once with one simulator call; each bot acts only on the tables where
-its player is to move (``envs.games.play``).
+its player is to move (``envs.games.play``). ``play_racks`` plays chosen
+racks of a pairing (its chunks, ``agents.evaluation.distributed``).
 
 ``tournament`` plays every pairing of the entrants and fits a
 Bradley-Terry model (ratings on the Elo scale, 95% intervals by bootstrap
@@ -83,10 +84,24 @@ def play_pairing(a, b, game: str = "nine_ball", n_racks: int = 100, seed: int = 
     bots ``a`` and ``b`` (specs for ``bot_factory(spec, seed)``).
     ``save_replays``: record this many whole games (rack 1 with a breaking,
     rack 1 with b breaking, rack 2, ...) as ``Replay``s in ``replays``."""
+    return play_racks(a, b, game, np.arange(n_racks), seed, noise, max_shots, bot_factory, save_replays, **config)
+
+
+def play_racks(a, b, game: str = "nine_ball", racks=(0,), seed: int = 0, noise: str = "tournament",
+               max_shots: int = 200, bot_factory=make_bot, save_replays: int = 0, **config) -> PairingResult:
+    """``play_pairing`` on the racks numbered ``racks`` (rack k is drawn from
+    ``seed * 1_000_003 + k``, whichever other racks are played with it):
+    table i plays ``racks[i]`` with a breaking, table len(racks) + i with b
+    breaking. The bots are made afresh (seeded with ``seed`` and ``seed + 1``)
+    and decide for all these tables at once, so a game's result depends on
+    the set of racks played together (``agents.evaluation.distributed``
+    fixes that set per chunk)."""
     cfg = GameConfig(game=game, noise=noise, max_shots=max_shots, **config)
+    racks = np.asarray(racks, dtype=np.int64)
+    n_racks = len(racks)
     E = 2 * n_racks
     core = GameCore(cfg, E, record=save_replays > 0)
-    seeds = np.tile(seed * 1_000_003 + np.arange(n_racks), 2)
+    seeds = np.tile(seed * 1_000_003 + racks, 2)
     core.streams.seed(np.arange(E), seeds)
     breaker = np.repeat([0, 1], n_racks)  # player 0 is a
     core.reset_tables(np.arange(E), breaker)
@@ -98,7 +113,7 @@ def play_pairing(a, b, game: str = "nine_ball", n_racks: int = 100, seed: int = 
     replays = []
     for k in tables:
         rep = recorder.games(int(k))[0]
-        rep.data["meta"].update(rack=int(k % n_racks), seed=int(seeds[k]), breaker=names[int(breaker[k])])
+        rep.data["meta"].update(rack=int(racks[k % n_racks]), seed=int(seeds[k]), breaker=names[int(breaker[k])])
         replays.append(rep)
     return PairingResult(*names, game, noise, core.game.winner.copy(), breaker == 0, core.game.shots.copy(), replays,
                          core.game.score.copy(), core.game.innings.copy())
