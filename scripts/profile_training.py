@@ -3,14 +3,26 @@
 
     python scripts/profile_training.py --env Billiards-NineBall2P-v0 --rollouts 4
     python scripts/profile_training.py --quick --out /tmp/prof.txt    # 8 tables, 1 rollout (the test's run)
+    python scripts/profile_training.py --compare new --compare "old:n_envs=256,ppo.n_steps=16,ppo.batch_size=1024"
+
+``--compare LABEL[:KEY=VALUE,...]`` (repeatable) skips the profile and
+measures the rates of several configs in one process instead: each is
+built and warmed up, then ``--rounds`` rounds of about 16,384 env steps
+(rollouts and their updates) run interleaved, config after config, so load
+changes hit them alike; the medians of the wall rate and of the rate per
+CPU-second of the process are printed as a table (and written to ``--out``).
 
 Trains the config's model (``configs/ppo_games.yaml`` by default) for one
 warm-up rollout, then profiles ``--rollouts`` more and splits their wall
 time into the PPO updates, the agent's network in the rollouts, the
 agent-side features, the opponent's decisions and the simulator (every
 ``physics.simulate`` call: the shots played and the bots' previews), from
-the profile's cumulative times. Writes the split and the top of the profile
-to ``--out`` (default stdout only).
+the profile's cumulative times (by default in CPU time of the process:
+``--clock wall`` for wall time). Writes the split and the top of the profile
+to ``--out`` (default stdout only). The first line also gives the rate per
+CPU-second of the process, which a loaded machine changes less than the
+wall rate, and how many cores the process kept busy (numba's idle OpenMP
+worker spins: with 2 numba threads the process keeps two cores busy).
 """
 from __future__ import annotations
 
@@ -24,6 +36,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+
+import numpy as np  # noqa: E402
 
 from agents.config import load_config  # noqa: E402
 from agents.sb3.training import build_env, build_model  # noqa: E402
@@ -39,6 +53,7 @@ PARTS = (("updates (PPO train)", "ppo/ppo.py", "train"),
 
 
 def split(stats: pstats.Stats, wall: float) -> list[tuple[str, float]]:
+    """The parts' cumulative seconds (of the profile's clock) and the total."""
     cum = {}
     for (file, _, fn), (_, _, _, ct, _) in stats.stats.items():
         for label, suffix, name in PARTS:
@@ -48,8 +63,50 @@ def split(stats: pstats.Stats, wall: float) -> list[tuple[str, float]]:
     d = dict(rows)
     rows.append(("agent network in rollouts (rollouts - env step)",
                  d["rollouts (collect_rollouts)"] - d["env step (all of it)"]))
-    rows.append(("wall", wall))
+    rows.append(("total", wall))
     return rows
+
+
+def _threads(cfg) -> None:
+    import numba
+    import torch
+    # the threads training uses (agents.sb3.training.train sets the same)
+    torch.set_num_threads(cfg.train.torch_threads)
+    numba.set_num_threads(min(cfg.train.numba_threads, numba.config.NUMBA_NUM_THREADS))
+
+
+def compare(args) -> int:
+    """``--compare``: the configs' rates, interleaved rounds in one process."""
+    quick = ["n_envs=8", "ppo.batch_size=32"] if args.quick else []
+    rounds = 1 if args.quick else args.rounds
+    runs = []
+    for spec in args.compare:
+        label, _, sets = spec.partition(":")
+        cfg = load_config(args.config, args.env, [x for x in sets.split(",") if x] + list(args.set) + quick)
+        _threads(cfg)
+        env, _ = build_env(cfg, cfg.train.seed)
+        model = build_model(cfg, env, None)
+        per = cfg.n_envs * int(cfg.algo_kwargs.get("n_steps", 2048))
+        steps = per * (1 if args.quick else max(1, 16384 // per))
+        model.learn(steps)  # compiles the kernels, fills the normaliser
+        runs.append((label, cfg, model, steps, []))
+    for _ in range(rounds):
+        for label, cfg, model, steps, rates in runs:
+            _threads(cfg)
+            t0, c0 = time.perf_counter(), time.process_time()
+            model.learn(steps, reset_num_timesteps=False)
+            rates.append((steps / (time.perf_counter() - t0), steps / (time.process_time() - c0)))
+            print(f"{label}: {rates[-1][0]:,.0f} env steps/s, {rates[-1][1]:,.0f} per CPU-second", flush=True)
+    lines = [f"{args.env}: medians of {rounds} interleaved rounds", "",
+             "| config | tables x steps | env steps/s (wall) | env steps per CPU-second |", "|---|---|---|---|"]
+    for label, cfg, model, steps, rates in runs:
+        r = np.median(np.array(rates), axis=0)
+        lines.append(f"| {label} | {cfg.n_envs} x {cfg.algo_kwargs.get('n_steps')} | {r[0]:,.0f} | {r[1]:,.0f} |")
+    print("\n".join(lines))
+    if args.out:
+        args.out.parent.mkdir(parents=True, exist_ok=True)
+        args.out.write_text("\n".join(lines) + "\n")
+    return 0
 
 
 def main(argv=None) -> int:
@@ -60,28 +117,37 @@ def main(argv=None) -> int:
     ap.add_argument("--rollouts", type=int, default=4)
     ap.add_argument("--out", type=Path, default=None)
     ap.add_argument("--quick", action="store_true", help="8 tables, 1 rollout")
+    ap.add_argument("--clock", choices=("cpu", "wall"), default="cpu",
+                    help="the profile's timer: the process's CPU time (default; a loaded machine "
+                         "stretches wall time unevenly across the parts) or wall time")
+    ap.add_argument("--compare", action="append", default=[], metavar="LABEL[:KEY=VALUE,...]",
+                    help="rates of configs interleaved in one process, no profile (repeatable)")
+    ap.add_argument("--rounds", type=int, default=3, help="--compare: interleaved rounds")
     args = ap.parse_args(argv)
-    sets = list(args.set) + (["n_envs=8", "ppo.batch_size=64"] if args.quick else [])
+    if args.compare:
+        return compare(args)
+    sets = list(args.set) + (["n_envs=8", "ppo.batch_size=32"] if args.quick else [])
     rollouts = 1 if args.quick else args.rollouts
-    import torch
-
     cfg = load_config(args.config, args.env, sets)
-    torch.set_num_threads(cfg.train.torch_threads)
+    _threads(cfg)
     env, _ = build_env(cfg, cfg.train.seed)
     model = build_model(cfg, env, None)
     per = cfg.n_envs * int(cfg.algo_kwargs.get("n_steps", 2048))
     model.learn(per)  # compiles the kernels, fills the normaliser
-    prof = cProfile.Profile()
-    t0 = time.perf_counter()
+    prof = cProfile.Profile(time.process_time if args.clock == "cpu" else time.perf_counter)
+    t0, c0 = time.perf_counter(), time.process_time()
     prof.enable()
     model.learn(per * rollouts, reset_num_timesteps=False)
     prof.disable()
-    wall = time.perf_counter() - t0
+    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     stats = pstats.Stats(prof)
     lines = [f"{args.env}, {cfg.n_envs} tables, {rollouts} rollouts of {per} env steps: "
-             f"{per * rollouts / wall:,.0f} env steps/s including updates", "",
-             "| part | seconds | share of wall |", "|---|---|---|"]
-    lines += [f"| {label} | {s:.2f} | {s / wall:.0%} |" for label, s in split(stats, wall)]
+             f"{per * rollouts / wall:,.0f} env steps/s including updates (under cProfile), "
+             f"{per * rollouts / cpu:,.0f} per CPU-second of the process ({cpu / wall:.2f} cores busy; "
+             f"numba threads {cfg.train.numba_threads}, torch threads {cfg.train.torch_threads})", "",
+             f"| part | {args.clock} seconds | share |", "|---|---|---|"]
+    total = cpu if args.clock == "cpu" else wall
+    lines += [f"| {label} | {s:.2f} | {s / total:.0%} |" for label, s in split(stats, total)]
     text = io.StringIO()
     pstats.Stats(prof, stream=text).sort_stats("cumulative").print_stats(40)
     report = "\n".join(lines) + "\n\n```\n" + text.getvalue() + "```\n"

@@ -42,26 +42,37 @@ def _autoreset_mode(env) -> AutoresetMode:
 
 def split_infos(infos: dict, n: int) -> list[dict]:
     """Gymnasium vector infos (a dict of arrays, each with a ``_key`` mask,
-    possibly nested) -> a list of ``n`` per-env dicts."""
-    out: list[dict] = [{} for _ in range(n)]
+    possibly nested) -> a list of ``n`` per-env dicts. The unmasked entries
+    are zipped into each env's dict at once; a masked array is converted
+    only in its masked rows (a per-element loop over every key cost about
+    as much as a fifth of the simulator at 1,024 tables)."""
+    keys, cols, masked = [], [], []
     for key, value in infos.items():
         if key.startswith("_"):
             continue
         mask = infos.get("_" + key)
+        rows = None if mask is None else np.flatnonzero(np.asarray(mask, dtype=bool))
+        if rows is not None and len(rows) == n:
+            rows = None  # every env has it
         if isinstance(value, dict):
-            sub = split_infos(value, n)
-            for i in range(n):
-                if mask is None or mask[i]:
-                    out[i][key] = sub[i]
-            continue
-        if isinstance(value, np.ndarray) and value.ndim >= 1 and len(value) == n:
+            vals = split_infos(value, n)
+        elif isinstance(value, np.ndarray) and value.ndim >= 1 and len(value) == n:
+            if rows is not None:  # python scalars / lists of the masked rows only
+                masked.append((key, rows.tolist(), value[rows].tolist()))
+                continue
             vals = value.tolist()  # python scalars / lists in one call
         else:
             vals = [value] * n
-        for i in range(n):
-            if mask is not None and not mask[i]:
-                continue
-            out[i][key] = vals[i]
+        if rows is None:
+            keys.append(key)
+            cols.append(vals)
+        else:
+            rows = rows.tolist()
+            masked.append((key, rows, [vals[i] for i in rows]))
+    out = [dict(zip(keys, row)) for row in zip(*cols)] if cols else [{} for _ in range(n)]
+    for key, rows, vals in masked:
+        for i, v in zip(rows, vals):
+            out[i][key] = v
     return out
 
 

@@ -22,4 +22,19 @@ def test_profile_training_quick(tmp_path):
             if line.startswith("| ") and not line.startswith("| part")}
     assert rows["updates (PPO train)"] > 0 and rows["simulator (physics.simulate)"] > 0
     assert rows["opponent decisions (bot act)"] > 0 and rows["agent features"] > 0
-    assert rows["updates (PPO train)"] + rows["rollouts (collect_rollouts)"] <= rows["wall"] * 1.01
+    assert rows["updates (PPO train)"] + rows["rollouts (collect_rollouts)"] <= rows["total"] * 1.01
+    assert rows["simulator (physics.simulate)"] <= rows["env step (all of it)"] <= rows["rollouts (collect_rollouts)"]
+    assert "per CPU-second of the process" in text.splitlines()[0]
+
+
+def test_profile_training_compare_quick(tmp_path):
+    """``--compare``: two configs' rates, interleaved, one row each with its tables x steps."""
+    out = tmp_path / "rates.md"
+    res = subprocess.run([sys.executable, "scripts/profile_training.py", "--quick", "--out", str(out),
+                          "--compare", "new", "--compare", "old:ppo.n_steps=8,train.numba_threads=2"],
+                         cwd=ROOT, capture_output=True, text=True, timeout=900)
+    assert res.returncode == 0, res.stderr[-2000:]
+    rows = [line.split(" | ") for line in out.read_text().splitlines() if line.startswith("| ") and "---" not in line]
+    assert [r[0].lstrip("| ") for r in rows[1:]] == ["new", "old"]
+    assert [r[1] for r in rows[1:]] == ["8 x 4", "8 x 8"]
+    assert all(float(r[2].replace(",", "")) > 0 and float(r[3].rstrip(" |").replace(",", "")) > 0 for r in rows[1:])
