@@ -29,6 +29,8 @@ MAX_SCRATCH_BYTES = 64 * 2 ** 20
 # clear and page in fresh buffers on every call; larger calls allocate their own.
 KEEP_SCRATCH_BYTES = 8 * 2 ** 20
 _kept = threading.local()
+# The contact-order outputs of a kernel compiled without them (it never writes them: one shared pair).
+_NO_ORDER, _NO_NORDER = np.full((1, 0, 2), -1, dtype=np.int64), np.zeros(1, dtype=np.int64)
 
 
 class SimOptions(NamedTuple):
@@ -232,8 +234,8 @@ def _simulate_chunk(s: BallState, geo: Geometry, p: np.ndarray, kernel, solver: 
     out = Outputs(time=np.zeros(E), nev=np.zeros(E, dtype=np.int64), first=np.full(E, -1, dtype=np.int64),
                   cush=np.zeros((E, B), dtype=np.int64), cush_after=np.zeros((E, B), dtype=np.int64),
                   trunc=np.zeros(E, dtype=np.bool_), diag=np.zeros((E, 4)),
-                  order=np.full((E if n_contacts else 1, n_contacts, 2), -1, dtype=np.int64),
-                  norder=np.zeros(E if n_contacts else 1, dtype=np.int64))
+                  order=np.full((E, n_contacts, 2), -1, dtype=np.int64) if n_contacts else _NO_ORDER,
+                  norder=np.zeros(E, dtype=np.int64) if n_contacts else _NO_NORDER)
     cap = RECORD_CAPACITY if record else 1
     rows = E if record else 1
     log = LogBuffers(on=bool(record), n=np.zeros(E, dtype=np.int64), t=np.zeros((rows, cap)),
@@ -270,16 +272,23 @@ def _event_scratch(E: int, B: int) -> EventScratch:
     zeroed (the first refresh pass reads them as zeros before every ball has
     been refreshed); the rest is written for every ball by that pass before
     anything reads it, so it is not cleared (tpair is the big one: E x B x B).
-    Rows of the thread's kept buffers (``KEEP_SCRATCH_BYTES``) when it fits."""
+    Rows of the thread's kept buffers (``KEEP_SCRATCH_BYTES``) when it fits;
+    the rows of the last size asked for are kept too."""
     kept = getattr(_kept, "event", None)
-    if kept is None or kept.tt.shape[0] < E or kept.tt.shape[1] != B:
+    if kept is None or kept.tt.shape[1] != B or kept.tt.shape[0] < E:
         n = E if kept is None or kept.tt.shape[1] != B else max(E, kept.tt.shape[0])
         kept = EventScratch(tt=np.empty((n, B)), tb=np.empty((n, B)), bkind=np.empty((n, B), dtype=np.int64),
                             bidx=np.empty((n, B), dtype=np.int64), tpair=np.empty((n, B, B)),
                             paths=np.empty((n, B, 6)), tlast=np.empty((n, B)))
-        if n * B * (B + 11) * 8 <= KEEP_SCRATCH_BYTES:
-            _kept.event = kept
-    scr = EventScratch(*(a[:E] for a in kept))
+        if n * B * (B + 11) * 8 > KEEP_SCRATCH_BYTES:
+            return _cleared(kept)  # too big to keep: this call's own
+        _kept.event = _kept.rows = kept
+    if _kept.rows.tt.shape[0] != E:
+        _kept.rows = EventScratch(*(a[:E] for a in kept))
+    return _cleared(_kept.rows)
+
+
+def _cleared(scr: EventScratch) -> EventScratch:
     scr.tt.fill(0.0)
     scr.tb.fill(0.0)
     scr.paths.fill(0.0)

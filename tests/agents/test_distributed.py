@@ -246,3 +246,22 @@ def test_an_error_in_a_chunk_is_raised_not_replayed(two_nodes):
     with pytest.raises(ValueError, match="bad chunk 1"):
         ray_map(bad, [(1,)], on_retry=lambda i, exc: retried.append(i))
     assert retried == []
+
+
+@pytest.mark.slow
+def test_a_league_on_the_cluster_ends_as_one_played_here(two_nodes, tmp_path):
+    """The league's games (recording bots, samples collected per chunk) on
+    the two-node Cluster: the same snapshots (weight hashes), game counts
+    and seeds as the league played in this process."""
+    from agents.league import LeagueConfig, run_league
+
+    cluster, _ = two_nodes
+    cfg = LeagueConfig.from_dict(dict(game="nine_ball", generations=1, racks=2, opponents=["ghost"],
+                                      noises=["tournament"], max_shots=10, fit=dict(hidden=[6], epochs=2),
+                                      max_snapshots=1))
+    quiet = lambda s: None  # noqa: E731
+    here = run_league(tmp_path / "here", cfg, log=quiet)
+    there = run_league(tmp_path / "there", cfg, address=cluster.address, log=quiet)
+    assert [s["sha256"] for s in there["snapshots"]] == [s["sha256"] for s in here["snapshots"]]
+    assert there["games"] == here["games"] and there["seeds"] == here["seeds"]
+    assert sum(c["games"] for c in there["games"].values()) == 4
