@@ -11,7 +11,7 @@
 For each game (9-ball, 8-ball) and noise level (``none``, ``tournament``,
 ``high``, ``variable``) every pairing of the game's ladder agents
 (``billiards_env.bots.learned.ladder``) and ``--bots`` (default ``ghost``,
-``ghost-safety``, ``search64``, ``lookahead``) plays ``--racks`` paired racks
+``ghost-safety``, ``search64``, ``lookahead``, ``value-lookahead``) plays ``--racks`` paired racks
 (each rack twice, each side breaking once; ``studies.matches``), and
 Bradley-Terry ratings with 95% bootstrap intervals are fitted. Writes
 ``<out>/<game>_<noise>.json/.md/.png`` (every pairing and the ratings),
@@ -43,7 +43,7 @@ from billiards_env.bots.learned import ladder as L  # noqa: E402
 from billiards_env.studies import match_report  # noqa: E402
 
 GAMES = ("nine_ball", "eight_ball")
-BOTS = ("ghost", "ghost-safety", "search64", "lookahead")
+BOTS = ("ghost", "ghost-safety", "search64", "lookahead", "value-lookahead")
 DOC = ROOT / "docs" / "ladder.md"
 BEGIN, END = "<!-- ladder-table:begin -->", "<!-- ladder-table:end -->"
 
