@@ -4,7 +4,6 @@ name without stable-baselines3 or torch and plays a seeded game identically
 twice, and it is an opponent of the game envs and the match harness."""
 from __future__ import annotations
 
-import json
 import subprocess
 import sys
 from pathlib import Path
@@ -70,35 +69,12 @@ def _shipped(game):
     return names
 
 
-BLOCKED = r'''
-import sys, importlib.abc
-class Block(importlib.abc.MetaPathFinder):
-    def find_spec(self, name, path=None, target=None):
-        if name.split(".")[0] in ("torch", "stable_baselines3"):
-            raise ImportError(f"blocked: {name}")
-sys.meta_path.insert(0, Block())
-import json
-from billiards_env.studies.matches import play_pairing
-out = {}
-for game, name in %s:
-    runs = [play_pairing(name, "ghost", game, n_racks=3, seed=11, noise="tournament", max_shots=60)
-            for _ in range(2)]
-    out[game] = [[r.winner.tolist(), r.shots.tolist()] for r in runs]
-assert "torch" not in sys.modules and "stable_baselines3" not in sys.modules
-print(json.dumps(out))
-'''
-
-
-def test_ladder_agents_load_without_torch_and_replay_identically():
+def test_ladder_agents_load_without_torch_and_replay_identically(played_twice_without_torch):
     """Every game's strongest rung, by name, in a process where importing
     torch or stable-baselines3 fails: a seeded pairing against ghost played
     twice gives the same winners and shot counts."""
     pairs = [(g, _shipped(g)[-1]) for g in GAMES]
-    code = BLOCKED % repr(pairs)
-    res = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=600,
-                         env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"})
-    assert res.returncode == 0, res.stderr[-2000:]
-    out = json.loads(res.stdout.strip().splitlines()[-1])
+    out = played_twice_without_torch(pairs, n_racks=3, max_shots=60)
     for game in GAMES:
         first, second = out[game]
         assert first == second

@@ -1,10 +1,6 @@
 """The learned leaf value (bots.learned.value) and the lookahead's leaf_value hook."""
 from __future__ import annotations
 
-import json
-import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -14,7 +10,6 @@ from billiards_env.bots.game_lookahead import GameLookahead
 from billiards_env.bots.learned import value as V
 from billiards_env.envs.games import GameConfig, GameCore
 
-ROOT = Path(__file__).resolve().parents[2]
 GAMES = ("nine_ball", "eight_ball")
 
 
@@ -85,34 +80,12 @@ def test_features_mirror_and_network_round_trip(tmp_path):
         net(x[:, :3])
 
 
-BLOCKED = r'''
-import sys, importlib.abc
-class Block(importlib.abc.MetaPathFinder):
-    def find_spec(self, name, path=None, target=None):
-        if name.split(".")[0] in ("torch", "stable_baselines3"):
-            raise ImportError(f"blocked: {name}")
-sys.meta_path.insert(0, Block())
-import json
-from billiards_env.studies.matches import play_pairing
-out = {}
-for game in %s:
-    runs = [play_pairing("value-lookahead", "ghost", game, n_racks=1, seed=11, noise="tournament", max_shots=16)
-            for _ in range(2)]
-    out[game] = [[r.winner.tolist(), r.shots.tolist()] for r in runs]
-assert "torch" not in sys.modules and "stable_baselines3" not in sys.modules
-print(json.dumps(out))
-'''
-
-
-def test_value_lookahead_loads_by_name_without_torch_and_replays_identically():
+def test_value_lookahead_loads_by_name_without_torch_and_replays_identically(played_twice_without_torch):
     games = [g for g in GAMES if (V.VALUE_DIR / f"{g}.json").exists()]
     if not games:
         pytest.skip("no value network shipped")
     assert is_bot_name("value-lookahead")
-    res = subprocess.run([sys.executable, "-c", BLOCKED % repr(games)], cwd=ROOT, capture_output=True, text=True,
-                         timeout=600, env={"PYTHONPATH": str(ROOT), "PATH": "/usr/bin:/bin"})
-    assert res.returncode == 0, res.stderr[-2000:]
-    out = json.loads(res.stdout.strip().splitlines()[-1])
+    out = played_twice_without_torch([(g, "value-lookahead") for g in games], n_racks=1, max_shots=16)
     for g in games:
         first, second = out[g]
         assert first == second and sum(first[1]) > 4
