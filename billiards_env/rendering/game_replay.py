@@ -12,8 +12,8 @@ turn on that table starts the next game.
 Each entry's ``info["game"]`` holds the game around that turn, in words as
 well as numbers: the shooter, the state before the turn and after it (who
 is to move, ball in hand and where it may go, the legal targets, fouls in a
-row, the 8-ball groups, push-out / pass / call, the score: points in the games to a score, else games won on
-that table), the declaration, the called pocket, where the cue ball was
+row, the 8-ball groups, push-out / pass / call, the score: points in the
+games to a score, else games won on that table), the declaration, the called pocket, where the cue ball was
 placed, the ruling's fields and one sentence of ruling
 (``game_words.ruling_words``). The replay's top-level ``game`` entry holds
 the game's name, the players, the head string and the pockets' names. The
@@ -24,8 +24,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..rules import HEAD_STRING
-from .game_words import (ball_ids, call_words, end_words, foul_words, game_words, group_words, in_hand_words, player_labels,
-                         pocket_names, ruling_words)
+from .game_words import (ball_ids, call_words, end_words, foul_words, game_words, group_words, in_hand_words,
+                         player_labels, pocket_names, ruling_words)
 from .replay import Replay
 
 DEFAULT_PLAYERS = ("", "")
