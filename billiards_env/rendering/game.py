@@ -16,7 +16,7 @@ from PIL import Image, ImageDraw, ImageFont
 
 from ..rules import END_NAMES, FOUL_NAMES
 from ..rules import records as R
-from .game_words import GROUP_WORDS, IN_HAND_WORDS, ball_ids
+from .game_words import GROUP_WORDS, IN_HAND_WORDS, ball_ids, call_words
 from .draw import BORDER, PPM, Animation, positions_at, render_table, world_to_pixel, write_animation
 
 PANEL_LINES = 4
@@ -53,10 +53,10 @@ def status_lines(core, k: int, info: dict | None = None) -> list[str]:
     if c.may_pass[k]:
         extras.append("may pass the shot back")
     if c.call_needed[k]:
-        extras.append("nominate a ball" if core.rules.scored else "on the 8: call a pocket")
+        extras.append(call_words(core.config.game))
     groups = (f"groups: P0 {GROUP_NAMES[int(g.group[k, 0])]}, P1 {GROUP_NAMES[int(g.group[k, 1])]}; "
               if core.config.game == "eight_ball" else "")
-    if core.rules.scored:  # snooker: the scores
+    if core.rules.to_points:  # games to a score (snooker, three-cushion): the scores
         groups = f"score: P0 {int(g.score[k, 0])}, P1 {int(g.score[k, 1])}; "
     return [first + (" - " + ", ".join(e for e in extras if e) if any(extras) else ""),
             f"{groups}fouls in a row: P0 {int(g.fouls[k, 0])}, P1 {int(g.fouls[k, 1])}; shot {int(g.shots[k])}",

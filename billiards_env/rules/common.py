@@ -127,7 +127,7 @@ class Rules:
     contacts: int = 0
     own_cue_balls: bool = False
     extra_obs: int = 0
-    scored: bool = False      # a game of points (``GameState.score``, ``ShotRecord.points``; snooker)
+    foul_points: bool = False  # a foul scores points for the opponent (``ShotRecord.penalty``; snooker)
     to_points: bool = False   # won on points (``GameState.score``: snooker, three-cushion), not by a last ball
     reads_position: bool = False  # ``constraints`` and ``judge`` read where the balls lie (snooker's free ball)
 

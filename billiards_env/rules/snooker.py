@@ -152,7 +152,7 @@ class SnookerRules(Rules):
     name = "snooker"
     n_balls = N_BALLS
     calls_ball = True   # the nominated colour, or the free ball, in ``ShotInput.called_ball``
-    scored = True       # a game of points: ``GameState.score``
+    foul_points = True  # a foul scores points for the opponent (``ShotRecord.penalty``)
     to_points = True
     reads_position = True
     table_style = "snooker"   # Table.snooker()

@@ -222,6 +222,24 @@ def test_render_game_state_and_gif(tmp_path):
     assert path.exists() and len(frames) >= 4
 
 
+@pytest.mark.parametrize("game, call, score", [("ten_ball", "call the ball and its pocket", None),
+                                               ("three_cushion", None, "score: P0 0, P1 0")])
+def test_status_lines_say_each_games_call_and_score(game, call, score):
+    """The raster panel words the call as the game asks it and shows a score in games to points."""
+    from billiards_env.rendering.game import status_lines
+    core = GameCore(GameConfig(game=game), 1)
+    core.streams.seed([0], [0])
+    core.reset_tables([0], [0])
+    if call:  # every shot after the break needs a call
+        shoot(core, math.pi / 2, 7.0)
+        assert core.constraints().call_needed[0]
+    lines = status_lines(core, 0)
+    if call:
+        assert call in lines[0] and "on the 8" not in lines[0]
+    if score:
+        assert score in lines[1]
+
+
 def test_noise_levels():
     """high = 5x the tournament deviations; variable = a factor in [0, 5] per
     game, drawn from the table's stream (the same rack seed, the same factor)."""

@@ -385,7 +385,7 @@ class GameCore(BilliardsCore):
                     called_pocket=called, called_ball=ball, points=rec.points, score=game.score.copy(),
                     placement=placed, placement_moved=moved, action_clipped=clipped, n_events=n_events,
                     sim_time=sim_time, shot=game.shots.copy())
-        if self.rules.scored:  # snooker: a foul's points to the opponent
+        if self.rules.foul_points:  # snooker: a foul's points to the opponent
             info["penalty"] = rec.penalty
         out = dict(record=rec, reward=reward, terminated=game.over.copy(), truncated=truncated, info=info)
         for listener in self.listeners:
