@@ -64,18 +64,6 @@ def make(seed=0):
 """
 
 
-def _ray():
-    try:
-        import ray
-        from ray.cluster_utils import Cluster  # noqa: F401
-    except ImportError:
-        msg = "ray is not installed (pip install -e '.[ray]')"
-        if os.environ.get("CI"):
-            pytest.fail(msg + " (required under CI)")
-        pytest.skip(msg)
-    return ray
-
-
 def _jobs():
     return [MatchJob("ghost", "ghost-safety", "nine_ball", racks=3, seed=11, noise="tournament", max_shots=SHOTS,
                      chunk_racks=2),
@@ -142,8 +130,7 @@ def test_bad_jobs_fail_before_any_game():
 
 # ---------------------------------------------------------------- ray tests --
 @pytest.mark.slow
-def test_match_script_gives_the_same_results_with_and_without_ray(tmp_path):
-    _ray()
+def test_match_script_gives_the_same_results_with_and_without_ray(tmp_path, ray_module):
     docs = []
     for extra in ([], ["--address", "local"]):
         out = tmp_path / ("ray" if extra else "here")
@@ -158,8 +145,7 @@ def test_match_script_gives_the_same_results_with_and_without_ray(tmp_path):
 
 
 @pytest.mark.slow
-def test_throughput_script_quick_mode(tmp_path):
-    _ray()
+def test_throughput_script_quick_mode(tmp_path, ray_module):
     r = subprocess.run([sys.executable, str(ROOT / "scripts" / "match_throughput.py"), "--quick", "--num-cpus", "2",
                         "--out", str(tmp_path)], cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)},
                        capture_output=True, text=True, timeout=240)
@@ -170,9 +156,9 @@ def test_throughput_script_quick_mode(tmp_path):
 
 
 @pytest.fixture(scope="module")
-def two_nodes(tmp_path_factory):
+def two_nodes(tmp_path_factory, ray_module):
     """A two-node Cluster (one CPU each) whose workers can import the killer bot."""
-    ray = _ray()
+    ray = ray_module
     from ray.cluster_utils import Cluster
 
     folder = tmp_path_factory.mktemp("killer")

@@ -27,24 +27,12 @@ TINY = ["rllib.num_env_runners=2", "rllib.num_envs_per_env_runner=16", "rllib.tr
         "rllib.minibatch_size=64", "rllib.num_epochs=1", "train.progress_bar=false", "train.tensorboard=false"]
 
 
-def _ray():
-    try:
-        import ray
-        import ray.rllib  # noqa: F401
-    except ImportError:
-        msg = "ray[rllib] is not installed (pip install -e '.[ray]')"
-        if os.environ.get("CI"):
-            pytest.fail(msg + " (required under CI)")
-        pytest.skip(msg)
-    return ray
-
-
 @pytest.fixture(scope="module")
-def local_ray():
+def local_ray(ray_module):
     """A local Ray instance with 2 CPUs (one per EnvRunner), shared by this
     module's tests and shut down after them (the two-node test, last, makes
     its own cluster)."""
-    ray = _ray()
+    ray = ray_module
     ray.shutdown()
     from agents.rllib.backend import start_ray
     start_ray(num_cpus=2)
@@ -120,8 +108,7 @@ def test_local_run_steps_the_vector_env_and_loads_into_the_harness(local_ray, tm
     assert res.success_rate > 0.3
 
 
-def test_unknown_rllib_setting_is_an_error_naming_it():
-    _ray()
+def test_unknown_rllib_setting_is_an_error_naming_it(ray_module):
     from agents.rllib.backend import algo_config
 
     with pytest.raises(ValueError, match="learning_rate"):
@@ -185,11 +172,10 @@ def test_resume_continues_from_the_last_checkpoint(local_ray, tmp_path):
 
 
 # ------------------------------------------------------------ lean sampling --
-def test_push_batch_equals_rllibs_pushes_row_by_row():
+def test_push_batch_equals_rllibs_pushes_row_by_row(ray_module):
     """``push_batch`` leaves RLlib's ``RunningStat`` (count, mean, sum of
     squared deviations and their deltas since the last merge) as pushing the
     rows one by one does, from an empty stat and after a merge reset."""
-    _ray()
     from ray.rllib.utils.filter import RunningStat
 
     from agents.rllib.sampling import push_batch
@@ -211,12 +197,11 @@ def test_push_batch_equals_rllibs_pushes_row_by_row():
         np.testing.assert_allclose(getattr(batched, field), getattr(one, field), rtol=1e-12, atol=1e-9)
 
 
-def test_lean_observation_filter_matches_rllibs_filter():
+def test_lean_observation_filter_matches_rllibs_filter(ray_module):
     """The batched filter ends each step with RLlib's filter state, scales
     every table with the statistics after the step (RLlib's filter: the last
     table of the step alike) and writes the scaled observations and the
     filter's space into the episodes."""
-    _ray()
     import gymnasium as gym
     from ray.rllib.connectors.env_to_module import MeanStdFilter as RLlibFilter
     from ray.rllib.env.single_agent_episode import SingleAgentEpisode
@@ -256,12 +241,11 @@ def test_lean_observation_filter_matches_rllibs_filter():
         np.testing.assert_allclose(getattr(b, key), getattr(a, key), rtol=1e-9)
 
 
-def test_lean_runner_gives_the_learner_complete_episodes():
+def test_lean_runner_gives_the_learner_complete_episodes(ray_module):
     """A lean EnvRunner (built in this process, 16 tables) returns one-step
     PotOne episodes with filtered observations, the sampled (unclipped)
     actions, their log-probs and terminated flags; the lean and RLlib's own
     configurations share the filter's checkpoint name."""
-    _ray()
     from ray.rllib.env.single_agent_env_runner import SingleAgentEnvRunner
 
     from agents.rllib.backend import algo_config
@@ -284,11 +268,10 @@ def test_lean_runner_gives_the_learner_complete_episodes():
         runner.stop()
 
 
-def test_tuned_gc_is_undone_after_the_block():
+def test_tuned_gc_is_undone_after_the_block(ray_module):
     """The driver's collector is tuned only while it trains: inside the block
     the young threshold is raised and the objects frozen, afterwards the
     thresholds are the old ones and nothing stays frozen."""
-    _ray()
     import gc
 
     from agents.rllib.sampling import WORKER_GC_GEN0_THRESHOLD, tuned_gc
@@ -326,8 +309,8 @@ def test_process_cpu_account_sees_a_busy_child():
 
 
 @pytest.mark.slow
-def test_two_node_cluster_places_env_runners_on_both_nodes(tmp_path):
-    ray = _ray()
+def test_two_node_cluster_places_env_runners_on_both_nodes(tmp_path, ray_module):
+    ray = ray_module
     from ray.cluster_utils import Cluster
 
     from agents.rllib.backend import train
