@@ -139,8 +139,9 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion, order
         out.cush[e, a] += 1
         if out.first[e] >= 0:
             out.cush_after[e, a] += 1
-        if order_on and a == 0:
-            note_contact(out, e, kind, b)
+        if order_on:  # a compile-time constant: without it the branch, and out.order, are not compiled
+            if a == 0:
+                note_contact(out, e, kind, b)
 
     @variant
     def impulses(balls, e, imp, ns, nb, p):
@@ -198,8 +199,9 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion, order
             i, j = sim_i[s], sim_j[s]
             if out.first[e] == -1 and (i == 0 or j == 0):
                 out.first[e] = j if i == 0 else i
-            if order_on and (i == 0 or j == 0):
-                note_contact(out, e, C.EV_BALL_BALL, j if i == 0 else i)
+            if order_on:
+                if i == 0 or j == 0:
+                    note_contact(out, e, C.EV_BALL_BALL, j if i == 0 else i)
             if log.on:
                 event_log.record(log, balls, e, t, C.EV_BALL_BALL, i, j)
         return nb

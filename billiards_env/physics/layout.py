@@ -32,7 +32,8 @@ EventScratch = namedtuple("EventScratch", "tt tb bkind bidx tpair paths tlast")
 # the cue ball's contacts in order (order [E, K, 2]: event kind, ball or
 # boundary index; norder [E] how many there were, K or more; written only by
 # a kernel compiled with the contact order on, SimOptions.contacts)
-Outputs = namedtuple("Outputs", "time nev first cush cush_after trunc diag order norder")
+Outputs = namedtuple("Outputs", "time nev first cush cush_after trunc diag")
+OrderedOutputs = namedtuple("OrderedOutputs", Outputs._fields + ("order", "norder"))
 # Event log buffers: on (record at all), n [E] events so far, t [E, N],
 # kind [E, N], ij [E, N, 2], state [E, N, 2, 8] (simulate.EventLog)
 LogBuffers = namedtuple("LogBuffers", "on n t kind ij state")

@@ -13,7 +13,7 @@ from . import constants as C
 from .effects import Effects
 from .params import PhysicsParams
 from .kernels import call, make_kernel
-from .layout import Balls, EventScratch, Geometry, LogBuffers, Outputs
+from .layout import Balls, EventScratch, Geometry, LogBuffers, OrderedOutputs, Outputs
 from .models import Models
 from .state import BallState
 from .table import Table
@@ -29,8 +29,6 @@ MAX_SCRATCH_BYTES = 64 * 2 ** 20
 # clear and page in fresh buffers on every call; larger calls allocate their own.
 KEEP_SCRATCH_BYTES = 8 * 2 ** 20
 _kept = threading.local()
-# The contact-order outputs of a kernel compiled without them (it never writes them: one shared pair).
-_NO_ORDER, _NO_NORDER = np.full((1, 0, 2), -1, dtype=np.int64), np.zeros(1, dtype=np.int64)
 
 
 class SimOptions(NamedTuple):
@@ -231,11 +229,10 @@ def _simulate_chunk(s: BallState, geo: Geometry, p: np.ndarray, kernel, solver: 
     max_events, diagnostics, n_contacts = flags
     E, B = s.pos.shape[:2]
     balls = Balls(s.pos, s.vel, s.omega, np.zeros((E, B), dtype=np.int64), s.pocket)
-    out = Outputs(time=np.zeros(E), nev=np.zeros(E, dtype=np.int64), first=np.full(E, -1, dtype=np.int64),
-                  cush=np.zeros((E, B), dtype=np.int64), cush_after=np.zeros((E, B), dtype=np.int64),
-                  trunc=np.zeros(E, dtype=np.bool_), diag=np.zeros((E, 4)),
-                  order=np.full((E, n_contacts, 2), -1, dtype=np.int64) if n_contacts else _NO_ORDER,
-                  norder=np.zeros(E, dtype=np.int64) if n_contacts else _NO_NORDER)
+    out = (np.zeros(E), np.zeros(E, dtype=np.int64), np.full(E, -1, dtype=np.int64), np.zeros((E, B), dtype=np.int64),
+           np.zeros((E, B), dtype=np.int64), np.zeros(E, dtype=np.bool_), np.zeros((E, 4)))
+    out = (OrderedOutputs(*out, np.full((E, n_contacts, 2), -1, dtype=np.int64), np.zeros(E, dtype=np.int64))
+           if n_contacts else Outputs(*out))
     cap = RECORD_CAPACITY if record else 1
     rows = E if record else 1
     log = LogBuffers(on=bool(record), n=np.zeros(E, dtype=np.int64), t=np.zeros((rows, cap)),
