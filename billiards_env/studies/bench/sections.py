@@ -108,7 +108,10 @@ def effects_rows(opts: RunOptions, P, T, sets=None, section: str = "effects") ->
             s = SCENES[scene](n, P, T, np.random.default_rng(1))
             one = s.take([0])
             base = None
-            for label, (eff, models) in sets.items():
+            # quick: the step solver with the baseline set only (each set is another kernel to compile, ~5 s;
+            # the event rows still run every set, so every code path of the section runs)
+            chosen = list(sets.items())[:1] if opts.quick and solver == "step" else sets.items()
+            for label, (eff, models) in chosen:
                 choice = {} if models is None else {"models": models}  # None: the simulator's default
                 run = lambda st=s, e=eff, m=choice: simulate(st, T, P, solver=solver, dt=dt, effects=e, **m)
                 one_run = lambda e=eff, m=choice: simulate(one, T, P, solver=solver, dt=dt, effects=e, **m)
