@@ -21,6 +21,12 @@ For every table where the bot is to move (all tables at once, in batched ``GameV
 4. **Noise.** The ``n_eval`` best candidates (``n_eval_safe`` of them kept for safeties and kicks) are previewed
    again ``n_samples`` times each under sampled execution noise (the env's own noise; the ``tournament`` preset
    when the env has none) and valued the same way; the best mean is played.
+   **Two plies** (``reply_eval`` > 0): the ``reply_eval`` best of them per table (``reply_safe`` kept for
+   safeties and kicks) are judged again on their first ``reply_samples`` noisy outcomes where the turn passes:
+   the opponent's reply is searched from the leave with this same machinery at the smaller ``REPLY_BUDGET``
+   (``GameView.after`` builds the opponent's view from the preview), and the leave is worth 1 minus that reply's
+   noisy value. Each such candidate's mean moves by the mean change over those outcomes, and the best of them is
+   played (``replies``).
 5. **Declarations (9-ball).** Where a push-out is allowed, ``n_push`` soft pushes are previewed; a push leaving
    ease ``e`` is worth ``min(v, 1 - v)`` with ``v = position_value(e)`` (the opponent chooses whether to shoot),
    and is declared when it beats the best shot's value. After the opponent's push-out, the shot is passed back
@@ -38,7 +44,8 @@ half-width over the ball's distance to it) and the object ball's direction error
 propagated through the contact, ``sigma_aim d_cg / (2R cos cut)``, plus ``SIGMA_MODEL``).
 
 Cost per decision: about ``starts x n_pots x variants + n_safe + n_bank + n_kick (+ n_push)`` noise-free previews plus
-``n_eval x n_samples`` noisy ones (``sims`` counts them).
+``n_eval x n_samples`` noisy ones, plus with two plies a reply search (``REPLY_BUDGET``) per searched leave
+(``sims`` counts them all).
 """
 from __future__ import annotations
 
@@ -91,11 +98,11 @@ BREAK_HEIGHTS = (-0.5, 0.2)        # range of their tip heights (units of R): dr
 BREAK_REFINE = 6                   # the best searched breaks re-judged with BREAK_REFINE_X times the samples
 BREAK_REFINE_X = 4
 CHUNK = 128                        # tables decided per batch of previews (memory stays bounded)
-# the opponent's reply searched from a leave (Budget.reply_eval > 0): the same machinery at about a tenth of the
-# previews per table (3 pots in 9 variants, 12 safeties and kicks, 6 re-judged 4 times under noise), since it runs
-# on every leave of the reply_eval x reply_samples outcomes of a table
-REPLY_BUDGET = dict(n_pots=3, hand_pots=2, n_safe=6, n_kick=2, n_bank=4, n_push=0, n_eval=6, n_eval_safe=2,
-                    n_samples=4, throws=(0.0,), break_search=0, reply_eval=0)
+# the opponent's reply searched from a leave (Budget.reply_eval > 0): the same machinery at about a sixth of the
+# previews per table (3 pots in 9 variants, 12 safeties and kicks, 8 re-judged 8 times under noise), since it runs
+# on every leave of the reply_eval x reply_samples outcomes of a table; 4 samples of 6 measured weaker (docs/games.md)
+REPLY_BUDGET = dict(n_pots=3, hand_pots=2, n_safe=6, n_kick=2, n_bank=4, n_push=0, n_eval=8, n_eval_safe=2,
+                    n_samples=8, throws=(0.0,), break_search=0, reply_eval=0)
 
 
 class PocketModel:
@@ -270,7 +277,9 @@ class Budget:
     and measured without a gain (docs/games.md): ``q_run`` (a sure pot worth
     more as the balls run out), ``combos`` (9-ball combinations on the 9,
     ``combo_shots``) and ``w_next`` (the leave looked at two balls deep,
-    ``_leave_ease2``)."""
+    ``_leave_ease2``) and ``reply_eval`` (two plies: the opponent's reply
+    searched from the best candidates' leaves, ``replies``; ``reply_eval=6``
+    is the variant measured, ``two-ply`` in ``BUDGETS``)."""
 
     n_pots: int = 6
     hand_pots: int = 3
@@ -294,8 +303,8 @@ class Budget:
     break_racks: int = 16      # the racks (the first breaking rows) each candidate break is judged on
     break_samples: int = 2     # noise samples per candidate and rack
     reply_eval: int = 0        # candidates per table whose turn-passing leaves get the opponent's reply searched
-    reply_safe: int = 2        # of them kept for safeties and kicks
-    reply_samples: int = 4     # the noisy outcomes (of n_samples) per candidate whose leaves are searched
+    reply_safe: int = 4        # of them kept for safeties and kicks
+    reply_samples: int = 8     # the noisy outcomes (of n_samples) per candidate whose leaves are searched
     reply: tuple = ()          # (field, value) changes to REPLY_BUDGET, the opponent's search
 
 
@@ -798,7 +807,8 @@ def game_lookahead(seed: int = 0, **kw) -> GameLookahead:
 # smaller search budgets, for measuring strength against compute (``module:factory`` entrants of scripts/match.py)
 BUDGETS = dict(fast=dict(n_pots=3, n_eval=8, n_eval_safe=4, n_samples=4),
                medium=dict(n_pots=4, n_eval=16, n_eval_safe=4, n_samples=8),
-               wide=dict(n_eval=64, n_samples=16))
+               wide=dict(n_eval=64, n_samples=16),
+               **{"two-ply": dict(reply_eval=6)})  # the 2-ply judgement (off by default: docs/games.md)
 
 
 def lookahead_fast(seed: int = 0) -> GameLookahead:
