@@ -79,7 +79,7 @@ V_NONE = 0.5                       # value of a table whose shooter has no pot (
 V_FULL = 0.9                       # value of a table whose shooter has a sure pot (the run may still end)
 Q_RUN = 0.0                        # each further ball of a run continues with this (0: the value ignores balls left)
 THROW = (0.0, math.radians(2.0))   # rad: object-ball overcut tried against collision-induced throw
-SPEEDS = (1.15, 1.8, 2.8)          # factors of the speed that just drops the ball
+SPEEDS = (1.1, 1.5, 2.2, 3.2)      # factors of the speed that just drops the ball (4 measured above 3: docs/games.md)
 HEIGHTS = (-0.35, 0.0, 0.35)       # tip heights (units of R): draw, stun, follow
 HAND_BACKS = (0.18, 0.4)           # m: ball-in-hand spots behind the ghost ball
 HAND_TURNS = (-math.radians(25), 0.0, math.radians(25))  # rad: and turned about it (a cut for position)
@@ -102,7 +102,7 @@ CHUNK = 128                        # tables decided per batch of previews (memor
 # previews per table (3 pots in 9 variants, 12 safeties and kicks, 8 re-judged 8 times under noise), since it runs
 # on every leave of the reply_eval x reply_samples outcomes of a table; 4 samples of 6 measured weaker (docs/games.md)
 REPLY_BUDGET = dict(n_pots=3, hand_pots=2, n_safe=6, n_kick=2, n_bank=4, n_push=0, n_eval=8, n_eval_safe=2,
-                    n_samples=8, throws=(0.0,), break_search=0, reply_eval=0)
+                    n_samples=8, throws=(0.0,), speeds=(1.15, 1.8, 2.8), break_search=0, reply_eval=0)
 
 
 class PocketModel:
@@ -277,9 +277,9 @@ class Budget:
     and measured without a gain (docs/games.md): ``q_run`` (a sure pot worth
     more as the balls run out), ``combos`` (9-ball combinations on the 9,
     ``combo_shots``) and ``w_next`` (the leave looked at two balls deep,
-    ``_leave_ease2``) and ``reply_eval`` (two plies: the opponent's reply
-    searched from the best candidates' leaves, ``replies``; ``reply_eval=6``
-    is the variant measured, ``two-ply`` in ``BUDGETS``)."""
+    ``_leave_ease2``). On by default: ``reply_eval`` (two plies: the
+    opponent's reply searched from the best candidates' leaves, ``replies``;
+    ``reply_eval=0`` is the one-shot leave alone, ``one-ply`` in ``BUDGETS``)."""
 
     n_pots: int = 6
     hand_pots: int = 3
@@ -302,7 +302,7 @@ class Budget:
     break_search: int = 128    # candidate breaks searched once per game and table (0: ghost's standard break)
     break_racks: int = 16      # the racks (the first breaking rows) each candidate break is judged on
     break_samples: int = 2     # noise samples per candidate and rack
-    reply_eval: int = 0        # candidates per table whose turn-passing leaves get the opponent's reply searched
+    reply_eval: int = 6        # candidates per table whose turn-passing leaves get the opponent's reply searched
     reply_safe: int = 4        # of them kept for safeties and kicks
     reply_samples: int = 8     # the noisy outcomes (of n_samples) per candidate whose leaves are searched
     reply: tuple = ()          # (field, value) changes to REPLY_BUDGET, the opponent's search
@@ -808,7 +808,7 @@ def game_lookahead(seed: int = 0, **kw) -> GameLookahead:
 BUDGETS = dict(fast=dict(n_pots=3, n_eval=8, n_eval_safe=4, n_samples=4),
                medium=dict(n_pots=4, n_eval=16, n_eval_safe=4, n_samples=8),
                wide=dict(n_eval=64, n_samples=16),
-               **{"two-ply": dict(reply_eval=6)})  # the 2-ply judgement (off by default: docs/games.md)
+               **{"one-ply": dict(reply_eval=0)})  # without the 2-ply judgement (the default before it)
 
 
 def lookahead_fast(seed: int = 0) -> GameLookahead:
