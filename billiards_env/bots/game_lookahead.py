@@ -304,7 +304,7 @@ class Budget:
     break_samples: int = 2     # noise samples per candidate and rack
     reply_eval: int = 6        # candidates per table whose turn-passing leaves get the opponent's reply searched
     reply_safe: int = 4        # of them kept for safeties and kicks
-    reply_samples: int = 8     # the noisy outcomes (of n_samples) per candidate whose leaves are searched
+    reply_samples: int = 8     # the noisy outcomes (at most n_samples) per candidate whose leaves are searched
     reply: tuple = ()          # (field, value) changes to REPLY_BUDGET, the opponent's search
 
 
@@ -333,10 +333,9 @@ class GameLookahead:
         self.throws, self.speeds, self.heights = tuple(bud.throws), tuple(bud.speeds), tuple(bud.heights)
         self.sigma_model, self.v_none, self.v_full = float(bud.sigma_model), float(bud.v_none), float(bud.v_full)
         self.q_run, self.combos, self.w_next = float(bud.q_run), bool(bud.combos), float(bud.w_next)
-        if bud.reply_eval and not (0 <= bud.reply_safe < bud.reply_eval and 1 <= bud.reply_samples <= bud.n_samples):
+        if bud.reply_eval and not (0 <= bud.reply_safe < bud.reply_eval and bud.reply_samples >= 1):
             raise ValueError(f"GameLookahead: reply_safe ({bud.reply_safe}) must be below reply_eval "
-                             f"({bud.reply_eval}) and reply_samples ({bud.reply_samples}) in 1..n_samples "
-                             f"({bud.n_samples})")
+                             f"({bud.reply_eval}) and reply_samples ({bud.reply_samples}) at least 1")
         self.reply = None  # the opponent's search from a leave (``replies``)
         if bud.reply_eval:
             self.reply = GameLookahead(seed=int(self.rng.integers(2 ** 31)), budget=Budget(**REPLY_BUDGET),
@@ -767,7 +766,7 @@ class GameLookahead:
         ra, rs = self.budget.reply_eval, self.budget.reply_safe
         sel = (_rank_in_row(-vn, lp, n) < ra - rs) | (safe & (_rank_in_row(-vn + 2.0 * ~safe, lp, n) < rs))
         j = np.nonzero(sel)[0]
-        S2 = self.budget.reply_samples
+        S2 = min(self.budget.reply_samples, S)
         ids = (j[:, None] * S + np.arange(S2)).ravel()
         rec, nxt = pvn.record, pvn.next
         ids = ids[~rec.game_over[ids] & (nxt.shooter[ids] != rec.shooter[ids])]
@@ -805,8 +804,8 @@ def game_lookahead(seed: int = 0, **kw) -> GameLookahead:
 
 
 # smaller search budgets, for measuring strength against compute (``module:factory`` entrants of scripts/match.py)
-BUDGETS = dict(fast=dict(n_pots=3, n_eval=8, n_eval_safe=4, n_samples=4),
-               medium=dict(n_pots=4, n_eval=16, n_eval_safe=4, n_samples=8),
+BUDGETS = dict(fast=dict(n_pots=3, n_eval=8, n_eval_safe=4, n_samples=4, reply_eval=0),
+               medium=dict(n_pots=4, n_eval=16, n_eval_safe=4, n_samples=8, reply_eval=0),
                wide=dict(n_eval=64, n_samples=16),
                **{"one-ply": dict(reply_eval=0)})  # without the 2-ply judgement (the default before it)
 
