@@ -21,6 +21,12 @@ For every table where the bot is to move (all tables at once, in batched ``GameV
 4. **Noise.** The ``n_eval`` best candidates (``n_eval_safe`` of them kept for safeties and kicks) are previewed
    again ``n_samples`` times each under sampled execution noise (the env's own noise; the ``tournament`` preset
    when the env has none) and valued the same way; the best mean is played.
+   **Two plies** (``reply_eval`` > 0): the ``reply_eval`` best of them per table (``reply_safe`` kept for
+   safeties and kicks) are judged again on their first ``reply_samples`` noisy outcomes where the turn passes:
+   the opponent's reply is searched from the leave with this same machinery at the smaller ``REPLY_BUDGET``
+   (``GameView.after`` builds the opponent's view from the preview), and the leave is worth 1 minus that reply's
+   noisy value. Each such candidate's mean moves by the mean change over those outcomes, and the best of them is
+   played (``replies``).
 5. **Declarations (9-ball).** Where a push-out is allowed, ``n_push`` soft pushes are previewed; a push leaving
    ease ``e`` is worth ``min(v, 1 - v)`` with ``v = position_value(e)`` (the opponent chooses whether to shoot),
    and is declared when it beats the best shot's value. After the opponent's push-out, the shot is passed back
@@ -38,7 +44,8 @@ half-width over the ball's distance to it) and the object ball's direction error
 propagated through the contact, ``sigma_aim d_cg / (2R cos cut)``, plus ``SIGMA_MODEL``).
 
 Cost per decision: about ``starts x n_pots x variants + n_safe + n_bank + n_kick (+ n_push)`` noise-free previews plus
-``n_eval x n_samples`` noisy ones (``sims`` counts them).
+``n_eval x n_samples`` noisy ones, plus with two plies a reply search (``REPLY_BUDGET``) per searched leave
+(``sims`` counts them all).
 """
 from __future__ import annotations
 
@@ -72,7 +79,7 @@ V_NONE = 0.5                       # value of a table whose shooter has no pot (
 V_FULL = 0.9                       # value of a table whose shooter has a sure pot (the run may still end)
 Q_RUN = 0.0                        # each further ball of a run continues with this (0: the value ignores balls left)
 THROW = (0.0, math.radians(2.0))   # rad: object-ball overcut tried against collision-induced throw
-SPEEDS = (1.15, 1.8, 2.8)          # factors of the speed that just drops the ball
+SPEEDS = (1.1, 1.5, 2.2, 3.2)      # factors of the speed that just drops the ball (4 measured above 3: docs/games.md)
 HEIGHTS = (-0.35, 0.0, 0.35)       # tip heights (units of R): draw, stun, follow
 HAND_BACKS = (0.18, 0.4)           # m: ball-in-hand spots behind the ghost ball
 HAND_TURNS = (-math.radians(25), 0.0, math.radians(25))  # rad: and turned about it (a cut for position)
@@ -91,6 +98,11 @@ BREAK_HEIGHTS = (-0.5, 0.2)        # range of their tip heights (units of R): dr
 BREAK_REFINE = 6                   # the best searched breaks re-judged with BREAK_REFINE_X times the samples
 BREAK_REFINE_X = 4
 CHUNK = 128                        # tables decided per batch of previews (memory stays bounded)
+# the opponent's reply searched from a leave (Budget.reply_eval > 0): the same machinery at about a sixth of the
+# previews per table (3 pots in 9 variants, 12 safeties and kicks, 8 re-judged 8 times under noise), since it runs
+# on every leave of the reply_eval x reply_samples outcomes of a table; 4 samples of 6 measured weaker (docs/games.md)
+REPLY_BUDGET = dict(n_pots=3, hand_pots=2, n_safe=6, n_kick=2, n_bank=4, n_push=0, n_eval=8, n_eval_safe=2,
+                    n_samples=8, throws=(0.0,), speeds=(1.15, 1.8, 2.8), break_search=0, reply_eval=0)
 
 
 class PocketModel:
@@ -265,7 +277,9 @@ class Budget:
     and measured without a gain (docs/games.md): ``q_run`` (a sure pot worth
     more as the balls run out), ``combos`` (9-ball combinations on the 9,
     ``combo_shots``) and ``w_next`` (the leave looked at two balls deep,
-    ``_leave_ease2``)."""
+    ``_leave_ease2``). On by default: ``reply_eval`` (two plies: the
+    opponent's reply searched from the best candidates' leaves, ``replies``;
+    ``reply_eval=0`` is the one-shot leave alone, ``one-ply`` in ``BUDGETS``)."""
 
     n_pots: int = 6
     hand_pots: int = 3
@@ -288,6 +302,10 @@ class Budget:
     break_search: int = 128    # candidate breaks searched once per game and table (0: ghost's standard break)
     break_racks: int = 16      # the racks (the first breaking rows) each candidate break is judged on
     break_samples: int = 2     # noise samples per candidate and rack
+    reply_eval: int = 6        # candidates per table whose turn-passing leaves get the opponent's reply searched
+    reply_safe: int = 4        # of them kept for safeties and kicks
+    reply_samples: int = 8     # the noisy outcomes (at most n_samples) per candidate whose leaves are searched
+    reply: tuple = ()          # (field, value) changes to REPLY_BUDGET, the opponent's search
 
 
 # --- the bot ------------------------------------------------------------------------------------------------------
@@ -315,6 +333,13 @@ class GameLookahead:
         self.throws, self.speeds, self.heights = tuple(bud.throws), tuple(bud.speeds), tuple(bud.heights)
         self.sigma_model, self.v_none, self.v_full = float(bud.sigma_model), float(bud.v_none), float(bud.v_full)
         self.q_run, self.combos, self.w_next = float(bud.q_run), bool(bud.combos), float(bud.w_next)
+        if bud.reply_eval and not (0 <= bud.reply_safe < bud.reply_eval and bud.reply_samples >= 1):
+            raise ValueError(f"GameLookahead: reply_safe ({bud.reply_safe}) must be below reply_eval "
+                             f"({bud.reply_eval}) and reply_samples ({bud.reply_samples}) at least 1")
+        self.reply = None  # the opponent's search from a leave (``replies``)
+        if bud.reply_eval:
+            self.reply = GameLookahead(seed=int(self.rng.integers(2 ** 31)), budget=Budget(**REPLY_BUDGET),
+                                       leaf_value=leaf_value, **dict(bud.reply))
         self.model: PocketModel | None = None
         self.break_strikes: dict = {}  # (game, table, params) -> the searched break (``search_break``)
         self.sims = 0        # shots previewed so far (cost accounting)
@@ -708,20 +733,69 @@ class GameLookahead:
         pick = np.nonzero((rank < self.n_eval - self.n_eval_safe) | (c["safe"] & (srank < self.n_eval_safe)))[0]
         S = self.n_samples
         rep = np.repeat(pick, S)
+        lp = local[pick]
         if S:
             pvn = view.preview(self._plan(c, rep), c["row"][rep], noise=self.noise(view), rng=self.rng)
             self.sims += len(rep)
-            vn = self.values(view, pvn).reshape(len(pick), S).mean(axis=1)
+            vs = self.values(view, pvn).reshape(len(pick), S)
+            vn = vs.mean(axis=1)
         else:
             vn = v0[pick]
         # the best noisy mean per row (ties: the noise-free value)
         score = vn + 1e-3 * v0[pick]
-        lp = local[pick]
+        if self.reply is not None and S:
+            sel, vn = self.replies(view, pvn, (vs, vn, c["safe"][pick], lp, n), c["row"][rep])
+            score = np.where(sel, vn + 1e-3 * v0[pick], -np.inf)
         o = np.lexsort((-score, lp))
         first = o[np.searchsorted(lp[o], np.arange(n))]
         best = pick[first]
         return ((c["phi"][best], c["speed"][best], c["a"][best], c["b"][best]), c["placement"][best],
                 c["pocket"][best], vn[first], c["safe"][best])
+
+
+    def replies(self, view, pvn, judged, prow):
+        """The 2-ply judgement of the best noisy candidates: ``judged`` (their sample values [k, S], means [k],
+        safe [k], local row [k], rows n), ``pvn`` their noisy previews (k x S, candidate-major) on view rows
+        ``prow``. The ``reply_eval`` best per row (``reply_safe`` kept for safeties and kicks) are selected; on
+        their first ``reply_samples`` outcomes where the turn passes, the opponent's reply is searched from the
+        leave (``self.reply.decide`` on ``view.after``) and the leave is worth 1 minus its value. Each selected
+        mean moves by the mean change over those samples (the other samples keep their one-shot value):
+        (selected [k], means [k])."""
+        vs, vn, safe, lp, n = judged
+        k, S = vs.shape
+        ra, rs = self.budget.reply_eval, self.budget.reply_safe
+        sel = (_rank_in_row(-vn, lp, n) < ra - rs) | (safe & (_rank_in_row(-vn + 2.0 * ~safe, lp, n) < rs))
+        j = np.nonzero(sel)[0]
+        S2 = min(self.budget.reply_samples, S)
+        ids = (j[:, None] * S + np.arange(S2)).ravel()
+        rec, nxt = pvn.record, pvn.next
+        ids = ids[~rec.game_over[ids] & (nxt.shooter[ids] != rec.shooter[ids])]
+        delta = np.zeros(k * S)
+        for lo in range(0, len(ids), 4 * CHUNK):
+            part = ids[lo:lo + 4 * CHUNK]
+            delta[part] = self.reply_value(view.after(pvn, part, prow[part])) - vs.ravel()[part]
+        vn = vn + delta.reshape(k, S)[:, :S2].sum(axis=1) / S2
+        return sel, vn
+
+    def reply_value(self, leaves) -> np.ndarray:
+        """[m] a leave's value to the player who left it: 1 minus the value of the opponent's best reply,
+        searched by ``self.reply`` (``REPLY_BUDGET``) on ``leaves``, the view of the tables with the opponent to
+        move (``GameView.after``)."""
+        if self.reply is None:
+            raise ValueError("reply_value needs Budget.reply_eval > 0 (the opponent's search)")
+        before = self.reply.sims
+        opp = self.reply.decide(leaves, np.arange(leaves.n))[3]
+        self.sims += self.reply.sims - before
+        return 1.0 - opp
+
+
+def _rank_in_row(key, row, n):
+    """[k] each entry's place (0 first) within its row (``row`` [k] in 0..n-1) by increasing ``key``."""
+    order = np.lexsort((key, row))
+    starts = np.searchsorted(row[order], np.arange(n))
+    rank = np.empty(len(order), dtype=np.int64)
+    rank[order] = np.arange(len(order)) - np.repeat(starts, np.diff(np.append(starts, len(order))))
+    return rank
 
 
 def game_lookahead(seed: int = 0, **kw) -> GameLookahead:
@@ -730,9 +804,10 @@ def game_lookahead(seed: int = 0, **kw) -> GameLookahead:
 
 
 # smaller search budgets, for measuring strength against compute (``module:factory`` entrants of scripts/match.py)
-BUDGETS = dict(fast=dict(n_pots=3, n_eval=8, n_eval_safe=4, n_samples=4),
-               medium=dict(n_pots=4, n_eval=16, n_eval_safe=4, n_samples=8),
-               wide=dict(n_eval=64, n_samples=16))
+BUDGETS = dict(fast=dict(n_pots=3, n_eval=8, n_eval_safe=4, n_samples=4, reply_eval=0),
+               medium=dict(n_pots=4, n_eval=16, n_eval_safe=4, n_samples=8, reply_eval=0),
+               wide=dict(n_eval=64, n_samples=16),
+               **{"one-ply": dict(reply_eval=0)})  # without the 2-ply judgement (the default before it)
 
 
 def lookahead_fast(seed: int = 0) -> GameLookahead:

@@ -34,7 +34,8 @@ class Preview:
     B, 2] and ``pocket`` [k, B] after the shot, ``first_contact`` [k],
     ``next`` (the next shooter's ``Constraints``) and, where the rules read
     them (three-cushion), the cue ball's ``contacts`` [k, K, 2] in order and
-    ``n_contacts`` [k] (``physics.SimResult``'s)."""
+    ``n_contacts`` [k] (``physics.SimResult``'s); ``state`` the rules' ``GameState`` after the shots (two-player
+    games: what a bot looking past the next shooter's reply previews from)."""
 
     record: ShotRecord
     pos: np.ndarray
@@ -43,6 +44,7 @@ class Preview:
     next: Constraints
     contacts: np.ndarray | None = None
     n_contacts: np.ndarray | None = None
+    state: object = None
 
     @property
     def on_table(self) -> np.ndarray:
@@ -128,7 +130,7 @@ def preview(view, plan, rows=None, noise=None, rng=None, start: BallState | None
                      contacts=res.contacts, n_contacts=res.n_contacts, pos_before=start.pos if where else None)
     rec, after = view.rules.judge(view.state.take(rows), shot)
     return Preview(rec, pos, pocket, first, view.rules.constraints(after, pocket, **({"pos": pos} if where else {})),
-                   res.contacts, res.n_contacts)
+                   res.contacts, res.n_contacts, after)
 
 
 def _task_preview(view, plan, rows, noise_rng, start) -> TaskPreview:

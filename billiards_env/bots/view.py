@@ -156,6 +156,24 @@ class GameView:
         from .preview import preview
         return preview(self, plan, rows, noise, rng)
 
+    def after(self, pv, idx, rows) -> "GameView":
+        """The view of the next shooter on the tables that previewed shots ``idx`` [m] (rows of ``pv``, a
+        ``bots.preview.Preview`` of this view) leave; ``rows`` [m]: the view rows those shots were played on
+        (their noise factor carries over). A bot looking at the reply to its shot previews from it."""
+        idx, rows = np.asarray(idx, dtype=np.int64), np.asarray(rows, dtype=np.int64)
+        if pv.state is None:
+            raise ValueError("GameView.after needs a Preview with its state (bots.preview.preview keeps it)")
+        if len(idx) != len(rows):
+            raise ValueError(f"GameView.after: {len(idx)} previewed shots, {len(rows)} view rows")
+        nx, st = pv.next, pv.state
+        return GameView.build(
+            game=self.game, rows=self.rows[rows], pos=pv.pos[idx], pocket=pv.pocket[idx], to_move=nx.shooter[idx],
+            ball_in_hand=nx.ball_in_hand[idx], targets=nx.targets[idx], push_out_allowed=nx.push_out_allowed[idx],
+            may_pass=nx.may_pass[idx], call_needed=nx.call_needed[idx], is_break=nx.is_break[idx],
+            groups=st.group[idx], fouls=st.fouls[idx], shots=st.shots[idx], table=self.table, params=self.params,
+            effects=self.effects, models=self.models, noise=self.noise, noise_scale=self.noise_scale[rows],
+            min_draw=self.min_draw, rules=self.rules, state=st.take(idx))
+
     def take(self, rows) -> "GameView":
         """A view of some of this view's rows."""
         rows = np.asarray(rows, dtype=np.int64)
