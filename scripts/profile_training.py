@@ -41,6 +41,7 @@ import numpy as np  # noqa: E402
 
 from agents.config import load_config  # noqa: E402
 from agents.sb3.training import build_env, build_model  # noqa: E402
+from agents.sb3.worker_vec_env import cpu_seconds  # noqa: E402
 
 # (label, file suffix, function name) of the cumulative times the split reads
 PARTS = (("updates (PPO train)", "ppo/ppo.py", "train"),
@@ -93,9 +94,9 @@ def compare(args) -> int:
     for _ in range(rounds):
         for label, cfg, model, steps, rates in runs:
             _threads(cfg)
-            t0, c0 = time.perf_counter(), time.process_time()
+            t0, c0 = time.perf_counter(), cpu_seconds(model.get_env())
             model.learn(steps, reset_num_timesteps=False)
-            rates.append((steps / (time.perf_counter() - t0), steps / (time.process_time() - c0)))
+            rates.append((steps / (time.perf_counter() - t0), steps / (cpu_seconds(model.get_env()) - c0)))
             print(f"{label}: {rates[-1][0]:,.0f} env steps/s, {rates[-1][1]:,.0f} per CPU-second", flush=True)
     lines = [f"{args.env}: medians of {rounds} interleaved rounds", "",
              "| config | tables x steps | env steps/s (wall) | env steps per CPU-second |", "|---|---|---|---|"]
