@@ -31,6 +31,7 @@ import cProfile
 import io
 import pstats
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -41,12 +42,13 @@ import numpy as np  # noqa: E402
 
 from agents.config import load_config  # noqa: E402
 from agents.sb3.training import build_env, build_model  # noqa: E402
-from agents.sb3.worker_vec_env import cpu_seconds  # noqa: E402
+from agents.sb3.worker_vec_env import cpu_seconds, find_workers, profile_start, profile_stop  # noqa: E402
 
 # (label, file suffix, function name) of the cumulative times the split reads
 PARTS = (("updates (PPO train)", "ppo/ppo.py", "train"),
          ("rollouts (collect_rollouts)", "on_policy_algorithm.py", "collect_rollouts"),
-         ("env step (all of it)", "vec_env/base_vec_env.py", "step"),
+         ("env step (all of it in this process)", "vec_env/base_vec_env.py", "step"),
+         ("env workers (all of their work)", "sb3/worker_vec_env.py", "_serve"),
          ("simulator (physics.simulate)", "physics/simulate.py", "simulate"),
          ("opponent decisions (bot act)", "envs/games/play.py", "bot_actions"),
          ("agent features", "bots/learned/features.py", "agent_features"),
@@ -63,7 +65,7 @@ def split(stats: pstats.Stats, wall: float) -> list[tuple[str, float]]:
     rows = [(label, cum.get(label, 0.0)) for label, _, _ in PARTS]
     d = dict(rows)
     rows.append(("agent network in rollouts (rollouts - env step)",
-                 d["rollouts (collect_rollouts)"] - d["env step (all of it)"]))
+                 d["rollouts (collect_rollouts)"] - d["env step (all of it in this process)"]))
     rows.append(("total", wall))
     return rows
 
@@ -135,23 +137,33 @@ def main(argv=None) -> int:
     model = build_model(cfg, env, None)
     per = cfg.n_envs * int(cfg.algo_kwargs.get("n_steps", 2048))
     model.learn(per)  # compiles the kernels, fills the normaliser
+    workers = find_workers(env)
     prof = cProfile.Profile(time.process_time if args.clock == "cpu" else time.perf_counter)
-    t0, c0 = time.perf_counter(), time.process_time()
+    t0, c0 = time.perf_counter(), cpu_seconds(env)
+    if workers is not None:  # each worker profiles its own part, merged below
+        workers.apply(profile_start, args.clock == "wall")
     prof.enable()
     model.learn(per * rollouts, reset_num_timesteps=False)
     prof.disable()
-    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
-    stats = pstats.Stats(prof)
+    with tempfile.TemporaryDirectory() as tmp:
+        paths = workers.apply(profile_stop, tmp) if workers is not None else []
+        wall, cpu = time.perf_counter() - t0, cpu_seconds(env) - c0
+        text = io.StringIO()
+        stats = pstats.Stats(prof, stream=text)
+        for path in paths:
+            stats.add(path)
+        stats.sort_stats("cumulative").print_stats(40)
+    n_workers = 0 if workers is None else len(paths)
     lines = [f"{args.env}, {cfg.n_envs} tables, {rollouts} rollouts of {per} env steps: "
              f"{per * rollouts / wall:,.0f} env steps/s including updates (under cProfile), "
-             f"{per * rollouts / cpu:,.0f} per CPU-second of the process ({cpu / wall:.2f} cores busy; "
-             f"numba threads {cfg.train.numba_threads}, torch threads {cfg.train.torch_threads})", "",
+             f"{per * rollouts / cpu:,.0f} per CPU-second of the process and its {n_workers} env workers "
+             f"({cpu / wall:.2f} cores busy; numba threads {cfg.train.numba_threads}, "
+             f"torch threads {cfg.train.torch_threads})", "",
              f"| part | {args.clock} seconds | share |", "|---|---|---|"]
+    # with workers the parts are summed over the processes: shares of their CPU time
     total = cpu if args.clock == "cpu" else wall
     # four decimals: the quick run's parts last milliseconds, and two would print them as 0.00
     lines += [f"| {label} | {s:.4f} | {s / total:.0%} |" for label, s in split(stats, total)]
-    text = io.StringIO()
-    pstats.Stats(prof, stream=text).sort_stats("cumulative").print_stats(40)
     report = "\n".join(lines) + "\n\n```\n" + text.getvalue() + "```\n"
     print("\n".join(lines))
     if args.out:

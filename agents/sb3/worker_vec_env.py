@@ -82,6 +82,50 @@ def _process_seconds(env) -> float:
     return time.process_time()
 
 
+class _Profiler:
+    """The worker's cProfile while ``profile_start`` .. ``profile_stop`` (scripts/profile_training.py)."""
+    prof = None
+
+
+def profile_start(env, wall: bool = False) -> None:
+    import cProfile
+    _Profiler.prof = cProfile.Profile(time.perf_counter if wall else time.process_time)
+    _Profiler.prof.enable()
+
+
+def profile_stop(env, directory: str) -> str:
+    """Stop the worker's profile and write it to ``directory``; returns the file's path."""
+    import os
+    _Profiler.prof.disable()
+    path = os.path.join(directory, f"env_worker_{os.getpid()}.prof")
+    _Profiler.prof.dump_stats(path)
+    _Profiler.prof = None
+    return path
+
+
+def _serve(env, cmd: str, arg):
+    """One command of the parent, on the worker's ``env``."""
+    if cmd == "step":
+        env.step_async(arg)
+        return env.step_wait()
+    if cmd == "reset":
+        seeds, options = arg
+        native = _native(env)
+        native._seeds, native._options = list(seeds), list(options)
+        return env.reset()
+    if cmd == "get_attr":
+        return env.get_attr(arg)[0]
+    if cmd == "set_attr":
+        return env.set_attr(*arg)
+    if cmd == "env_method":
+        name, args, kwargs = arg
+        return env.env_method(name, *args, **kwargs)
+    if cmd == "apply":
+        fn, args = arg
+        return fn(env, *args)
+    raise ValueError(f"unknown worker command {cmd!r}")
+
+
 def _worker(conn, spec: TableEnvSpec, n_envs: int) -> None:
     """A worker's loop: build the env, then serve commands until ``close``
     or until the parent's end of the pipe is gone."""
@@ -98,34 +142,12 @@ def _worker(conn, spec: TableEnvSpec, n_envs: int) -> None:
             cmd, arg = conn.recv()
         except (EOFError, OSError):  # the parent died
             break
+        if cmd == "close":
+            env.close()
+            conn.send(("ok", None))
+            break
         try:
-            if cmd == "step":
-                env.step_async(arg)
-                out = env.step_wait()
-            elif cmd == "reset":
-                seeds, options = arg
-                native = _native(env)
-                native._seeds = list(seeds)
-                native._options = list(options)
-                out = env.reset()
-            elif cmd == "get_attr":
-                out = env.get_attr(arg)[0]
-            elif cmd == "set_attr":
-                env.set_attr(*arg)
-                out = None
-            elif cmd == "env_method":
-                name, args, kwargs = arg
-                out = env.env_method(name, *args, **kwargs)
-            elif cmd == "apply":
-                fn, args = arg
-                out = fn(env, *args)
-            elif cmd == "close":
-                env.close()
-                conn.send(("ok", None))
-                break
-            else:
-                raise ValueError(f"unknown worker command {cmd!r}")
-            conn.send(("ok", out))
+            conn.send(("ok", _serve(env, cmd, arg)))
         except Exception:  # noqa: BLE001
             conn.send(("error", traceback.format_exc()))
     conn.close()

@@ -23,7 +23,10 @@ def test_profile_training_quick(tmp_path):
     assert rows["updates (PPO train)"] > 0 and rows["simulator (physics.simulate)"] > 0
     assert rows["opponent decisions (bot act)"] > 0 and rows["agent features"] > 0
     assert rows["updates (PPO train)"] + rows["rollouts (collect_rollouts)"] <= rows["total"] * 1.01
-    assert rows["simulator (physics.simulate)"] <= rows["env step (all of it)"] <= rows["rollouts (collect_rollouts)"]
+    # the env step is this process's part (and the env workers', when the config has them)
+    env_step = rows["env step (all of it in this process)"] + rows["env workers (all of their work)"]
+    assert rows["simulator (physics.simulate)"] <= env_step
+    assert rows["env step (all of it in this process)"] <= rows["rollouts (collect_rollouts)"]
     assert "per CPU-second of the process" in text.splitlines()[0]
 
 
