@@ -16,7 +16,7 @@ worker ``j``, seeded ``seed + i`` as in one process (``seed``/``reset``).
 ``apply(fn, *args)`` runs a module-level function ``fn(env, *args)`` in
 every worker on its env and returns the workers' results in order (the
 checkpoints read and restore the tables' random streams with it;
-``cpu_seconds`` sums the workers' CPU time). Workers are started with
+``worker_cpu_seconds`` gives each worker's CPU time). Workers are started with
 ``spawn`` (a fork would copy the parent's OpenMP and torch thread state)
 and leave when their pipe closes, so a killed trainer leaves none behind.
 """
@@ -65,10 +65,13 @@ def find_workers(env) -> "WorkerVecEnv | None":
     return next((e for e in env_chain(env) if isinstance(e, WorkerVecEnv)), None)
 
 
-def cpu_seconds(env) -> float:
-    """CPU time of this process plus that of ``env``'s workers, if any."""
+def cpu_seconds(env) -> tuple[float, float]:
+    """CPU time of this process plus that of ``env``'s workers (if any), and
+    of this process plus its busiest worker: the workers step at once while
+    this process waits, so on idle cores the latter is about the wall time."""
     w = find_workers(env)
-    return time.process_time() + (w.cpu_seconds() if w is not None else 0.0)
+    own, workers = time.process_time(), (w.worker_cpu_seconds() if w is not None else [0.0])
+    return own + sum(workers), own + max(workers)
 
 
 def _native(env):
@@ -211,9 +214,9 @@ class WorkerVecEnv(VecEnv):
             conn.send(("apply", (fn, tuple(a[j * p:(j + 1) * p] for a in arrays))))
         return self._gather()
 
-    def cpu_seconds(self) -> float:
-        """The workers' CPU time so far (``time.process_time`` of each, summed)."""
-        return float(sum(self.apply(_process_seconds)))
+    def worker_cpu_seconds(self) -> list[float]:
+        """Each worker's CPU time so far (its ``time.process_time``)."""
+        return [float(x) for x in self.apply(_process_seconds)]
 
     # -- core API --------------------------------------------------------
     def reset(self) -> np.ndarray:

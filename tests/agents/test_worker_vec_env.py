@@ -50,7 +50,11 @@ def test_two_workers_deal_the_tables_of_one_process():
             for i in np.flatnonzero(done2):
                 assert info2[i]["terminal_observation"].shape == obs2.shape[1:]
         assert sum(d.sum() for _, _, d, _ in b[1:]) > 0, "no game ended: terminal observations went untested"
-        assert cpu_seconds(two) > cpu_seconds(one) and two.get_attr("render_mode") == [None] * N_ENVS
+        total, critical = cpu_seconds(two)  # both workers played: each adds CPU to the total
+        workers = two.worker_cpu_seconds()
+        assert len(workers) == 2 and min(workers) > 0 and total > critical > max(workers)
+        assert len(set(cpu_seconds(one))) == 1  # no workers: the critical path is the total
+        assert two.get_attr("render_mode") == [None] * N_ENVS
     finally:
         one.close()
         two.close()
