@@ -9,8 +9,11 @@
 measures the rates of several configs in one process instead: each is
 built and warmed up, then ``--rounds`` rounds of about 16,384 env steps
 (rollouts and their updates) run interleaved, config after config, so load
-changes hit them alike; the medians of the wall rate and of the rate per
-CPU-second of the process are printed as a table (and written to ``--out``).
+changes hit them alike; the medians of the wall rate, of the rate per
+CPU-second of the process and its env workers (``train.env_workers``), and
+of the rate per critical-path CPU-second (the process and its busiest
+worker: about the wall time on idle cores) are printed as a table (and
+written to ``--out``).
 
 Trains the config's model (``configs/ppo_games.yaml`` by default) for one
 warm-up rollout, then profiles ``--rollouts`` more and splits their wall
@@ -18,7 +21,9 @@ time into the PPO updates, the agent's network in the rollouts, the
 agent-side features, the opponent's decisions and the simulator (every
 ``physics.simulate`` call: the shots played and the bots' previews), from
 the profile's cumulative times (by default in CPU time of the process:
-``--clock wall`` for wall time). Writes the split and the top of the profile
+``--clock wall`` for wall time). With ``train.env_workers`` > 1 each
+worker profiles its own part and the profiles are merged: the shares are
+then of the CPU of all the processes. Writes the split and the top of the profile
 to ``--out`` (default stdout only). The first line also gives the rate per
 CPU-second of the process, which a loaded machine changes less than the
 wall rate, and how many cores the process kept busy (numba's idle OpenMP
