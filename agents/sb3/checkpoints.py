@@ -147,13 +147,15 @@ def restore_normalizer(vecnorm, path) -> None:
         vecnorm.returns = z["returns"].copy()
 
 
-def load_checkpoint(ck: Checkpoint, algo: str, env, vecnorm, device: str = "cpu", tensorboard_log=None):
+def load_checkpoint(ck: Checkpoint, algo, env, vecnorm, device: str = "cpu", tensorboard_log=None):
     """The model of ``ck`` bound to ``env``, with the normaliser statistics
-    and every random state of the checkpoint restored."""
+    and every random state of the checkpoint restored. ``algo``: ``"ppo"``,
+    ``"sac"`` or the model class (``agents.sb3.training.model_class``)."""
     import torch
     from stable_baselines3 import PPO, SAC
 
-    model = {"ppo": PPO, "sac": SAC}[algo].load(ck.model_path, env=env, device=device,
+    cls = {"ppo": PPO, "sac": SAC}[algo] if isinstance(algo, str) else algo
+    model = cls.load(ck.model_path, env=env, device=device,
                                                   tensorboard_log=tensorboard_log)
     # loading seeds the env's next reset with the run's seed: restore_streams
     # drops that, the tables continue from the restored streams instead

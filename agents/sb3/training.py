@@ -277,10 +277,18 @@ def schedule(value):
     return value
 
 
-def build_model(cfg: TrainConfig, env, tensorboard_log: str | None):
+def model_class(cfg: TrainConfig):
+    """SB3's PPO or SAC, or ``OverlappedPPO`` with ``train.overlap_updates``."""
     from stable_baselines3 import PPO, SAC
 
-    cls = {"ppo": PPO, "sac": SAC}[cfg.algo]
+    if cfg.train.overlap_updates:
+        from .overlap import OverlappedPPO
+        return OverlappedPPO
+    return {"ppo": PPO, "sac": SAC}[cfg.algo]
+
+
+def build_model(cfg: TrainConfig, env, tensorboard_log: str | None):
+    cls = model_class(cfg)
     kw = dict(cfg.algo_kwargs)
     for key in ("learning_rate", "clip_range"):
         if key in kw:
@@ -326,7 +334,7 @@ def train(cfg: TrainConfig, run_dir, command: str = "", resume: bool = False, re
         cb = EpisodeLogger(run_dir, cfg.train.checkpoint_every, vecnorm)
     else:
         logged = last_logged_steps(run_dir)
-        model = load_checkpoint(ck, cfg.algo, env, vecnorm, cfg.train.device, tb)
+        model = load_checkpoint(ck, model_class(cfg), env, vecnorm, cfg.train.device, tb)
         prev = ck.state()["elapsed_s"]
         resumed = dict(checkpoint=str(ck.model_path.relative_to(run_dir)), from_step=ck.steps,
                        steps_redone=max(0, logged - ck.steps), previous_train_wall_s=prev)

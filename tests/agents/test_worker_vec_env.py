@@ -94,13 +94,15 @@ def test_a_failing_worker_names_its_error():
 
 
 def test_training_in_workers_checkpoints_and_resumes(tmp_path):
-    """A run whose tables live in two workers writes checkpoints with every
-    table's streams and resumes from them to the configured step count."""
+    """A run whose tables live in two workers (and whose updates overlap the
+    rollouts: agents.sb3.overlap) writes checkpoints with every table's
+    streams and resumes from them to the configured step count."""
     from agents.sb3.checkpoints import latest_checkpoint
     from agents.sb3.training import train
 
     sets = ["ppo.n_steps=4", "ppo.batch_size=32", "ppo.n_epochs=1", "policy.net_arch=[16]",  # rollouts of 32
-            "train.env_workers=2", "train.checkpoint_every=32", "train.eval_every=0", "train.eval_episodes=0",
+            "train.env_workers=2", "train.overlap_updates=true", "train.checkpoint_every=32", "train.eval_every=0",
+            "train.eval_episodes=0",
             "train.progress_bar=false", "train.tensorboard=false"]
     first = train(_cfg(*sets, "train.total_timesteps=64"), tmp_path, "pytest")
     ck = latest_checkpoint(tmp_path)
