@@ -79,6 +79,12 @@ class TrainSettings:
     eval_every_episodes: int = 1000
     torch_threads: int = 1           # 1: PPO minibatches are small; a 2nd thread fights numba on 2 cores
     numba_threads: int = 2
+    # processes holding the training tables (agents.sb3.worker_vec_env): 1 keeps them in the
+    # trainer's process; k > 1 splits n_envs over k workers that step at once (n_envs % k == 0)
+    env_workers: int = 1
+    # PPO only: update rollout k in a thread while rollout k + 1 is collected with the policy
+    # before that update (agents.sb3.overlap.OverlappedPPO); False: SB3's PPO, update then collect
+    overlap_updates: bool = False
     device: str = "cpu"
     progress_bar: bool = True
     tensorboard: bool = True
@@ -113,6 +119,11 @@ class TrainConfig:
         if not isinstance(self.n_envs, int) or self.n_envs < 1:
             raise ValueError(f"n_envs must be a positive integer, got {self.n_envs!r}")
         check_action_mode(self.action_mode)
+        w = self.train.env_workers
+        if not isinstance(w, int) or w < 1 or self.n_envs % w:
+            raise ValueError(f"train.env_workers must be a positive integer dividing n_envs={self.n_envs}, got {w!r}")
+        if self.train.overlap_updates and self.algo != "ppo":
+            raise ValueError(f"train.overlap_updates is for PPO, not {self.algo!r}")
         for name in ("ppo", "sac"):
             _check_algo_kwargs(name, getattr(self, name))
 

@@ -9,8 +9,11 @@
 measures the rates of several configs in one process instead: each is
 built and warmed up, then ``--rounds`` rounds of about 16,384 env steps
 (rollouts and their updates) run interleaved, config after config, so load
-changes hit them alike; the medians of the wall rate and of the rate per
-CPU-second of the process are printed as a table (and written to ``--out``).
+changes hit them alike; the medians of the wall rate, of the rate per
+CPU-second of the process and its env workers (``train.env_workers``), and
+of the rate per critical-path CPU-second (the process and its busiest
+worker: about the wall time on idle cores) are printed as a table (and
+written to ``--out``).
 
 Trains the config's model (``configs/ppo_games.yaml`` by default) for one
 warm-up rollout, then profiles ``--rollouts`` more and splits their wall
@@ -18,7 +21,9 @@ time into the PPO updates, the agent's network in the rollouts, the
 agent-side features, the opponent's decisions and the simulator (every
 ``physics.simulate`` call: the shots played and the bots' previews), from
 the profile's cumulative times (by default in CPU time of the process:
-``--clock wall`` for wall time). Writes the split and the top of the profile
+``--clock wall`` for wall time). With ``train.env_workers`` > 1 each
+worker profiles its own part and the profiles are merged: the shares are
+then of the CPU of all the processes. Writes the split and the top of the profile
 to ``--out`` (default stdout only). The first line also gives the rate per
 CPU-second of the process, which a loaded machine changes less than the
 wall rate, and how many cores the process kept busy (numba's idle OpenMP
@@ -31,6 +36,7 @@ import cProfile
 import io
 import pstats
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -41,11 +47,13 @@ import numpy as np  # noqa: E402
 
 from agents.config import load_config  # noqa: E402
 from agents.sb3.training import build_env, build_model  # noqa: E402
+from agents.sb3.worker_vec_env import cpu_seconds, find_workers, profile_start, profile_stop  # noqa: E402
 
 # (label, file suffix, function name) of the cumulative times the split reads
 PARTS = (("updates (PPO train)", "ppo/ppo.py", "train"),
          ("rollouts (collect_rollouts)", "on_policy_algorithm.py", "collect_rollouts"),
-         ("env step (all of it)", "vec_env/base_vec_env.py", "step"),
+         ("env step (all of it in this process)", "vec_env/base_vec_env.py", "step"),
+         ("env workers (all of their work)", "sb3/worker_vec_env.py", "_serve"),
          ("simulator (physics.simulate)", "physics/simulate.py", "simulate"),
          ("opponent decisions (bot act)", "envs/games/play.py", "bot_actions"),
          ("agent features", "bots/learned/features.py", "agent_features"),
@@ -62,7 +70,7 @@ def split(stats: pstats.Stats, wall: float) -> list[tuple[str, float]]:
     rows = [(label, cum.get(label, 0.0)) for label, _, _ in PARTS]
     d = dict(rows)
     rows.append(("agent network in rollouts (rollouts - env step)",
-                 d["rollouts (collect_rollouts)"] - d["env step (all of it)"]))
+                 d["rollouts (collect_rollouts)"] - d["env step (all of it in this process)"]))
     rows.append(("total", wall))
     return rows
 
@@ -93,15 +101,20 @@ def compare(args) -> int:
     for _ in range(rounds):
         for label, cfg, model, steps, rates in runs:
             _threads(cfg)
-            t0, c0 = time.perf_counter(), time.process_time()
+            t0, (c0, p0) = time.perf_counter(), cpu_seconds(model.get_env())
             model.learn(steps, reset_num_timesteps=False)
-            rates.append((steps / (time.perf_counter() - t0), steps / (time.process_time() - c0)))
-            print(f"{label}: {rates[-1][0]:,.0f} env steps/s, {rates[-1][1]:,.0f} per CPU-second", flush=True)
-    lines = [f"{args.env}: medians of {rounds} interleaved rounds", "",
-             "| config | tables x steps | env steps/s (wall) | env steps per CPU-second |", "|---|---|---|---|"]
+            wall, (c1, p1) = time.perf_counter() - t0, cpu_seconds(model.get_env())
+            rates.append((steps / wall, steps / (c1 - c0), steps / (p1 - p0)))
+            print(f"{label}: {rates[-1][0]:,.0f} env steps/s, {rates[-1][1]:,.0f} per CPU-second, "
+                  f"{rates[-1][2]:,.0f} per critical-path CPU-second", flush=True)
+    lines = [f"{args.env}: medians of {rounds} interleaved rounds (CPU: this process and its env workers; "
+             "critical path: this process and its busiest worker, about the wall time on idle cores)", "",
+             "| config | tables x steps | env steps/s (wall) | env steps per CPU-second "
+             "| env steps per critical-path CPU-second |", "|---|---|---|---|---|"]
     for label, cfg, model, steps, rates in runs:
         r = np.median(np.array(rates), axis=0)
-        lines.append(f"| {label} | {cfg.n_envs} x {cfg.algo_kwargs.get('n_steps')} | {r[0]:,.0f} | {r[1]:,.0f} |")
+        lines.append(f"| {label} | {cfg.n_envs} x {cfg.algo_kwargs.get('n_steps')} | {r[0]:,.0f} | {r[1]:,.0f} "
+                     f"| {r[2]:,.0f} |")
     print("\n".join(lines))
     if args.out:
         args.out.parent.mkdir(parents=True, exist_ok=True)
@@ -134,23 +147,33 @@ def main(argv=None) -> int:
     model = build_model(cfg, env, None)
     per = cfg.n_envs * int(cfg.algo_kwargs.get("n_steps", 2048))
     model.learn(per)  # compiles the kernels, fills the normaliser
+    workers = find_workers(env)
     prof = cProfile.Profile(time.process_time if args.clock == "cpu" else time.perf_counter)
-    t0, c0 = time.perf_counter(), time.process_time()
+    t0, (c0, _) = time.perf_counter(), cpu_seconds(env)
+    if workers is not None:  # each worker profiles its own part, merged below
+        workers.apply(profile_start, args.clock == "wall")
     prof.enable()
     model.learn(per * rollouts, reset_num_timesteps=False)
     prof.disable()
-    wall, cpu = time.perf_counter() - t0, time.process_time() - c0
-    stats = pstats.Stats(prof)
+    with tempfile.TemporaryDirectory() as tmp:
+        paths = workers.apply(profile_stop, tmp) if workers is not None else []
+        wall, cpu = time.perf_counter() - t0, cpu_seconds(env)[0] - c0
+        text = io.StringIO()
+        stats = pstats.Stats(prof, stream=text)
+        for path in paths:
+            stats.add(path)
+        stats.sort_stats("cumulative").print_stats(40)
+    n_workers = 0 if workers is None else len(paths)
     lines = [f"{args.env}, {cfg.n_envs} tables, {rollouts} rollouts of {per} env steps: "
              f"{per * rollouts / wall:,.0f} env steps/s including updates (under cProfile), "
-             f"{per * rollouts / cpu:,.0f} per CPU-second of the process ({cpu / wall:.2f} cores busy; "
-             f"numba threads {cfg.train.numba_threads}, torch threads {cfg.train.torch_threads})", "",
+             f"{per * rollouts / cpu:,.0f} per CPU-second of the process and its {n_workers} env workers "
+             f"({cpu / wall:.2f} cores busy; numba threads {cfg.train.numba_threads}, "
+             f"torch threads {cfg.train.torch_threads})", "",
              f"| part | {args.clock} seconds | share |", "|---|---|---|"]
+    # with workers the parts are summed over the processes: shares of their CPU time
     total = cpu if args.clock == "cpu" else wall
     # four decimals: the quick run's parts last milliseconds, and two would print them as 0.00
     lines += [f"| {label} | {s:.4f} | {s / total:.0%} |" for label, s in split(stats, total)]
-    text = io.StringIO()
-    pstats.Stats(prof, stream=text).sort_stats("cumulative").print_stats(40)
     report = "\n".join(lines) + "\n\n```\n" + text.getvalue() + "```\n"
     print("\n".join(lines))
     if args.out:

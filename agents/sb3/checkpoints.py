@@ -29,6 +29,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .worker_vec_env import find_workers
+
 CHECKPOINT_DIR = "checkpoints"
 _NAME = re.compile(r"^model_(\d+)_steps\.zip$")
 
@@ -50,6 +52,31 @@ def _streams(env):
     u = _native_sb3(env).unwrapped
     core = getattr(u, "_core", None)
     return (core if core is not None else u.core).streams
+
+
+def stream_state(env) -> tuple[np.ndarray, np.ndarray]:
+    """Copies of the tables' stream keys and counters, in table order (across the workers, if any)."""
+    w = find_workers(env)
+    if w is not None:
+        parts = w.apply(stream_state)
+        return np.concatenate([k for k, _ in parts]), np.concatenate([c for _, c in parts])
+    s = _streams(env)
+    return s.keys.copy(), s.counters.copy()
+
+
+def restore_streams(env, keys: np.ndarray, counters: np.ndarray) -> None:
+    """Set the tables' streams; the next unseeded reset continues them."""
+    w = find_workers(env)
+    if w is not None:
+        w._reset_seeds()
+        w.apply_slices(restore_streams, keys, counters)
+        return
+    native = _native_sb3(env)
+    native._reset_seeds()
+    streams = _streams(native)
+    streams.keys[:] = keys
+    streams.counters[:] = counters
+    native.unwrapped._seeded = True
 
 
 @dataclass(frozen=True)
@@ -85,8 +112,8 @@ def save_checkpoint(run_dir, model, vecnorm, elapsed_s: float) -> Checkpoint:
                       obs_count=np.float64(vecnorm.obs_rms.count), ret_mean=vecnorm.ret_rms.mean,
                       ret_var=vecnorm.ret_rms.var, ret_count=np.float64(vecnorm.ret_rms.count),
                       returns=vecnorm.returns)
-    streams = _streams(model.get_env())
-    arrays.update(stream_keys=streams.keys, stream_counters=streams.counters)
+    keys, counters = stream_state(model.get_env())
+    arrays.update(stream_keys=keys, stream_counters=counters)
     np.savez(ck.normalizer_path, **arrays)
     np_state = np.random.get_state()
     state = dict(steps=ck.steps, elapsed_s=float(elapsed_s),
@@ -120,29 +147,26 @@ def restore_normalizer(vecnorm, path) -> None:
         vecnorm.returns = z["returns"].copy()
 
 
-def load_checkpoint(ck: Checkpoint, algo: str, env, vecnorm, device: str = "cpu", tensorboard_log=None):
+def load_checkpoint(ck: Checkpoint, algo, env, vecnorm, device: str = "cpu", tensorboard_log=None):
     """The model of ``ck`` bound to ``env``, with the normaliser statistics
-    and every random state of the checkpoint restored."""
+    and every random state of the checkpoint restored. ``algo``: ``"ppo"``,
+    ``"sac"`` or the model class (``agents.sb3.training.model_class``)."""
     import torch
     from stable_baselines3 import PPO, SAC
 
-    model = {"ppo": PPO, "sac": SAC}[algo].load(ck.model_path, env=env, device=device,
+    cls = {"ppo": PPO, "sac": SAC}[algo] if isinstance(algo, str) else algo
+    model = cls.load(ck.model_path, env=env, device=device,
                                                   tensorboard_log=tensorboard_log)
-    # loading seeds the env's next reset with the run's seed: drop that, the
-    # tables continue from the restored streams instead
-    native = _native_sb3(env)
-    native._reset_seeds()
+    # loading seeds the env's next reset with the run's seed: restore_streams
+    # drops that, the tables continue from the restored streams instead
     if vecnorm is not None:
         restore_normalizer(vecnorm, ck.normalizer_path)
     with np.load(ck.normalizer_path) as z:
         torch.set_rng_state(torch.from_numpy(z["torch_rng"].copy()))
-        streams = _streams(native)
-        if len(z["stream_keys"]) != len(streams.keys):
+        if len(z["stream_keys"]) != env.num_envs:
             raise ValueError(f"{ck.model_path}: saved with {len(z['stream_keys'])} tables, the env has "
-                             f"{len(streams.keys)}; resume with the run's own config")
-        streams.keys[:] = z["stream_keys"]
-        streams.counters[:] = z["stream_counters"]
-    native.unwrapped._seeded = True  # the next unseeded reset continues the restored streams
+                             f"{env.num_envs}; resume with the run's own config")
+        restore_streams(env, z["stream_keys"], z["stream_counters"])
     st = ck.state()
     np.random.set_state((st["numpy_rng"][0], np.array(st["numpy_rng"][1], dtype=np.uint32), *st["numpy_rng"][2:]))
     random.setstate((st["python_rng"][0], tuple(st["python_rng"][1]), st["python_rng"][2]))

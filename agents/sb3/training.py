@@ -25,7 +25,6 @@ from stable_baselines3.common.callbacks import BaseCallback
 
 from .checkpoints import last_logged_steps, latest_checkpoint, load_checkpoint, save_checkpoint
 from ..config import TrainConfig, load_run_config, save_config
-from .vec_env import make_sb3_vec_env
 
 
 def _has_tensorboard() -> bool:
@@ -238,14 +237,27 @@ def _find_vecnorm(env):
     return None
 
 
+def table_spec(cfg: TrainConfig):
+    """What the training tables are: the env, its kwargs, the agent-side features and action mode."""
+    from .worker_vec_env import TableEnvSpec
+    return TableEnvSpec(cfg.env_id, dict(cfg.env_kwargs), cfg.features, cfg.aim_scale, cfg.action_mode,
+                        cfg.train.numba_threads)
+
+
 def build_env(cfg: TrainConfig, seed: int):
+    """The training env: ``cfg.n_envs`` tables (in this process, or split over
+    ``train.env_workers`` processes: ``agents.sb3.worker_vec_env``) with the
+    agent-side features, under VecNormalize when the config normalises."""
     from stable_baselines3.common.vec_env import VecNormalize
 
-    from ..interface.features import ShotFeatures
+    from .worker_vec_env import WorkerVecEnv
 
-    env = make_sb3_vec_env(cfg.env_id, cfg.n_envs, seed=seed, **cfg.env_kwargs)
-    if cfg.features or cfg.aim_scale != 1.0 or cfg.action_mode != "direct":
-        env = ShotFeatures(env, env.unwrapped, cfg.features, cfg.aim_scale, cfg.action_mode)
+    spec = table_spec(cfg)
+    if cfg.train.env_workers > 1:
+        env = WorkerVecEnv(spec, cfg.n_envs, cfg.train.env_workers)
+        env.seed(seed)
+    else:
+        env = spec.build(cfg.n_envs, seed)
     vecnorm = None
     if cfg.normalize.obs or cfg.normalize.reward:
         n = cfg.normalize
@@ -265,10 +277,18 @@ def schedule(value):
     return value
 
 
-def build_model(cfg: TrainConfig, env, tensorboard_log: str | None):
+def model_class(cfg: TrainConfig):
+    """SB3's PPO or SAC, or ``OverlappedPPO`` with ``train.overlap_updates``."""
     from stable_baselines3 import PPO, SAC
 
-    cls = {"ppo": PPO, "sac": SAC}[cfg.algo]
+    if cfg.train.overlap_updates:
+        from .overlap import OverlappedPPO
+        return OverlappedPPO
+    return {"ppo": PPO, "sac": SAC}[cfg.algo]
+
+
+def build_model(cfg: TrainConfig, env, tensorboard_log: str | None):
+    cls = model_class(cfg)
     kw = dict(cfg.algo_kwargs)
     for key in ("learning_rate", "clip_range"):
         if key in kw:
@@ -314,7 +334,7 @@ def train(cfg: TrainConfig, run_dir, command: str = "", resume: bool = False, re
         cb = EpisodeLogger(run_dir, cfg.train.checkpoint_every, vecnorm)
     else:
         logged = last_logged_steps(run_dir)
-        model = load_checkpoint(ck, cfg.algo, env, vecnorm, cfg.train.device, tb)
+        model = load_checkpoint(ck, model_class(cfg), env, vecnorm, cfg.train.device, tb)
         prev = ck.state()["elapsed_s"]
         resumed = dict(checkpoint=str(ck.model_path.relative_to(run_dir)), from_step=ck.steps,
                        steps_redone=max(0, logged - ck.steps), previous_train_wall_s=prev)
