@@ -722,14 +722,8 @@ class GameLookahead:
         self.sims += len(c["row"])
         v0 = self.values(view, pv)
         # the n_eval best per row (n_eval_safe of them kept for safeties and kicks), in one noisy batch
-        order = np.lexsort((-v0, local))                                # by row, best first
-        rank = np.empty(len(order), dtype=np.int64)
-        starts = np.searchsorted(local[order], np.arange(n))
-        rank[order] = np.arange(len(order)) - np.repeat(starts, np.diff(np.append(starts, len(order))))
-        srank = np.empty(len(order), dtype=np.int64)
-        so = np.lexsort((-v0, ~c["safe"], local))
-        ss = np.searchsorted(local[so], np.arange(n))
-        srank[so] = np.arange(len(so)) - np.repeat(ss, np.diff(np.append(ss, len(so))))
+        rank = _rank_in_row((-v0,), local, n)                           # best first
+        srank = _rank_in_row((-v0, ~c["safe"]), local, n)               # safeties first, best first
         pick = np.nonzero((rank < self.n_eval - self.n_eval_safe) | (c["safe"] & (srank < self.n_eval_safe)))[0]
         S = self.n_samples
         rep = np.repeat(pick, S)
@@ -764,7 +758,7 @@ class GameLookahead:
         vs, vn, safe, lp, n = judged
         k, S = vs.shape
         ra, rs = self.budget.reply_eval, self.budget.reply_safe
-        sel = (_rank_in_row(-vn, lp, n) < ra - rs) | (safe & (_rank_in_row(-vn + 2.0 * ~safe, lp, n) < rs))
+        sel = (_rank_in_row((-vn,), lp, n) < ra - rs) | (safe & (_rank_in_row((-vn, ~safe), lp, n) < rs))
         j = np.nonzero(sel)[0]
         S2 = min(self.budget.reply_samples, S)
         ids = (j[:, None] * S + np.arange(S2)).ravel()
@@ -789,9 +783,10 @@ class GameLookahead:
         return 1.0 - opp
 
 
-def _rank_in_row(key, row, n):
-    """[k] each entry's place (0 first) within its row (``row`` [k] in 0..n-1) by increasing ``key``."""
-    order = np.lexsort((key, row))
+def _rank_in_row(keys, row, n):
+    """[k] each entry's place (0 first) within its row (``row`` [k] in 0..n-1), ordered by ``keys`` (a tuple of
+    [k] arrays, as ``np.lexsort`` takes them: the last one first)."""
+    order = np.lexsort((*keys, row))
     starts = np.searchsorted(row[order], np.arange(n))
     rank = np.empty(len(order), dtype=np.int64)
     rank[order] = np.arange(len(order)) - np.repeat(starts, np.diff(np.append(starts, len(order))))
