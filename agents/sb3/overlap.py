@@ -15,9 +15,14 @@ threads do run at once.
 
 While an update runs, ``model.policy`` read from any other thread is the
 acting copy (with its optimiser state as of the last swap): the callbacks
-(checkpoints, held-seed evaluations, logging) see a consistent policy, never
-one half updated. A checkpoint taken then holds the weights before the
-running update, so a run resumed from it redoes that update's rollout.
+(held-seed evaluations, logging) see a consistent policy, never one half
+updated. Checkpoints are sync points: when a callback's ``checkpoint_due``
+says the next rollout starts with a checkpoint, that rollout's update runs
+before it, not beside it, so the checkpoint holds every update of the steps
+it counts, and the rollout after it is collected with those weights. A run
+resumed from it (whose first rollout has no update to overlap either) then
+follows the uninterrupted run's schedule, one update behind from the second
+rollout on.
 """
 from __future__ import annotations
 
@@ -25,6 +30,15 @@ import copy
 import threading
 
 from stable_baselines3 import PPO
+from stable_baselines3.common.callbacks import CallbackList
+
+
+def _checkpoint_checks(callback) -> list:
+    """The ``checkpoint_due(num_timesteps)`` methods of ``callback`` and the callbacks it holds."""
+    if isinstance(callback, CallbackList):
+        return [c for sub in callback.callbacks for c in _checkpoint_checks(sub)]
+    due = getattr(callback, "checkpoint_due", None)
+    return [due] if due is not None else []
 
 
 class OverlappedPPO(PPO):
@@ -71,6 +85,7 @@ class OverlappedPPO(PPO):
         total_timesteps, callback = self._setup_learn(total_timesteps, callback, reset_num_timesteps, tb_log_name,
                                                       progress_bar)
         callback.on_training_start(locals(), globals())
+        checks = _checkpoint_checks(callback)
         self._sync_acting()  # a loaded model set the learner's weights after _setup_model
         going = self.collect_rollouts(self.env, callback, self.rollout_buffer, n_rollout_steps=self.n_steps)
         while going:
@@ -81,6 +96,11 @@ class OverlappedPPO(PPO):
             if self.num_timesteps >= total_timesteps:  # the last rollout: nothing to overlap it with
                 self.train()
                 break
+            if any(due(self.num_timesteps) for due in checks):  # a sync point: update, then the checkpoint
+                self.train()
+                self._sync_acting()
+                going = self.collect_rollouts(self.env, callback, self.rollout_buffer, n_rollout_steps=self.n_steps)
+                continue
             self._update_error = None
             self._updating = threading.Thread(target=self._train_in_thread, name="ppo-update", daemon=True)
             self._updating.start()

@@ -97,10 +97,15 @@ class EpisodeLogger(BaseCallback):
         self._csv.writeheader()
         self._csv.writerows(kept)
 
+    def checkpoint_due(self, num_timesteps: int) -> bool:
+        """Whether a rollout starting at ``num_timesteps`` starts with a checkpoint
+        (``OverlappedPPO`` finishes its update before such a rollout)."""
+        return self._next_ckpt is not None and num_timesteps >= self._next_ckpt
+
     def _on_rollout_start(self) -> None:
         # after the previous update and before new steps: the state a resumed
         # run restarts from exactly (checkpoint steps are rollout boundaries)
-        if self._next_ckpt is not None and self.num_timesteps >= self._next_ckpt:
+        if self.checkpoint_due(self.num_timesteps):
             save_checkpoint(self.run_dir, self.model, self.vecnorm, time.perf_counter() - self.t0)
             while self._next_ckpt <= self.num_timesteps:
                 self._next_ckpt += self.checkpoint_every

@@ -72,3 +72,27 @@ def test_an_update_error_reaches_the_caller(monkeypatch):
 def test_overlap_is_for_ppo_only():
     with pytest.raises(ValueError, match="overlap_updates is for PPO"):
         load_config(None, overrides=["algo=sac", "train.overlap_updates=true"])
+
+
+
+def test_a_checkpoint_holds_every_update_of_its_steps(tmp_path):
+    """Checkpoints every two rollouts: the update of rollout 2 runs before the
+    checkpoint, not beside rollout 3, so the checkpoint has both rollouts'
+    updates and rollout 3 is collected with its weights; then the overlap
+    goes on (rollout 4 with the same weights, update 3 running beside it)."""
+    from agents.sb3.checkpoints import latest_checkpoint
+    from agents.sb3.training import EpisodeLogger
+
+    cfg = load_config("configs/ppo_games.yaml", "Billiards-NineBall2P-v0", SETS)
+    env, vecnorm = build_env(cfg, 0)
+    model = build_model(cfg, env, None)
+    seen = ActingWeights()
+    model.learn(ROLLOUTS * 32, callback=[EpisodeLogger(tmp_path, 2 * 32, vecnorm), seen])
+    env.close()
+    ck = latest_checkpoint(tmp_path)
+    assert ck is not None and ck.steps == 2 * 32
+    saved = OverlappedPPO.load(ck.model_path)
+    assert saved._n_updates == 2 * 2  # two rollouts, n_epochs=2 each
+    np.testing.assert_array_equal(seen.seen[2], _weights(saved.policy))
+    np.testing.assert_array_equal(seen.seen[3], seen.seen[2])
+    assert not np.array_equal(seen.seen[1], seen.seen[2])
