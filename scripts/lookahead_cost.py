@@ -12,7 +12,7 @@ decision.
 
 ``--budgets``: for each budget (``bots.game_lookahead.BUDGETS`` or ``default``), ``--racks`` paired racks against
 ``--opponent`` (``studies.matches.play_pairing``, each rack twice, each side breaking once) at ``--noise``: the win
-rate with its Wilson 95% interval and the lookahead's wall time per shot over the match. Writes
+rate with its Wilson 95% interval and the lookahead's wall and CPU time per shot over the match (``TimedBot``). Writes
 ``<out>/budgets_<game>_<noise>.json`` and ``.md``.
 """
 from __future__ import annotations
@@ -25,22 +25,6 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
-
-
-class Timed:
-    """A bot whose ``act`` calls are timed (seconds and decisions); ``tables`` holds the env tables where it
-    played a shot other than a break."""
-
-    def __init__(self, bot):
-        self.bot, self.name, self.seconds, self.decisions, self.tables = bot, bot.name, 0.0, 0, set()
-
-    def act(self, view):
-        t0 = time.perf_counter()
-        plan = self.bot.act(view)
-        self.seconds += time.perf_counter() - t0
-        self.decisions += view.n
-        self.tables.update(view.rows[~view.is_break].tolist())
-        return plan
 
 
 def bot_of(budget: str, seed: int):
@@ -87,19 +71,23 @@ def cost(game: str, n: int, rounds: int, repeats: int, seed: int, budget: str) -
 
 
 def budgets(game: str, names: list, racks: int, opponent: str, noise: str, seed: int) -> list:
+    import numpy as np
+
+    from billiards_env.studies.championship import TimedBot, per_shot
     from billiards_env.studies.matches import play_pairing
     rows = []
     for name in names:
-        bot = Timed(bot_of(name, seed))
+        clock: dict = {}
+        bot = TimedBot(bot_of(name, seed), name, clock)
         t0 = time.perf_counter()
         r = play_pairing(bot, opponent, game, n_racks=racks, seed=seed, noise=noise)
         s = r.summary()
-        import numpy as np
         played = np.isin(np.arange(r.n), sorted(bot.tables))
+        t = per_shot(clock[name])
         rows.append(dict(budget=name, opponent=opponent, games=s["games"], win_rate=s["a_win_rate"], ci95=s["ci95"],
                          lost_without_a_shot=int(((r.winner == 1) & ~played).sum()),
-                         ms_per_shot=1e3 * bot.seconds / max(bot.decisions, 1), shots=bot.decisions,
-                         previews_per_shot=bot.bot.sims / max(bot.decisions, 1), match_seconds=time.perf_counter() - t0))
+                         ms_per_shot=t["ms_per_shot"], cpu_ms_per_shot=t["cpu_ms_per_shot"], shots=t["shots"],
+                         previews_per_shot=bot.bot.sims / max(t["shots"], 1), match_seconds=time.perf_counter() - t0))
     return rows
 
 
@@ -127,10 +115,11 @@ def main(argv=None) -> int:
         head = f"# lookahead budgets, {a.game}, {a.noise} noise, against {a.opponent}\n\n" \
                f"`python scripts/lookahead_cost.py --game {a.game} --budgets {' '.join(a.budgets)} --racks {a.racks}" \
                f" --noise {a.noise} --seed {a.seed}` ({a.racks} racks, each played twice)\n\n" \
-               "| budget | games | win rate | 95% interval | lost without a shot | ms per shot | previews per shot |\n" \
-               "|---|---|---|---|---|---|---|\n"
+               "| budget | games | win rate | 95% interval | lost without a shot | ms per shot | CPU ms per shot |" \
+               " previews per shot |\n|---|---|---|---|---|---|---|---|\n"
         md = head + "".join(f"| {r['budget']} | {r['games']} | {r['win_rate']:.3f} | {r['ci95'][0]:.3f}-{r['ci95'][1]:.3f}"
-                            f" | {r['lost_without_a_shot']} | {r['ms_per_shot']:.1f} | {r['previews_per_shot']:.0f} |\n"
+                            f" | {r['lost_without_a_shot']} | {r['ms_per_shot']:.1f} | {r['cpu_ms_per_shot']:.1f}"
+                            f" | {r['previews_per_shot']:.0f} |\n"
                             for r in rows)
         md += "\n'lost without a shot': games the lookahead lost without playing a shot other than its break.\n"
         print(md)
