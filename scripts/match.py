@@ -151,8 +151,10 @@ def run_championship(args, command: str) -> int:
                           progress=lambda lv: print(f"noise {lv} ...", file=sys.stderr, flush=True))
     parts = [f"# The championship protocol: {CHAMPIONSHIP_GAME}, {args.racks} racks per pairing and level\n",
              f"`{command}`\n",
-             "Compute per shot: wall-clock seconds in each entrant's decisions (its previews included), over the "
-             "shots it played; the tables of a pairing are decided in batches, so this is the batched cost.\n",
+             "Compute per shot: milliseconds of wall clock in each entrant's decisions (its previews included), over the "
+             "shots it played, and in brackets the process's CPU time in them (every thread's), which a loaded "
+             "machine does not inflate; the tables of a pairing are decided in batches, so this is the batched "
+             "cost.\n",
              compute_table(levels) + "\n"]
     for lv in levels:
         doc = dict(command=command, protocol="championship", game=CHAMPIONSHIP_GAME, noise=lv["noise"], rack=args.rack,
