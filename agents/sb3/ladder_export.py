@@ -49,8 +49,9 @@ def training_info(run: Path, steps: int | None) -> dict:
         state = json.loads((run / "checkpoints" / f"model_{steps}_steps_state.json").read_text())
         return dict(training_steps=int(state["steps"]), training_wall_s=round(float(state["elapsed_s"]), 1))
     summary = json.loads((run / "train_summary.json").read_text()) if (run / "train_summary.json").exists() else {}
+    wall = summary.get("train_wall_s")  # train()'s summary (agents.sb3.training)
     return dict(training_steps=int(summary.get("timesteps", 0)) or None,
-                training_wall_s=summary.get("wall_time_s"))
+                training_wall_s=None if wall is None else round(float(wall), 1))
 
 
 def check(net: MLPPolicy, policy: SB3Policy, game: str, n: int, seed: int = 0) -> int:

@@ -147,3 +147,18 @@ def test_ladder_table_quick_mode_writes_its_tables(tmp_path):
     rows = (tmp_path / "ratings.csv").read_text().splitlines()
     assert rows[0].startswith("game,noise,entrant") and len(rows) == 1 + 2 * 2  # ladder-1 and ghost per game
     assert "ladder-1" in (tmp_path / "ladder.md").read_text()
+
+
+def test_a_final_models_card_takes_the_runs_training_steps_and_time(tmp_path):
+    """``export_ladder.py`` without ``--steps`` (the run's model.zip) reads the steps and the training wall
+    time from the run's ``train_summary.json``; a checkpoint's, from its state file."""
+    pytest.importorskip("stable_baselines3")
+    import json
+
+    from agents.sb3.ladder_export import training_info
+    (tmp_path / "train_summary.json").write_text(json.dumps({"timesteps": 6000640, "train_wall_s": 1013.79803}))
+    assert training_info(tmp_path, None) == dict(training_steps=6000640, training_wall_s=1013.8)
+    (tmp_path / "checkpoints").mkdir()
+    (tmp_path / "checkpoints" / "model_4096_steps_state.json").write_text(json.dumps({"steps": 4096,
+                                                                                       "elapsed_s": 2.26}))
+    assert training_info(tmp_path, 4096) == dict(training_steps=4096, training_wall_s=2.3)
