@@ -279,8 +279,11 @@ def test_three_cushion_turn_scores_and_no_pockets(server):
 def test_the_lobby_offers_each_game_its_bots(server):
     """Each game's opponents: its default bot first, the pool bots on the pool games, the ladder where shipped."""
     games = {g["id"]: g for g in server("GET", "/api/options")[1]["games"]}
+    from billiards_env.bots.learned.ladder import ladder_names
     for game in ("nine_ball", "eight_ball"):
-        assert games[game]["bots"][0] == "ghost" and games[game]["bots"][-3:] == ["ladder-1", "ladder-2", "ladder-3"]
+        rungs = ladder_names(game)
+        assert rungs[:3] == ["ladder-1", "ladder-2", "ladder-3"]
+        assert games[game]["bots"][0] == "ghost" and games[game]["bots"][-len(rungs):] == rungs
     assert not any(b.startswith("ladder") for b in games["ten_ball"]["bots"] + games["snooker"]["bots"])
     assert games["three_cushion"]["default_bot"] == "carom" and "ghost" not in games["three_cushion"]["bots"]
     assert games["snooker"]["bots"][0] == "snooker"
