@@ -74,7 +74,6 @@ def test_overlap_is_for_ppo_only():
         load_config(None, overrides=["algo=sac", "train.overlap_updates=true"])
 
 
-
 def test_a_checkpoint_holds_every_update_of_its_steps(tmp_path):
     """Checkpoints every two rollouts: the update of rollout 2 runs before the
     checkpoint, not beside rollout 3, so the checkpoint has both rollouts'
