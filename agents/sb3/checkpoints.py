@@ -29,27 +29,16 @@ from pathlib import Path
 
 import numpy as np
 
+from .vec_env import native_vec_env
 from .worker_vec_env import find_workers
 
 CHECKPOINT_DIR = "checkpoints"
 _NAME = re.compile(r"^model_(\d+)_steps\.zip$")
 
 
-def _native_sb3(env):
-    """The ``NativeVecEnv`` under SB3 wrappers (VecNormalize, features)."""
-    from billiards_env.envs.unwrap import env_chain
-
-    from .vec_env import NativeVecEnv
-
-    for e in env_chain(env):
-        if isinstance(e, NativeVecEnv):
-            return e
-    raise TypeError("no NativeVecEnv under this env")
-
-
 def _streams(env):
     """The table streams of the native env under ``env`` (a task's ``_core`` or a game's ``core``)."""
-    u = _native_sb3(env).unwrapped
+    u = native_vec_env(env).unwrapped
     core = getattr(u, "_core", None)
     return (core if core is not None else u.core).streams
 
@@ -71,7 +60,7 @@ def restore_streams(env, keys: np.ndarray, counters: np.ndarray) -> None:
         w._reset_seeds()
         w.apply_slices(restore_streams, keys, counters)
         return
-    native = _native_sb3(env)
+    native = native_vec_env(env)
     native._reset_seeds()
     streams = _streams(native)
     streams.keys[:] = keys

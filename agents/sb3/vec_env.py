@@ -76,6 +76,25 @@ def split_infos(infos: dict, n: int) -> list[dict]:
     return out
 
 
+def env_indices(n: int, indices: VecEnvIndices) -> list[int]:
+    """SB3's ``indices`` argument (None: all ``n`` envs, an int, or a sequence) as a list."""
+    if indices is None:
+        return list(range(n))
+    if isinstance(indices, int):
+        return [indices]
+    return list(indices)
+
+
+def native_vec_env(env) -> "NativeVecEnv":
+    """The ``NativeVecEnv`` under SB3 wrappers (VecNormalize, features)."""
+    from billiards_env.envs.unwrap import env_chain
+
+    for e in env_chain(env):
+        if isinstance(e, NativeVecEnv):
+            return e
+    raise TypeError("no NativeVecEnv under this env")
+
+
 class NativeVecEnv(VecEnv):
     """SB3 ``VecEnv`` over a native ``gymnasium.vector.VectorEnv``."""
 
@@ -92,11 +111,7 @@ class NativeVecEnv(VecEnv):
         return self.venv.unwrapped if hasattr(self.venv, "unwrapped") else self.venv
 
     def _indices(self, indices: VecEnvIndices) -> list[int]:
-        if indices is None:
-            return list(range(self.num_envs))
-        if isinstance(indices, int):
-            return [indices]
-        return list(indices)
+        return env_indices(self.num_envs, indices)
 
     def get_attr(self, attr_name: str, indices: VecEnvIndices = None) -> list[Any]:
         target = self.venv

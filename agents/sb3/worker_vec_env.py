@@ -31,6 +31,8 @@ from typing import Any, NamedTuple
 import numpy as np
 from stable_baselines3.common.vec_env.base_vec_env import VecEnv, VecEnvIndices
 
+from .vec_env import env_indices, native_vec_env
+
 START_TIMEOUT_S = 600.0  # a worker's first reply: imports plus, in a fresh tree, compiling the numba kernels
 
 
@@ -74,13 +76,6 @@ def cpu_seconds(env) -> tuple[float, float]:
     return own + sum(workers), own + max(workers)
 
 
-def _native(env):
-    from .vec_env import NativeVecEnv
-    from billiards_env.envs.unwrap import env_chain
-
-    return next(e for e in env_chain(env) if isinstance(e, NativeVecEnv))
-
-
 def _process_seconds(env) -> float:
     return time.process_time()
 
@@ -113,7 +108,7 @@ def _serve(env, cmd: str, arg):
         return env.step_wait()
     if cmd == "reset":
         seeds, options = arg
-        native = _native(env)
+        native = native_vec_env(env)
         native._seeds, native._options = list(seeds), list(options)
         return env.reset()
     if cmd == "get_attr":
@@ -207,11 +202,14 @@ class WorkerVecEnv(VecEnv):
         """``fn(env, *args)`` in every worker (``fn`` module-level, picklable); the results in worker order."""
         return self._send_all("apply", (fn, args))
 
+    def _rows(self, a, j: int):
+        """Worker ``j``'s tables' rows of ``a`` (an array or a list in table order)."""
+        return a[j * self.per:(j + 1) * self.per]
+
     def apply_slices(self, fn, *arrays) -> list:
         """``fn(env, *slices)`` in every worker, each given its own tables' rows of ``arrays``."""
-        p = self.per
         for j, conn in enumerate(self._conns):
-            conn.send(("apply", (fn, tuple(a[j * p:(j + 1) * p] for a in arrays))))
+            conn.send(("apply", (fn, tuple(self._rows(a, j) for a in arrays))))
         return self._gather()
 
     def worker_cpu_seconds(self) -> list[float]:
@@ -220,18 +218,17 @@ class WorkerVecEnv(VecEnv):
 
     # -- core API --------------------------------------------------------
     def reset(self) -> np.ndarray:
-        p = self.per
         for j, conn in enumerate(self._conns):
-            conn.send(("reset", (self._seeds[j * p:(j + 1) * p], self._options[j * p:(j + 1) * p])))
+            conn.send(("reset", (self._rows(self._seeds, j), self._rows(self._options, j))))
         obs = np.concatenate(self._gather())
         self._reset_seeds()
         self._reset_options()
         return obs
 
     def step_async(self, actions: np.ndarray) -> None:
-        actions, p = np.asarray(actions), self.per
+        actions = np.asarray(actions)
         for j, conn in enumerate(self._conns):
-            conn.send(("step", actions[j * p:(j + 1) * p]))
+            conn.send(("step", self._rows(actions, j)))
 
     def step_wait(self):
         parts = self._gather()
@@ -242,9 +239,7 @@ class WorkerVecEnv(VecEnv):
         return obs, rewards, dones, infos
 
     def _indices(self, indices: VecEnvIndices) -> list[int]:
-        if indices is None:
-            return list(range(self.num_envs))
-        return [indices] if isinstance(indices, int) else list(indices)
+        return env_indices(self.num_envs, indices)
 
     def get_attr(self, attr_name: str, indices: VecEnvIndices = None) -> list[Any]:
         # the attributes of a batch are shared (NativeVecEnv.get_attr): worker 0's

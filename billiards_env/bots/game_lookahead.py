@@ -746,7 +746,6 @@ class GameLookahead:
         return ((c["phi"][best], c["speed"][best], c["a"][best], c["b"][best]), c["placement"][best],
                 c["pocket"][best], vn[first], c["safe"][best])
 
-
     def replies(self, view, pvn, judged, prow):
         """The 2-ply judgement of the best noisy candidates: ``judged`` (their sample values [k, S], means [k],
         safe [k], local row [k], rows n), ``pvn`` their noisy previews (k x S, candidate-major) on view rows

@@ -229,10 +229,12 @@ def _simulate_chunk(s: BallState, geo: Geometry, p: np.ndarray, kernel, solver: 
     max_events, diagnostics, n_contacts = flags
     E, B = s.pos.shape[:2]
     balls = Balls(s.pos, s.vel, s.omega, np.zeros((E, B), dtype=np.int64), s.pocket)
-    out = (np.zeros(E), np.zeros(E, dtype=np.int64), np.full(E, -1, dtype=np.int64), np.zeros((E, B), dtype=np.int64),
-           np.zeros((E, B), dtype=np.int64), np.zeros(E, dtype=np.bool_), np.zeros((E, 4)))
-    out = (OrderedOutputs(*out, np.full((E, n_contacts, 2), -1, dtype=np.int64), np.zeros(E, dtype=np.int64))
-           if n_contacts else Outputs(*out))
+    out = dict(time=np.zeros(E), nev=np.zeros(E, dtype=np.int64), first=np.full(E, -1, dtype=np.int64),
+               cush=np.zeros((E, B), dtype=np.int64), cush_after=np.zeros((E, B), dtype=np.int64),
+               trunc=np.zeros(E, dtype=np.bool_), diag=np.zeros((E, 4)))
+    out = (OrderedOutputs(**out, order=np.full((E, n_contacts, 2), -1, dtype=np.int64),
+                          norder=np.zeros(E, dtype=np.int64))
+           if n_contacts else Outputs(**out))
     cap = RECORD_CAPACITY if record else 1
     rows = E if record else 1
     log = LogBuffers(on=bool(record), n=np.zeros(E, dtype=np.int64), t=np.zeros((rows, cap)),
