@@ -77,6 +77,8 @@ class TrainSettings:
     # of seed ``eval_seed`` without noise; their time is not training time
     eval_every: int = 0
     eval_every_episodes: int = 1000
+    # a self-play run (a two-player game with no env_kwargs.opponent) is evaluated against this bot
+    eval_opponent: str = "ghost"
     torch_threads: int = 1           # 1: PPO minibatches are small; a 2nd thread fights numba on 2 cores
     numba_threads: int = 2
     # processes holding the training tables (agents.sb3.worker_vec_env): 1 keeps them in the
@@ -124,8 +126,23 @@ class TrainConfig:
             raise ValueError(f"train.env_workers must be a positive integer dividing n_envs={self.n_envs}, got {w!r}")
         if self.train.overlap_updates and self.algo != "ppo":
             raise ValueError(f"train.overlap_updates is for PPO, not {self.algo!r}")
+        if self.self_play and self.algo != "ppo":
+            raise ValueError(f"{self.env_id} with no env_kwargs.opponent trains by self-play, which is PPO's "
+                             f"(agents.sb3.self_play), not {self.algo!r}; name an opponent to train {self.algo!r}")
         for name in ("ppo", "sac"):
             _check_algo_kwargs(name, getattr(self, name))
+
+    @property
+    def self_play(self) -> bool:
+        """A two-player game with no ``env_kwargs.opponent``: the policy plays both seats
+        (``agents.sb3.self_play``)."""
+        from billiards_env.envs.registration import GAME_IDS
+        return self.env_id in GAME_IDS and "opponent" not in self.env_kwargs
+
+    @property
+    def eval_env_kwargs(self) -> dict:
+        """The env options of the run's evaluations: a self-play run's add ``train.eval_opponent``."""
+        return {**self.env_kwargs, "opponent": self.train.eval_opponent} if self.self_play else dict(self.env_kwargs)
 
     @property
     def algo_kwargs(self) -> dict:

@@ -1,13 +1,17 @@
 """Learning curves (training success rate and reward vs env steps) from a
-run's ``progress.csv`` (written by ``agents.sb3.training.EpisodeLogger``)."""
+run's ``progress.csv`` (written by ``agents.sb3.training.EpisodeLogger``),
+with its held-out evaluations (``evaluations.csv``, ``HeldOutEvaluation``)
+where it has them: a self-play run has no training success to plot."""
 from __future__ import annotations
 
 import csv
 from pathlib import Path
 
 
-def read_progress(run_dir) -> dict:
-    rows = list(csv.DictReader(open(Path(run_dir) / "progress.csv")))
+def read_progress(run_dir, name: str = "progress.csv") -> dict:
+    """A run's csv log as columns of floats ({} when it has no rows or no such file)."""
+    path = Path(run_dir) / name
+    rows = list(csv.DictReader(open(path))) if path.exists() else []
     return {k: [float(r[k]) for r in rows] for k in (rows[0].keys() if rows else [])}
 
 
@@ -57,9 +61,13 @@ def plot_runs(run_dirs, out, labels=None) -> None:
             continue
         d = smooth(d)
         label = labels[k] if labels else Path(rd).name
-        axes[0].plot(d["timesteps"], d["success_rate"], label=label)
+        line, = axes[0].plot(d["timesteps"], d["success_rate"], label=label)
         axes[1].plot(d["timesteps"], d["mean_reward"], label=label)
-    axes[0].set_ylabel("training success rate (>= 2048 episodes/point)")
+        held = read_progress(rd, "evaluations.csv")
+        if held:
+            axes[0].plot(held["timesteps"], held["success_rate"], marker="o", ls="--", color=line.get_color(),
+                         label=f"{label}, held-out")
+    axes[0].set_ylabel("success rate (training: >= 2048 episodes/point)")
     axes[1].set_ylabel("mean episode reward")
     for ax in axes:
         ax.set_xlabel("env steps")

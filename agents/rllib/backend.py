@@ -313,6 +313,9 @@ def train(cfg: TrainConfig, run_dir, command: str = "", address: str | None = No
     import numba
     import torch
 
+    if cfg.self_play:
+        raise ValueError(f"{cfg.env_id} with no env_kwargs.opponent trains by self-play, which is the "
+                         "stable-baselines3 backend's (agents.sb3.self_play); name an opponent for RLlib")
     run_dir = Path(run_dir)
     run_dir.mkdir(parents=True, exist_ok=True)
     last = checkpoints(run_dir)[-1] if resume and checkpoints(run_dir) else None

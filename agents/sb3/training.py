@@ -120,7 +120,8 @@ class EpisodeLogger(BaseCallback):
         self._ep_ret += rewards
         for i in np.flatnonzero(dones):
             info = infos[i]
-            self._buf["success"].append(float(bool(info.get("success", False))))
+            # a self-play game has no agent to succeed: its rows log success as NaN
+            self._buf["success"].append(float(bool(info["success"])) if "success" in info else np.nan)
             self._buf["scratch"].append(float(bool(info.get("scratch", False))))
             self._buf["foul"].append(float(bool(info.get("foul", False))))
             self._buf["reward"].append(float(self._ep_ret[i]))
@@ -131,8 +132,9 @@ class EpisodeLogger(BaseCallback):
         if not self._buf["success"]:
             return
         el = time.perf_counter() - self.t0
-        row = dict(timesteps=self.num_timesteps, time_s=round(el, 3), episodes=len(self._buf["success"]),
-                   success_rate=float(np.mean(self._buf["success"])), mean_reward=float(np.mean(self._buf["reward"])),
+        success = np.asarray(self._buf["success"])
+        row = dict(timesteps=self.num_timesteps, time_s=round(el, 3), episodes=len(success),
+                   success_rate=float(np.mean(success)) if not np.isnan(success).all() else float("nan"), mean_reward=float(np.mean(self._buf["reward"])),
                    scratch_rate=float(np.mean(self._buf["scratch"])), foul_rate=float(np.mean(self._buf["foul"])),
                    steps_per_s=self.num_timesteps / max(el, 1e-9))
         self.logger.record("rollout/success_rate", row["success_rate"])
@@ -182,7 +184,7 @@ class HeldOutEvaluation(BaseCallback):
     def _evaluate(self, policy) -> object:
         from ..evaluation.harness import evaluate
         return evaluate(policy, self.cfg.env_id, self.episodes, self.seed, "none",
-                        env_kwargs=self.cfg.env_kwargs, name=self.cfg.algo)
+                        env_kwargs=self.cfg.eval_env_kwargs, name=self.cfg.algo)
 
     def _on_training_start(self) -> None:
         from ..evaluation.policies import make_policy
@@ -246,7 +248,7 @@ def table_spec(cfg: TrainConfig):
     """What the training tables are: the env, its kwargs, the agent-side features and action mode."""
     from .worker_vec_env import TableEnvSpec
     return TableEnvSpec(cfg.env_id, dict(cfg.env_kwargs), cfg.features, cfg.aim_scale, cfg.action_mode,
-                        cfg.train.numba_threads)
+                        cfg.train.numba_threads, "next_step" if cfg.self_play else "same_step")
 
 
 def build_env(cfg: TrainConfig, seed: int):
@@ -295,6 +297,9 @@ def model_class(cfg: TrainConfig):
 def build_model(cfg: TrainConfig, env, tensorboard_log: str | None):
     cls = model_class(cfg)
     kw = dict(cfg.algo_kwargs)
+    if cfg.self_play:
+        from .self_play import TurnRolloutBuffer
+        kw["rollout_buffer_class"] = TurnRolloutBuffer
     for key in ("learning_rate", "clip_range"):
         if key in kw:
             kw[key] = schedule(kw[key])
@@ -347,6 +352,9 @@ def train(cfg: TrainConfig, run_dir, command: str = "", resume: bool = False, re
     start = int(model.num_timesteps)
     remaining = max(cfg.train.total_timesteps - start, 0)
     callbacks = [cb] + ([ProgressBar(remaining)] if cfg.train.progress_bar else [])
+    if cfg.self_play:
+        from .self_play import TurnRecorder
+        callbacks.insert(0, TurnRecorder())
     held = None
     if cfg.train.eval_every > 0 or report is not None:
         held = HeldOutEvaluation(cfg, run_dir, cfg.train.eval_every, cfg.train.eval_every_episodes,
@@ -388,11 +396,11 @@ def final_evaluation(cfg: TrainConfig, run_dir) -> list:
     results = []
     for noise in ts.eval_noise:
         results.append(evaluate(lambda env: trained.bind(env), cfg.env_id, ts.eval_episodes, ts.eval_seed,
-                                noise, env_kwargs=cfg.env_kwargs, name=trained.name))
+                                noise, env_kwargs=cfg.eval_env_kwargs, name=trained.name))
         for b in ts.eval_baselines:
             bname = f"search{ts.search_k}" if b == "search" else b
             results.append(evaluate(lambda env, b=bname: make_policy(b, env, seed=ts.eval_seed), cfg.env_id,
-                                    ts.eval_episodes, ts.eval_seed, noise, env_kwargs=cfg.env_kwargs, name=bname))
+                                    ts.eval_episodes, ts.eval_seed, noise, env_kwargs=cfg.eval_env_kwargs, name=bname))
     print(format_table(results))
     save_results(results, run_dir / "eval.json", run_dir / "eval.png")
     return results

@@ -44,6 +44,7 @@ class TableEnvSpec(NamedTuple):
     aim_scale: float
     action_mode: str
     numba_threads: int = 1
+    autoreset_mode: str = "same_step"  # the self-play game env resets in next_step mode only
 
     def wraps_features(self) -> bool:
         return self.features or self.aim_scale != 1.0 or self.action_mode != "direct"
@@ -54,7 +55,7 @@ class TableEnvSpec(NamedTuple):
         from ..interface.features import ShotFeatures
         from .vec_env import make_sb3_vec_env
 
-        env = make_sb3_vec_env(self.env_id, n_envs, seed=seed, **self.env_kwargs)
+        env = make_sb3_vec_env(self.env_id, n_envs, seed=seed, autoreset_mode=self.autoreset_mode, **self.env_kwargs)
         if self.wraps_features():
             env = ShotFeatures(env, env.unwrapped, self.features, self.aim_scale, self.action_mode)
         return env
