@@ -34,6 +34,7 @@ from __future__ import annotations
 import argparse
 import cProfile
 import io
+import re
 import pstats
 import sys
 import tempfile
@@ -90,7 +91,9 @@ def compare(args) -> int:
     runs = []
     for spec in args.compare:
         label, _, sets = spec.partition(":")
-        cfg = load_config(args.config, args.env, [x for x in sets.split(",") if x] + list(args.set) + quick)
+        # commas inside [...] or {...} belong to a value (policy.net_arch=[128,128])
+        pairs = [x for x in re.split(r",(?![^\[{]*[\]}])", sets) if x]
+        cfg = load_config(args.config, args.env, pairs + list(args.set) + quick)
         _threads(cfg)
         env, _ = build_env(cfg, cfg.train.seed)
         model = build_model(cfg, env, None)
