@@ -74,3 +74,24 @@ def plot_runs(run_dirs, out, labels=None) -> None:
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     save_figure(fig, out)
+
+
+def plot_held_out(run_dirs, out, labels=None) -> None:
+    """Held-out success (``evaluations.csv``) with its 95% interval against
+    training seconds (evaluations excluded): runs of different paces compared
+    at equal wall time."""
+    plt = pyplot()
+
+    fig, ax = plt.subplots(figsize=(6.4, 4.0))
+    for k, rd in enumerate(run_dirs):
+        held = read_progress(rd, "evaluations.csv")
+        if not held:
+            raise ValueError(f"{rd} has no evaluations.csv (train with train.eval_every > 0)")
+        label = labels[k] if labels else Path(rd).name
+        line, = ax.plot(held["train_s"], held["success_rate"], marker="o", label=label)
+        ax.fill_between(held["train_s"], held["ci_low"], held["ci_high"], color=line.get_color(), alpha=0.15)
+    ax.set_xlabel("training seconds (evaluations excluded)")
+    ax.set_ylabel("held-out success rate (95% interval)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    save_figure(fig, out)
