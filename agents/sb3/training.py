@@ -132,9 +132,9 @@ class EpisodeLogger(BaseCallback):
         if not self._buf["success"]:
             return
         el = time.perf_counter() - self.t0
-        success = np.asarray(self._buf["success"])
-        row = dict(timesteps=self.num_timesteps, time_s=round(el, 3), episodes=len(success),
-                   success_rate=float(np.mean(success)) if not np.isnan(success).all() else float("nan"), mean_reward=float(np.mean(self._buf["reward"])),
+        # a self-play window's successes are all NaN, and so is their mean
+        row = dict(timesteps=self.num_timesteps, time_s=round(el, 3), episodes=len(self._buf["success"]),
+                   success_rate=float(np.mean(self._buf["success"])), mean_reward=float(np.mean(self._buf["reward"])),
                    scratch_rate=float(np.mean(self._buf["scratch"])), foul_rate=float(np.mean(self._buf["foul"])),
                    steps_per_s=self.num_timesteps / max(el, 1e-9))
         self.logger.record("rollout/success_rate", row["success_rate"])
