@@ -85,12 +85,13 @@ def _row(s: dict, run_dir: Path, curve: Path, path: Path, cfg0, out_dir: Path, e
     """The table's row of a trained run: its summary ``s``, the final model
     of ``run_dir`` evaluated on ``episodes`` held tables under each noise."""
     from .sb3.policy import SB3Policy
-    from .evaluation.harness import evaluate
+    from .evaluation.harness import evaluate, game_opponent
 
     env_id, algo = s["env_id"], s["algo"]
     pol = SB3Policy.load(run_dir, name=algo)
+    kw = game_opponent(env_id, pol.env_kwargs, None)  # a self-play run's games: against ghost
     evals = {nz: evaluate(lambda env: pol.bind(env), env_id, episodes, EVAL_SEED, nz, name=algo,
-                          env_kwargs=pol.env_kwargs).to_dict()
+                          env_kwargs=kw).to_dict()
              for nz in NOISES}
     held = s["held_out"]
     return dict(env_id=env_id, algo=algo, config=config_label(path), overrides=list(extra),

@@ -110,7 +110,7 @@ def export(run: Path, name: str, steps: int | None = None, version: int = 1, out
                                   nvec=list(net.nvec), obs_dim=net.obs_dim),
                 obs_norm=dict(clip=clip, eps=NORM_EPS) if net.norm is not None else None,
                 agent=dict(features=policy.features, aim_scale=policy.aim_scale, action_mode=policy.action_mode),
-                trained_against=(cfg.get("env_kwargs") or {}).get("opponent"),
+                trained_against=(cfg.get("env_kwargs") or {}).get("opponent", "self-play"),
                 **training_info(run, steps),
                 source=dict(run=run.name, model=path.name,
                             command=(run / "command.txt").read_text().strip() if (run / "command.txt").exists()

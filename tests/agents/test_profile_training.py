@@ -12,14 +12,20 @@ pytest.importorskip("stable_baselines3")
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def test_profile_training_quick(tmp_path):
+def _profile(tmp_path, *args) -> tuple[str, dict]:
     out = tmp_path / "prof.md"
-    res = subprocess.run([sys.executable, "scripts/profile_training.py", "--quick", "--out", str(out)], cwd=ROOT,
-                         capture_output=True, text=True, timeout=900)
+    res = subprocess.run([sys.executable, "scripts/profile_training.py", "--quick", "--out", str(out), *args],
+                         cwd=ROOT, capture_output=True, text=True, timeout=900)
     assert res.returncode == 0, res.stderr[-2000:]
     text = out.read_text()
     rows = {line.split(" | ")[0].lstrip("| "): float(line.split(" | ")[1]) for line in text.splitlines()
             if line.startswith("| ") and not line.startswith("| part")}
+    return text, rows
+
+
+def test_profile_training_quick(tmp_path):
+    """Against an opponent, every part of the split has time."""
+    text, rows = _profile(tmp_path, "--set", "env_kwargs={opponent: ghost}")
     assert rows["updates (PPO train)"] > 0 and rows["simulator (physics.simulate)"] > 0
     assert rows["opponent decisions (bot act)"] > 0 and rows["agent features"] > 0
     assert rows["updates (PPO train)"] + rows["rollouts (collect_rollouts)"] <= rows["total"] * 1.01
@@ -28,6 +34,13 @@ def test_profile_training_quick(tmp_path):
     assert rows["simulator (physics.simulate)"] <= env_step
     assert rows["env step (all of it in this process)"] <= rows["rollouts (collect_rollouts)"]
     assert "per CPU-second of the process" in text.splitlines()[0]
+
+
+def test_profile_training_quick_self_play(tmp_path):
+    """The default game config (self-play): no opponent's time, the rest as before."""
+    _, rows = _profile(tmp_path, "--set", "train.overlap_updates=false")
+    assert rows["opponent decisions (bot act)"] == 0
+    assert rows["updates (PPO train)"] > 0 and rows["simulator (physics.simulate)"] > 0 and rows["agent features"] > 0
 
 
 def test_profile_training_compare_quick(tmp_path):

@@ -141,5 +141,7 @@ def test_rllib_refuses_self_play_configs(tmp_path):
 
 
 def test_named_opponent_is_not_self_play():
-    cfg = load_config(GAMES)
+    cfg = load_config(GAMES, overrides=["env_kwargs={opponent: ghost}"])
     assert not cfg.self_play and cfg.eval_env_kwargs == cfg.env_kwargs
+    default = load_config(GAMES)  # the games' default config trains by self-play, evaluated against ghost
+    assert default.self_play and default.eval_env_kwargs == {"opponent": "ghost"}

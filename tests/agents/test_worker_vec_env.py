@@ -16,8 +16,9 @@ N_ENVS, STEPS, SEED = 8, 6, 7
 
 
 def _cfg(*sets):
-    return load_config(GAMES, "Billiards-NineBall2P-v0", [f"n_envs={N_ENVS}", "normalize.obs=false",
-                                                          "normalize.reward=false", *sets])
+    # the agent against ghost (GameVersusVectorEnv): tables whose opponents draw random numbers too
+    return load_config(GAMES, "Billiards-NineBall2P-v0", [f"n_envs={N_ENVS}", "env_kwargs={opponent: ghost}",
+                                                          "normalize.obs=false", "normalize.reward=false", *sets])
 
 
 def _play(env, actions):

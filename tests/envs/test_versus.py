@@ -149,7 +149,7 @@ def test_game_baselines_and_names():
 def test_menu_agent_trains_and_evaluates(env_id, tmp_path):
     from agents.sb3.policy import SB3Policy
     from agents.config import CONFIG_DIR, load_config
-    from agents.evaluation.harness import evaluate
+    from agents.evaluation.harness import evaluate, game_opponent
     from agents.sb3.training import train
     cfg = load_config(CONFIG_DIR / "ppo_games.yaml", env_id,
                       ["n_envs=16", "ppo.n_steps=8", "ppo.batch_size=64", "train.total_timesteps=256",
@@ -158,7 +158,8 @@ def test_menu_agent_trains_and_evaluates(env_id, tmp_path):
     s = train(cfg, tmp_path)
     assert s["timesteps"] == 256 and 0 <= s["held_out"]["ghost_target"] <= 1
     pol = SB3Policy.load(tmp_path)
-    r = evaluate(lambda env: pol.bind(env), env_id, 16, 1, "tournament", env_kwargs=pol.env_kwargs)
+    r = evaluate(lambda env: pol.bind(env), env_id, 16, 1, "tournament",
+                 env_kwargs=game_opponent(env_id, pol.env_kwargs, None))  # a self-play run plays ghost
     assert r.n_episodes == 16 and 0 <= r.success_rate <= 1
     # the saved model also plays matches on a self-play core, either side breaking (studies.matches)
     from agents.evaluation.entrants import bot_factory
