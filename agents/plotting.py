@@ -80,13 +80,14 @@ def plot_held_out(run_dirs, out, labels=None) -> None:
     """Held-out success (``evaluations.csv``) with its 95% interval against
     training seconds (evaluations excluded): runs of different paces compared
     at equal wall time."""
+    logs = [read_progress(rd, "evaluations.csv") for rd in run_dirs]
+    for rd, held in zip(run_dirs, logs):
+        if not held:
+            raise ValueError(f"{rd} has no evaluations.csv (train with train.eval_every > 0)")
     plt = pyplot()
 
     fig, ax = plt.subplots(figsize=(6.4, 4.0))
-    for k, rd in enumerate(run_dirs):
-        held = read_progress(rd, "evaluations.csv")
-        if not held:
-            raise ValueError(f"{rd} has no evaluations.csv (train with train.eval_every > 0)")
+    for k, (rd, held) in enumerate(zip(run_dirs, logs)):
         label = labels[k] if labels else Path(rd).name
         line, = ax.plot(held["train_s"], held["success_rate"], marker="o", label=label)
         ax.fill_between(held["train_s"], held["ci_low"], held["ci_high"], color=line.get_color(), alpha=0.15)
