@@ -30,10 +30,17 @@ import numpy as np
 from stable_baselines3.common.buffers import RolloutBuffer
 from stable_baselines3.common.callbacks import BaseCallback
 
+from .infos import VecInfos
 
-def turn_signs(infos: list[dict]) -> np.ndarray:
-    """``s_t`` [n] of one step's per-env infos: +1 where the shooter shoots again, else -1."""
-    return np.fromiter((1.0 if i["to_move"] == i["shooter"] else -1.0 for i in infos), np.float32, len(infos))
+
+def turn_signs(infos) -> np.ndarray:
+    """``s_t`` [n] of one step's per-env infos (a ``VecInfos`` or a list of
+    dicts): +1 where the shooter shoots again, else -1."""
+    if isinstance(infos, VecInfos):  # the arrays as they are, no per-env conversion
+        same = infos.column("to_move") == infos.column("shooter")
+    else:
+        same = np.fromiter((i["to_move"] == i["shooter"] for i in infos), bool, len(infos))
+    return np.where(same, 1.0, -1.0).astype(np.float32)
 
 
 class TurnRolloutBuffer(RolloutBuffer):

@@ -5,7 +5,9 @@ call; this adapter keeps that (no DummyVecEnv of single envs on the hot path)
 and translates Gymnasium 1.x vector conventions into SB3's:
 
 - ``step`` returns ``(obs, rewards, dones, infos)`` with ``dones =
-  terminated | truncated`` and ``infos`` a list of per-env dicts;
+  terminated | truncated`` and ``infos`` the per-env dicts, as a
+  ``VecInfos`` (agents/sb3/infos.py: a list that converts a row's values
+  when they are read);
 - for a done env the returned observation is already the *reset*
   observation, and the last observation of the finished episode is in
   ``infos[i]["terminal_observation"]``; ``infos[i]["TimeLimit.truncated"]``
@@ -32,48 +34,14 @@ import numpy as np
 from gymnasium.vector import AutoresetMode
 from stable_baselines3.common.vec_env.base_vec_env import VecEnv, VecEnvIndices
 
+from .infos import VecInfos
+
 
 def _autoreset_mode(env) -> AutoresetMode:
     mode = (getattr(env, "metadata", None) or {}).get("autoreset_mode", AutoresetMode.NEXT_STEP)
     if isinstance(mode, str):
         mode = AutoresetMode(mode)
     return mode
-
-
-def split_infos(infos: dict, n: int) -> list[dict]:
-    """Gymnasium vector infos (a dict of arrays, each with a ``_key`` mask,
-    possibly nested) -> a list of ``n`` per-env dicts. The unmasked entries
-    are zipped into each env's dict at once; a masked array is converted
-    only in its masked rows (a per-element loop over every key cost about
-    as much as a fifth of the simulator at 1,024 tables)."""
-    keys, cols, masked = [], [], []
-    for key, value in infos.items():
-        if key.startswith("_"):
-            continue
-        mask = infos.get("_" + key)
-        rows = None if mask is None else np.flatnonzero(np.asarray(mask, dtype=bool))
-        if rows is not None and len(rows) == n:
-            rows = None  # every env has it
-        if isinstance(value, dict):
-            vals = split_infos(value, n)
-        elif isinstance(value, np.ndarray) and value.ndim >= 1 and len(value) == n:
-            if rows is not None:  # python scalars / lists of the masked rows only
-                masked.append((key, rows.tolist(), value[rows].tolist()))
-                continue
-            vals = value.tolist()  # python scalars / lists in one call
-        else:
-            vals = [value] * n
-        if rows is None:
-            keys.append(key)
-            cols.append(vals)
-        else:
-            rows = rows.tolist()
-            masked.append((key, rows, [vals[i] for i in rows]))
-    out = [dict(zip(keys, row)) for row in zip(*cols)] if cols else [{} for _ in range(n)]
-    for key, rows, vals in masked:
-        for i, v in zip(rows, vals):
-            out[i][key] = v
-    return out
 
 
 def env_indices(n: int, indices: VecEnvIndices) -> list[int]:
@@ -159,16 +127,16 @@ class NativeVecEnv(VecEnv):
         truncated = np.asarray(truncated, dtype=bool)
         dones = terminated | truncated
         n = self.num_envs
-        info_list = split_infos(infos, n)
+        info_list = VecInfos(infos, n)
         if dones.any():
             idx = np.flatnonzero(dones)
             if self.autoreset_mode == AutoresetMode.SAME_STEP:
                 final_obs = infos["final_obs"]
-                final_info = split_infos(infos["final_info"], n) if "final_info" in infos else None
+                final_info = VecInfos(infos["final_info"], n) if "final_info" in infos else None
                 for i in idx:
                     if final_info is not None:
                         # the per-step info of a finished env is its final info
-                        info_list[i] = {**final_info[i]}
+                        info_list[i] = final_info[i]
                     info_list[i]["terminal_observation"] = final_obs[i]
             else:
                 final_obs = np.array(obs, copy=True)

@@ -31,6 +31,7 @@ from typing import Any, NamedTuple
 import numpy as np
 from stable_baselines3.common.vec_env.base_vec_env import VecEnv, VecEnvIndices
 
+from .infos import VecInfos
 from .vec_env import env_indices, native_vec_env
 
 START_TIMEOUT_S = 600.0  # a worker's first reply: imports plus, in a fresh tree, compiling the numba kernels
@@ -236,7 +237,7 @@ class WorkerVecEnv(VecEnv):
         obs = np.concatenate([o for o, _, _, _ in parts])
         rewards = np.concatenate([r for _, r, _, _ in parts])
         dones = np.concatenate([d for _, _, d, _ in parts])
-        infos = [info for _, _, _, i in parts for info in i]
+        infos = VecInfos.concat([i for _, _, _, i in parts])
         return obs, rewards, dones, infos
 
     def _indices(self, indices: VecEnvIndices) -> list[int]:

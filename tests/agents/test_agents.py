@@ -17,7 +17,8 @@ from agents.sb3.policy import SB3Policy  # noqa: E402
 from billiards_env.bots.one_player import BotPolicy, GhostBallPolicy, SearchPolicy  # noqa: E402
 from agents.config import load_config  # noqa: E402
 from agents.evaluation.harness import evaluate, parse_noise, wilson_interval  # noqa: E402
-from agents.sb3.vec_env import NativeVecEnv, make_sb3_vec_env, split_infos  # noqa: E402
+from agents.sb3.infos import VecInfos  # noqa: E402
+from agents.sb3.vec_env import NativeVecEnv, make_sb3_vec_env  # noqa: E402
 from billiards_env.physics import BallState  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -62,10 +63,10 @@ def test_wilson_interval_coverage_on_bernoulli_sample():
 
 
 # ---------------------------------------------------------------- adapter
-def test_split_infos_masks_and_nesting():
+def test_vec_infos_masks_and_nesting():
     infos = {"a": np.array([1, 2, 3]), "_a": np.array([True, False, True]),
              "terms": {"x": np.array([0.5, 0.6, 0.7])}}
-    out = split_infos(infos, 3)
+    out = VecInfos(infos, 3)
     assert out[0] == {"a": 1, "terms": {"x": 0.5}} and "a" not in out[1] and out[2]["a"] == 3
 
 
