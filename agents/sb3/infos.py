@@ -13,7 +13,8 @@ of the arrays, converted to Python values (``.tolist()``) only when a key is
 read, with the same keys and values the per-env dicts had (a masked key is
 absent where its mask is False; a value that is not an array of ``n`` rows is
 every env's). Writing to a row (``terminal_observation``,
-``TimeLimit.truncated``) turns that row into a plain dict, kept in the list.
+``TimeLimit.truncated``) keeps the value in that row's own overlay: the other
+keys stay unconverted.
 ``column(key)`` gives a key's values for every env as one array, for readers
 that want them all. Pickled, it carries the arrays, not ``n`` dicts; the env
 workers' lists join with ``VecInfos.concat``.
@@ -45,53 +46,68 @@ def _row_value(info: dict, key: str, n: int, j: int):
 
 class EnvInfo(MutableMapping):
     """Row ``j`` of a vector info of ``n`` rows, as SB3's per-env dict (module docstring).
-    A write copies the row into a plain dict, which the row then reads (``owner``
-    keeps it, so the list's next ``infos[i]`` returns that dict)."""
+    Writes and deletions go to the row's own overlay (the arrays are never
+    written to), and a nested info read from the row is kept there, so that
+    writes into it stay too; the first one registers the row with ``owner``,
+    whose ``infos[i]`` then returns this same mapping."""
 
-    __slots__ = ("_info", "_n", "_j", "_owner", "_i", "_dict")
+    __slots__ = ("_info", "_n", "_j", "_owner", "_i", "_over", "_gone")
 
     def __init__(self, info: dict, n: int, j: int, owner: "VecInfos | None" = None, i: int = 0):
-        self._info, self._n, self._j, self._owner, self._i, self._dict = info, n, j, owner, i, None
+        self._info, self._n, self._j, self._owner, self._i = info, n, j, owner, i
+        self._over: dict | None = None   # keys written (and nested infos read) in this row
+        self._gone: set | None = None    # keys deleted from this row
 
-    def _mine(self) -> dict:
-        if self._dict is None:
-            self._dict = {k: dict(v) if isinstance(v, EnvInfo) else v for k, v in self.items()}
+    def _keep(self) -> dict:
+        if self._over is None:
+            self._over, self._gone = {}, set()
             if self._owner is not None:
-                self._owner._rows[self._i] = self._dict
-        return self._dict
+                self._owner._rows[self._i] = self
+        return self._over
+
+    def _value(self, key):
+        if self._over is not None:
+            if key in self._over:
+                return self._over[key]
+            if key in self._gone:
+                return _ABSENT
+        v = _row_value(self._info, key, self._n, self._j)
+        if isinstance(v, EnvInfo):
+            self._keep()[key] = v
+        return v
 
     def __getitem__(self, key):
-        if self._dict is not None:
-            return self._dict[key]
-        v = _row_value(self._info, key, self._n, self._j)
+        v = self._value(key)
         if v is _ABSENT:
             raise KeyError(key)
         return v
 
     def get(self, key, default=None):
-        if self._dict is not None:
-            return self._dict.get(key, default)
-        v = _row_value(self._info, key, self._n, self._j)
+        v = self._value(key)
         return default if v is _ABSENT else v
 
     def __contains__(self, key) -> bool:
-        if self._dict is not None:
-            return key in self._dict
-        return _row_value(self._info, key, self._n, self._j) is not _ABSENT
+        return self._value(key) is not _ABSENT
 
     def __iter__(self) -> Iterator[str]:
-        if self._dict is not None:
-            return iter(self._dict)
-        return (k for k in self._info if _row_value(self._info, k, self._n, self._j) is not _ABSENT)
+        over, gone = self._over or {}, self._gone or ()
+        for k in self._info:
+            if k not in over and k not in gone and _row_value(self._info, k, self._n, self._j) is not _ABSENT:
+                yield k
+        yield from list(over)
 
     def __len__(self) -> int:
         return sum(1 for _ in self)
 
     def __setitem__(self, key, value) -> None:
-        self._mine()[key] = value
+        self._keep()[key] = value
+        self._gone.discard(key)
 
     def __delitem__(self, key) -> None:
-        del self._mine()[key]
+        if self._value(key) is _ABSENT:
+            raise KeyError(key)
+        self._keep().pop(key, None)
+        self._gone.add(key)
 
     def __repr__(self) -> str:
         return repr(dict(self.items()))
@@ -106,7 +122,7 @@ class VecInfos(Sequence):
         self._blocks: list[tuple[dict, int]] = [(info, n)]
         self._starts = [0]
         self._n = n
-        self._rows: dict[int, dict] = {}  # rows written to, as plain dicts
+        self._rows: dict[int, MutableMapping] = {}  # rows written to or replaced
 
     @classmethod
     def concat(cls, parts: Sequence["VecInfos"]) -> "VecInfos":

@@ -70,19 +70,26 @@ def test_masks_absent_keys_and_broadcast_values():
     assert infos[0]["terms"] == {"x": 0.5}
 
 
-def test_a_write_makes_the_row_a_dict_that_stays():
-    info = {"a": np.arange(4), "terms": {"x": np.arange(4) * 0.5}}
+def test_writes_and_deletions_stay_in_the_row_and_leave_the_arrays_alone():
+    info = {"a": np.arange(4), "b": np.arange(4) * 2, "terms": {"x": np.arange(4) * 0.5}}
     infos = VecInfos(info, 4)
     row = infos[2]
     row["terminal_observation"] = np.zeros(3)
-    assert type(infos[2]) is dict and infos[2] is infos[2]
-    assert row["terminal_observation"].shape == (3,) and infos[2]["terminal_observation"].shape == (3,)
-    assert infos[2]["a"] == 2 and type(infos[2]["terms"]) is dict and infos[2]["terms"] == {"x": 1.0}
+    assert infos[2] is row and infos[2] is infos[2]
+    assert infos[2]["terminal_observation"].shape == (3,) and "terminal_observation" not in infos[1]
+    assert infos[2]["a"] == 2 and infos[2]["terms"] == {"x": 1.0} and dict(infos[2]["terms"]) == {"x": 1.0}
+    assert row == {"a": 2, "b": 4, "terms": {"x": 1.0}, "terminal_observation": row["terminal_observation"]}
+    infos[1]["terms"]["x"] = 9.0              # a write into a nested info of an unwritten row stays too
+    assert infos[1]["terms"]["x"] == 9.0 and infos[0]["terms"]["x"] == 0.0
     del row["a"]
-    assert "a" not in infos[2] and "a" in infos[1]
+    assert "a" not in infos[2] and "a" in infos[1] and set(infos[2]) == {"b", "terms", "terminal_observation"}
+    with pytest.raises(KeyError):
+        del row["a"]
+    row["a"] = "back"
+    assert infos[2]["a"] == "back" and len(infos[2]) == 4
     infos[3] = {"b": 1}
     assert infos[3] == {"b": 1} and list(infos)[3] == {"b": 1}
-    assert info["a"][2] == 2  # the arrays are not written to
+    assert info["a"][2] == 2 and info["terms"]["x"][1] == 0.5  # the arrays are not written to
 
 
 def test_concat_pickle_and_column_follow_env_order():
