@@ -83,6 +83,8 @@ class EnvInfo(MutableMapping):
         return v
 
     def get(self, key, default=None):
+        if self._over is None and key not in self._info:  # the common read: a key no env has this step
+            return default
         v = self._value(key)
         return default if v is _ABSENT else v
 
