@@ -4,7 +4,11 @@ The built-in bots (``random``, ``ghost``, ``ghost-safety``, ``search<K>``,
 ``lookahead``, the shipped ladder ``ladder-<k>``)
 and ``module:factory`` bots come from ``billiards_env.bots.make_bot``;
 ``bot_factory`` adds saved stable-baselines3 models (a run directory or a
-``.zip``), played by ``GameModelPolicy``.
+``.zip``), played by ``GameModelPolicy``, and value networks saved as
+``<stem>.npz`` / ``.json`` (a league's snapshots, ``agents.league``) as
+``value@<stem>``: ``value-lookahead`` searching with that network on its
+blind leaves, or ``value-all@<stem>`` on every leaf
+(``billiards_env.bots.learned.value.LeafValue``).
 """
 from __future__ import annotations
 
@@ -15,7 +19,18 @@ import numpy as np
 from billiards_env.bots import BOT_NAMES, is_bot_name, make_bot
 from billiards_env.bots.learned.policy import ViewPolicy
 
-ENTRANTS = BOT_NAMES + ("<path to a saved model>",)
+SNAPSHOTS = {"value@": "blind", "value-all@": "all"}  # entrant prefix of a value network -> the leaves it values
+ENTRANTS = BOT_NAMES + ("<path to a saved model>", "value@<stem>", "value-all@<stem>")
+
+
+def value_entrant(spec: str, seed: int = 0):
+    """``value-lookahead`` with the value network of a ``value@<stem>`` or ``value-all@<stem>`` spec."""
+    from billiards_env.bots.learned.value import ValueLookahead, load_value
+    prefix = next(p for p in SNAPSHOTS if spec.startswith(p))
+    net, doc = load_value(spec[len(prefix):])
+    bot = ValueLookahead(seed=seed, nets={doc["game"]: net}, where=SNAPSHOTS[prefix])
+    bot.name = spec
+    return bot
 
 
 class GameModelPolicy:
@@ -47,7 +62,10 @@ class GameModelPolicy:
 
 def bot_factory(spec, seed: int = 0):
     """An entrant by spec: a bot (``billiards_env.bots.make_bot``: a name,
-    ``module:factory`` or a bot object) or the path of a saved model."""
+    ``module:factory`` or a bot object), the path of a saved model or a
+    value network (``value@<stem>``, ``value-all@<stem>``)."""
+    if isinstance(spec, str) and spec.startswith(tuple(SNAPSHOTS)):
+        return value_entrant(spec, seed)
     if not isinstance(spec, str) or is_bot_name(spec):
         return make_bot(spec, seed=seed)
     if Path(spec).exists():

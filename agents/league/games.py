@@ -16,22 +16,12 @@ import dataclasses
 import numpy as np
 
 from billiards_env.bots.game_lookahead import GameLookahead
-from billiards_env.bots.learned.value import ValueLookahead, load_value, value_features
+from billiards_env.bots.learned.value import value_features
 
 from ..evaluation.distributed import MatchJob, play_jobs
 from ..evaluation.entrants import bot_factory
 
-SNAPSHOT = "value@"  # entrant prefix of a league snapshot
-
-
-def entrant(spec: str, seed: int):
-    """The bot of an entrant spec (module docstring)."""
-    if isinstance(spec, str) and spec.startswith(SNAPSHOT):
-        net, doc = load_value(spec[len(SNAPSHOT):])
-        bot = ValueLookahead(seed=seed, nets={doc["game"]: net})
-        bot.name = spec
-        return bot
-    return bot_factory(spec, seed)
+SNAPSHOT = "value@"  # entrant prefix of a league snapshot (``agents.evaluation.entrants.SNAPSHOTS``)
 
 
 class Recorder:
@@ -59,8 +49,8 @@ class Recorder:
 
 
 def recording_entrant(spec: str, seed: int) -> Recorder:
-    """``entrant`` wrapped in a ``Recorder`` (the league's ``bot_factory``)."""
-    return Recorder(entrant(spec, seed))
+    """``bot_factory``'s entrant wrapped in a ``Recorder`` (the league's ``bot_factory``)."""
+    return Recorder(bot_factory(spec, seed))
 
 
 @dataclasses.dataclass

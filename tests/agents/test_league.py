@@ -84,3 +84,18 @@ def test_league_script_quick(tmp_path):
     assert "generation 0 done" in res.stdout
     state = json.loads((tmp_path / "q" / "league.json").read_text())
     assert state["generation"] == 1 and (tmp_path / "q" / "snapshots" / "gen_001.npz").exists()
+
+
+def test_value_networks_are_entrants_by_stem():
+    """``value@<stem>`` and ``value-all@<stem>`` (a league snapshot, here the shipped 9-ball value) play as
+    value-lookahead with that network on the blind leaves or on every leaf; a missing stem is a clear error."""
+    from agents.evaluation.entrants import bot_factory
+    from billiards_env.bots.learned.value import VALUE_DIR, ValueLookahead, load_value
+    stem = str(VALUE_DIR / "nine_ball")
+    net = load_value(stem)[0]
+    for prefix, where in (("value@", "blind"), ("value-all@", "all")):
+        bot = bot_factory(prefix + stem, seed=1)
+        assert isinstance(bot, ValueLookahead) and bot.name == prefix + stem and bot.leaf_value.where == where
+        assert np.array_equal(bot.leaf_value.net("nine_ball").weights[0], net.weights[0])
+    with pytest.raises(ValueError, match="no value network"):
+        bot_factory("value@" + str(ROOT / "missing"))
