@@ -1,3 +1,6 @@
+import importlib.util
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -30,3 +33,17 @@ def pool():
 def big_box():
     """A pocketless 20 m x 20 m table: no cushion within reach of a test shot."""
     return Table.pocketless(20.0, 20.0)
+
+
+@pytest.fixture(scope="session")
+def load_script():
+    """``load_script(name)``: the module of ``scripts/<name>.py``, loaded from its file (scripts/ is not a
+    package), for tests that call a script's functions or its ``main`` in this process."""
+    root = Path(__file__).resolve().parents[1] / "scripts"
+
+    def load(name: str):
+        spec = importlib.util.spec_from_file_location(name, root / f"{name}.py")
+        mod = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(mod)
+        return mod
+    return load

@@ -134,12 +134,9 @@ def test_kicks_reach_a_ball_hidden_behind_another():
     env.close()
 
 
-def test_shot_stats_counts_add_up():
+def test_shot_stats_counts_add_up(load_script):
     """scripts/shot_stats.py: every shot is classified once; rates lie in [0, 1]."""
-    import importlib.util
-    spec = importlib.util.spec_from_file_location("shot_stats", ROOT / "scripts" / "shot_stats.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
+    mod = load_script("shot_stats")
     r = mod.shot_stats("ghost", NINE, 40, seed=5)
     n = r["counts"]
     assert n["shots"] == round(r["shots_per_episode"] * 40) and n["shots"] >= 40

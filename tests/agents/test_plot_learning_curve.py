@@ -3,21 +3,11 @@ the errors that name what is missing."""
 from __future__ import annotations
 
 import csv
-import importlib.util
 from pathlib import Path
 
 import pytest
 
 pytest.importorskip("matplotlib")
-
-ROOT = Path(__file__).resolve().parents[2]
-
-
-def _script():
-    spec = importlib.util.spec_from_file_location("plot_learning_curve", ROOT / "scripts" / "plot_learning_curve.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
 
 
 def _write(path: Path, fields: list[str], rows: list[list]) -> None:
@@ -40,24 +30,24 @@ def _run(tmp_path: Path, name: str, held: bool = True) -> Path:
     return rd
 
 
-def test_both_figures_are_written(tmp_path):
-    main = _script().main
+def test_both_figures_are_written(tmp_path, load_script):
+    main = load_script("plot_learning_curve").main
     a, b = _run(tmp_path, "a"), _run(tmp_path, "b")
     for flags, out in (([], "curve.png"), (["--held-out"], "held.png")):
         assert main([str(a), str(b), "--labels", "A", "B", "--out", str(tmp_path / out)] + flags) == 0
         assert (tmp_path / out).stat().st_size > 10_000
 
 
-def test_a_run_without_held_out_evaluations_is_named(tmp_path):
-    main = _script().main
+def test_a_run_without_held_out_evaluations_is_named(tmp_path, load_script):
+    main = load_script("plot_learning_curve").main
     rd = _run(tmp_path, "no_evals", held=False)
     with pytest.raises(ValueError, match="no_evals has no evaluations.csv"):
         main([str(rd), "--held-out", "--out", str(tmp_path / "x.png")])
     assert not (tmp_path / "x.png").exists()
 
 
-def test_labels_must_match_runs(tmp_path):
-    main = _script().main
+def test_labels_must_match_runs(tmp_path, load_script):
+    main = load_script("plot_learning_curve").main
     rd = _run(tmp_path, "a")
     with pytest.raises(SystemExit):
         main([str(rd), "--labels", "A", "B", "--out", str(tmp_path / "x.png")])

@@ -161,14 +161,9 @@ def test_searched_break_is_legal_deterministic_and_better_than_the_standard_brea
     assert value(mine) > value(ghost), (value(mine), value(ghost))
 
 
-def test_cost_script_quick(capsys):
+def test_cost_script_quick(capsys, load_script):
     """scripts/lookahead_cost.py's quick mode: a timed decision on a few tables and a two-rack budget match."""
-    import importlib.util
-    from pathlib import Path
-    path = Path(__file__).resolve().parents[2] / "scripts" / "lookahead_cost.py"
-    spec = importlib.util.spec_from_file_location("lookahead_cost", path)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
+    mod = load_script("lookahead_cost")
     assert mod.main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert '"previews_per_decision"' in out and "| fast | 4 |" in out and "lost without a shot" in out
