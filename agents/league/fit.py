@@ -39,21 +39,23 @@ def log_loss(p: np.ndarray, y: np.ndarray) -> float:
     return float(-(y * np.log(p) + (1 - y) * np.log(1 - p)).mean())
 
 
-def init_net(d: int, hidden, mean, std, rng) -> ValueNet:
+def init_net(d: int, hidden, mean, std, rng, ball_eases: bool = False) -> ValueNet:
     """Random hidden layers (normal, 1/sqrt(fan-in)) and a zero output layer."""
     sizes = [d, *hidden, 1]
     ws = [rng.normal(0, 1 / np.sqrt(a), (b, a)) for a, b in zip(sizes[:-1], sizes[1:])]
     ws[-1][:] = 0.0
     ws = tuple(ws)
     bs = tuple(np.zeros(b) for b in sizes[1:])
-    return ValueNet(ws, bs, mean, std)
+    return ValueNet(ws, bs, mean, std, ball_eases)
 
 
 def fit_value(x: np.ndarray, y: np.ndarray, cfg: FitConfig, rng: np.random.Generator,
-              init: ValueNet | None = None, groups: np.ndarray | None = None) -> tuple[ValueNet, dict]:
+              init: ValueNet | None = None, groups: np.ndarray | None = None,
+              ball_eases: bool = False) -> tuple[ValueNet, dict]:
     """(network, report) fitted to inputs ``x`` [N, D] and results ``y`` [N]; ``init``: start from these
     weights (and its input statistics); ``groups`` [N]: the game of each sample (the
-    held-out split keeps games whole; default: every sample its own)."""
+    held-out split keeps games whole; default: every sample its own); ``ball_eases``: ``x`` ends with the
+    balls' own eases (``ValueNet.ball_eases``)."""
     x, y = np.asarray(x, np.float64), np.asarray(y, np.float64)
     if len(x) < 2:
         raise ValueError(f"fit_value needs at least 2 samples, got {len(x)}")
@@ -64,8 +66,9 @@ def fit_value(x: np.ndarray, y: np.ndarray, cfg: FitConfig, rng: np.random.Gener
     val, tr = np.nonzero(is_val)[0], np.nonzero(~is_val)[0]
     n_val = len(val)
     mean, std = x[tr].mean(axis=0), np.maximum(x[tr].std(axis=0), STD_FLOOR)
-    net = init_net(x.shape[1], cfg.hidden, mean, std, rng)
-    if init is not None and init.in_dim == x.shape[1] and init.hidden == list(cfg.hidden):
+    net = init_net(x.shape[1], cfg.hidden, mean, std, rng, ball_eases)
+    if (init is not None and init.in_dim == x.shape[1] and init.hidden == list(cfg.hidden)
+            and init.ball_eases == ball_eases):
         net, mean, std = init, init.mean, init.std   # epoch 0 is the starting network exactly
     params = [np.array(a) for a in (*net.weights, *net.biases)]
     L = len(net.weights)
@@ -73,8 +76,9 @@ def fit_value(x: np.ndarray, y: np.ndarray, cfg: FitConfig, rng: np.random.Gener
     v = [np.zeros_like(p) for p in params]
     b1, b2, t = 0.9, 0.999, 0
     xs = (x[tr] - mean) / std
-    base = base_logit(x[tr])
-    val_loss = (lambda ps: log_loss(ValueNet(tuple(ps[:L]), tuple(ps[L:]), mean, std)(x[val]), y[val])) \
+    base = base_logit(x[tr], ball_eases=ball_eases)
+    val_loss = (lambda ps: log_loss(ValueNet(tuple(ps[:L]), tuple(ps[L:]), mean, std, ball_eases)(x[val]),
+                                    y[val])) \
         if n_val else (lambda ps: 0.0)
     best, best_loss, best_epoch = [p.copy() for p in params], val_loss(params), 0
     start_loss = best_loss
@@ -93,7 +97,7 @@ def fit_value(x: np.ndarray, y: np.ndarray, cfg: FitConfig, rng: np.random.Gener
             best, best_loss, best_epoch = [p.copy() for p in params], loss, epoch
     if not n_val:
         best, best_epoch = params, cfg.epochs
-    net = ValueNet(tuple(best[:L]), tuple(best[L:]), mean, std)
+    net = ValueNet(tuple(best[:L]), tuple(best[L:]), mean, std, ball_eases)
     rep = dict(samples=int(len(x)), train=int(len(tr)), val=int(n_val), val_games=int(len(held)),
                mean_result=float(y.mean()), best_epoch=best_epoch)
     if n_val:

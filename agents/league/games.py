@@ -4,7 +4,8 @@
 An entrant is a spec string (specs travel to Ray workers): a bot name for ``agents.evaluation.entrants``'s
 ``bot_factory``, or ``value@<stem>``, a league snapshot: ``value-lookahead`` with the value network
 ``<stem>.npz`` / ``.json``. Every bot the league plays with records the tables it is asked to shoot on (all but
-breaks): the table seen by its shooter (``bots.learned.value.value_features``), and, for a searching bot
+breaks): the table seen by its shooter (``bots.learned.value.value_features``, and the balls' own eases,
+``ball_eases``, which a league fits to or not), and, for a searching bot
 (``lookahead``, ``value-lookahead``), the value its search gave the shot it chose (``last_value``; NaN for
 the others). After each chunk of racks, ``chunk_samples`` (``play_jobs``' ``extra``, run where the chunk ran)
 labels them with whether that shooter won the game (1, 0; a game cut at the shot cap counts 1/2).
@@ -16,7 +17,7 @@ import dataclasses
 import numpy as np
 
 from billiards_env.bots.game_lookahead import GameLookahead
-from billiards_env.bots.learned.value import value_features
+from billiards_env.bots.learned.value import ball_eases, value_features
 
 from ..evaluation.distributed import MatchJob, play_jobs
 from ..evaluation.entrants import bot_factory
@@ -30,7 +31,7 @@ class Recorder:
     def __init__(self, bot):
         self.bot, self.name = bot, getattr(bot, "name", type(bot).__name__)
         self.geo = bot if isinstance(bot, GameLookahead) else GameLookahead()  # the pot model, for the ease
-        self.rows, self.movers, self.x, self.search = [], [], [], []
+        self.rows, self.movers, self.x, self.balls, self.search = [], [], [], [], []
 
     def act(self, view):
         keep = np.nonzero(~view.is_break)[0]
@@ -39,6 +40,7 @@ class Recorder:
             ease = self.geo.leave_ease(v, v.pos, v.on_table, v.targets, v.in_hand)
             self.x.append(value_features(v.game, v.table.width, v.table.length, v.pos, v.on_table, v.targets,
                                          v.ball_in_hand, ease))
+            self.balls.append(ball_eases(self.geo, v, v.pos, v.on_table, v.ball_in_hand))
             self.rows.append(np.asarray(v.rows))
             self.movers.append(np.asarray(v.to_move))
         plan = self.bot.act(view)
@@ -56,11 +58,13 @@ def recording_entrant(spec: str, seed: int) -> Recorder:
 @dataclasses.dataclass
 class Samples:
     """Recorded decisions: tables [S, D], their shooter's result [S], the table of the job's chunk each comes
-    from [S] (a game id within the chunk) and the shooter's search value [S] (NaN: it does not search)."""
+    from [S] (a game id within the chunk), the shooter's search value [S] (NaN: it does not search) and the
+    tables' balls' eases [S, 2B]."""
     x: np.ndarray
     y: np.ndarray
     table: np.ndarray
     search: np.ndarray
+    balls: np.ndarray
 
 
 def chunk_samples(job, bots, result) -> Samples | None:
@@ -72,7 +76,7 @@ def chunk_samples(job, bots, result) -> Samples | None:
         rows, movers = np.concatenate(rec.rows), np.concatenate(rec.movers)
         w = result.winner[rows]
         parts.append(Samples(np.concatenate(rec.x), np.where(w < 0, 0.5, (w == movers).astype(np.float64)), rows,
-                             np.concatenate(rec.search)))
+                             np.concatenate(rec.search), np.concatenate(rec.balls)))
     if not parts:
         return None
     return Samples(*(np.concatenate([getattr(p, f.name) for p in parts]) for f in dataclasses.fields(Samples)))

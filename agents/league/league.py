@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from billiards_env.bots.learned.value import VALUE_DIR, load_value, mirror_features
+from billiards_env.bots.learned.value import VALUE_DIR, load_value, mirror_features, n_balls_of
 
 from ..evaluation.distributed import MatchJob
 from .games import SNAPSHOT, play_league_jobs
@@ -57,6 +57,7 @@ class LeagueConfig:
     max_shots: int = 120
     window: int = 3                     # generations of samples each fit uses
     search_weight: float = 0.0          # the search value's weight in a searching shooter's target
+    ball_eases: bool = False            # the network also sees every ball's own ease (bots.learned.value)
     seed: int = 0                       # the league's RNG
     seed_base: int = 1000               # the first job's rack seed
     fit: FitConfig = FitConfig()
@@ -180,7 +181,7 @@ def run_generation(run: Path, cfg: LeagueConfig, state: dict, address=None, log=
     results = play_league_jobs(jobs, address=address, progress=progress,
                                chunk_progress=lambda n, total: log(f"  {n}/{total} jobs played "
                                                                    f"({time.perf_counter() - t0:.0f} s)"))
-    xs, ys, gs, ss, summary = [], [], [], [], []
+    xs, ys, gs, ss, bs, summary = [], [], [], [], [], []
     for r in results:
         j = r.job
         key = f"{label(j.a, run)} | {label(j.b, run)} | {j.noise}"
@@ -193,23 +194,28 @@ def run_generation(run: Path, cfg: LeagueConfig, state: dict, address=None, log=
             ys.append(r.samples.y)
             gs.append(j.seed * GAME_ID + r.samples.table)
             ss.append(r.samples.search)
+            bs.append(r.samples.balls)
     data = run / "data"
     data.mkdir(parents=True, exist_ok=True)
     np.savez(data / f"gen_{g:03d}.npz", x=np.concatenate(xs), y=np.concatenate(ys), game=np.concatenate(gs),
-             search=np.concatenate(ss))
+             search=np.concatenate(ss), balls=np.concatenate(bs))
     # the fit: the newest `window` generations, mirrored
     parts = [np.load(data / f"gen_{k:03d}.npz", allow_pickle=False) for k in range(max(0, g + 1 - cfg.window), g + 1)]
     x = np.concatenate([p["x"] for p in parts])
     y = np.concatenate([p["y"] for p in parts])
     game = np.concatenate([p["game"] for p in parts])
     sv = np.concatenate([p["search"] if "search" in p.files else np.full(len(p["y"]), np.nan) for p in parts])
+    if cfg.ball_eases:
+        if any("balls" not in p.files for p in parts):
+            raise ValueError(f"{data}: samples recorded without the balls' eases cannot fit a ball_eases network")
+        x = np.concatenate([x, np.concatenate([p["balls"] for p in parts])], axis=1)
     w = cfg.search_weight
     y = np.where(np.isnan(sv), y, (1 - w) * y + w * np.nan_to_num(sv))
-    B = (x.shape[1] - 5) // 4
+    B = n_balls_of(x.shape[1], cfg.ball_eases)
     x, y, game = np.concatenate([x, mirror_features(x, B)]), np.concatenate([y, y]), np.concatenate([game, game])
     init = load_value(run / state["snapshots"][-1]["stem"])[0] if state["snapshots"] else None
     tf = time.perf_counter()
-    net, rep = fit_value(x, y, cfg.fit, rng, init=init, groups=game)
+    net, rep = fit_value(x, y, cfg.fit, rng, init=init, groups=game, ball_eases=cfg.ball_eases)
     rep["fit_seconds"] = time.perf_counter() - tf
     stem = f"snapshots/gen_{g + 1:03d}"
     net.save(run / stem, dict(game=cfg.game, version=f"league-gen{g + 1}", generation=g + 1, fit=rep,
@@ -261,7 +267,7 @@ def ship(run, root=VALUE_DIR, generation: int | None = None) -> Path:
     cfg = state["config"]
     doc.update(league=dict(config=cfg, generations=state["generation"], wall_seconds=state["seconds"],
                            games=sum(c["games"] for c in state["games"].values()), seeds=state["seeds"]))
-    for k in ("format", "format_version", "in_dim", "hidden"):
+    for k in ("format", "format_version", "in_dim", "hidden", "ball_eases"):
         doc.pop(k)
     Path(root).mkdir(parents=True, exist_ok=True)
     net.save(Path(root) / cfg["game"], doc)

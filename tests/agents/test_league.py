@@ -99,3 +99,17 @@ def test_value_networks_are_entrants_by_stem():
         assert np.array_equal(bot.leaf_value.net("nine_ball").weights[0], net.weights[0])
     with pytest.raises(ValueError, match="no value network"):
         bot_factory("value@" + str(ROOT / "missing"))
+
+
+def test_a_league_fits_the_balls_eases_when_asked(tmp_path):
+    """``ball_eases: true``: the samples carry the balls' eases, the snapshots are networks that see them, and the
+    next generation's learner searches with them."""
+    from billiards_env.bots.learned.value import feature_size, load_value
+    cfg = LeagueConfig.from_dict({**TINY, "ball_eases": True})
+    state = run_league(tmp_path / "b", cfg, log=lambda s: None)
+    for snap in state["snapshots"]:
+        net, doc = load_value(tmp_path / "b" / snap["stem"])
+        assert net.ball_eases and doc["ball_eases"] and net.in_dim == feature_size(10, ball_eases=True)
+    with np.load(tmp_path / "b" / "data" / "gen_000.npz") as z:
+        assert z["balls"].shape == (len(z["y"]), 20)
+    assert any(k.startswith("snapshots/gen_001 | ghost") for k in state["games"])

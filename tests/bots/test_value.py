@@ -141,3 +141,32 @@ def test_value_lookahead_is_an_opponent_of_the_game_env_and_plays_the_aec_env():
         a = aec.bot_action(bot.act(aec.bot_view()))
         assert aec.action_space(aec.agent_selection).contains(a)
         aec.step(a)
+
+
+def test_balls_eases_feature_a_network_that_round_trips_and_starts_as_position_value(tmp_path):
+    """The balls' own eases: in [0, 1], 0 for the cue ball and pocketed balls, the shooter's best legal pot
+    among the from-cue eases; a network with them saves, loads (its card says so) and, untrained, is position_value."""
+    from agents.league.fit import init_net
+    view = _views("nine_ball", n=8)
+    geo = GameLookahead()
+    B, on = view.n_balls, view.on_table
+    balls = V.ball_eases(geo, view, view.pos, on, view.ball_in_hand)
+    anywhere, from_cue = balls[:, :B], balls[:, B:]
+    assert balls.shape == (view.n, 2 * B) and (balls >= 0).all() and (balls <= 1).all()
+    assert (balls[:, [0, B]] == 0).all() and (anywhere[~on] == 0).all() and (from_cue[~on] == 0).all()
+    assert anywhere.max() > 0 and from_cue.max() > 0
+    ease = geo.leave_ease(view, view.pos, on, view.targets, view.in_hand)
+    np.testing.assert_allclose(np.where(view.targets & on, from_cue, 0).max(axis=1), ease, rtol=1e-12)
+    x = V.value_features(view.game, view.table.width, view.table.length, view.pos, on, view.targets,
+                         view.ball_in_hand, ease, balls)
+    assert x.shape == (view.n, V.feature_size(B, ball_eases=True)) and V.n_balls_of(x.shape[1], True) == B
+    np.testing.assert_allclose(V.mirror_features(x, B)[:, -2 * B:], balls)   # the eases are mirror images' too
+    net = init_net(x.shape[1], (4,), x.mean(0), x.std(0) + 1.0, np.random.default_rng(1), ball_eases=True)
+    np.testing.assert_allclose(net(x), geo.position_value(view, ease, on, view.targets), rtol=1e-12)
+    net = V.ValueNet(net.weights[:-1] + (net.weights[-1] + 0.5,), net.biases, net.mean, net.std, True)
+    net.save(tmp_path / "b", dict(game="nine_ball"))
+    back, doc = V.load_value(tmp_path / "b")
+    assert back.ball_eases and doc["ball_eases"] is True and doc["format_version"] == V.FORMAT_VERSION
+    np.testing.assert_array_equal(back(x), net(x))
+    leaf = V.LeafValue({"nine_ball": back}, where="all")
+    np.testing.assert_allclose(leaf(view, view.pos, on, view.targets, view.ball_in_hand, ease), net(x), rtol=1e-12)
