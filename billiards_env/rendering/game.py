@@ -3,13 +3,11 @@
 ``render_game(core, k)`` draws table ``k`` of a ``GameCore`` with a status
 panel under it: the player to move, ball in hand (and the head string when
 it is behind it), the legal targets (ringed), the 8-ball groups, the
-consecutive fouls and the last shot's ruling. ``save_game_animation`` plays
-one game between two game policies and writes every shot, ball paths and
-rulings included, as a GIF (or MP4).
+consecutive fouls and the last shot's ruling; ``shot_frames`` draws one
+recorded shot of it as frames (``billiards_env.studies.game_animation`` plays
+a whole game between two bots through it).
 """
 from __future__ import annotations
-
-from pathlib import Path
 
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
@@ -17,7 +15,7 @@ from PIL import Image, ImageDraw, ImageFont
 from ..rules import END_NAMES, FOUL_NAMES
 from ..rules import records as R
 from .game_words import GROUP_WORDS, IN_HAND_WORDS, ball_ids, call_words
-from .draw import BORDER, PPM, Animation, positions_at, render_table, world_to_pixel, write_animation
+from .draw import BORDER, PPM, Animation, positions_at, render_table, world_to_pixel
 
 PANEL_LINES = 4
 LINE_PX = 14             # pixel height of a status line
@@ -93,7 +91,7 @@ def render_game(core, k: int = 0, info: dict | None = None, pos=None, on=None, p
     return np.asarray(canvas, dtype=np.uint8).copy()
 
 
-def _shot_frames(core, start_pos, start_on, log, info, anim: Animation):
+def shot_frames(core, start_pos, start_on, log, info, anim: Animation):
     """Frames of one recorded shot: balls the log never mentions stay where they were."""
     fps, speedup, max_seconds, ppm = anim.fps, anim.speedup, anim.max_seconds, anim.ppm
     from .draw import ball_paths
@@ -112,35 +110,3 @@ def _shot_frames(core, start_pos, start_on, log, info, anim: Animation):
 
 
 GAME_ANIMATION = Animation(fps=10, speedup=2.0, max_seconds=8.0, hold=5)  # a game: short shots, brisk
-
-
-def save_game_animation(path, game: str = "nine_ball", policies=("ghost", "ghost"), seed: int = 0,
-                        anim: Animation = GAME_ANIMATION, max_shots: int = 60, noise: str = "tournament") -> Path:
-    """Play one seeded game between two bots (names for ``bots.make_bot``,
-    or bots) and write it as a GIF (or MP4): every shot animated at
-    ``anim.speedup`` x real time, then ``anim.hold`` frames of the resting
-    table with the ruling. Returns the path."""
-    ppm, hold = anim.ppm, anim.hold
-    from ..bots import make_bot
-    from ..envs.games import GameConfig, GameCore
-    from ..envs.games.play import bot_actions
-    core = GameCore(GameConfig(game=game, noise=noise, max_shots=max_shots), 1, record=True)
-    core.streams.seed([0], [seed])
-    core.reset_tables([0], [0])
-    bots = [make_bot(policies[0], seed), make_bot(policies[1], seed + 1)]
-    frames = [render_game(core, 0, None, ppm=ppm)] * hold
-    info = None
-    while True:
-        who = int(core.constraints().shooter[0])
-        start_pos, start_on = core.state.pos[0].copy(), core.state.pocket[0] < 0
-        out = core.step(bot_actions(core, bots[who], [0]), [0])
-        log = core.last_events[0]
-        placed = out["info"]["placement"][0]
-        start_pos[0], start_on[0] = placed, True
-        if not out["info"]["passed"][0] and log is not None:
-            frames += _shot_frames(core, start_pos, start_on, log, info, anim)
-        info = out["info"]
-        frames += [render_game(core, 0, info, ppm=ppm)] * hold
-        if out["terminated"][0] or out["truncated"][0]:
-            break
-    return write_animation(path, np.stack(frames), anim.fps)

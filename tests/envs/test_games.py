@@ -206,7 +206,8 @@ def test_sim_rail_before_contact_does_not_count(speed):
 
 
 def test_render_game_state_and_gif(tmp_path):
-    from billiards_env.rendering.game import render_game, save_game_animation, status_lines
+    from billiards_env.rendering.game import render_game, status_lines
+    from billiards_env.studies.game_animation import save_game_animation
     core = GameCore(GameConfig(game="eight_ball"), 1)
     core.streams.seed([0], [0])
     core.reset_tables([0], [1])
