@@ -15,7 +15,7 @@ from PIL import Image, ImageDraw, ImageFont
 from ..rules import END_NAMES, FOUL_NAMES
 from ..rules import records as R
 from .game_words import GROUP_WORDS, IN_HAND_WORDS, ball_ids, call_words
-from .draw import BORDER, PPM, Animation, positions_at, render_table, world_to_pixel
+from .draw import BORDER, PPM, Animation, ball_paths, positions_at, render_table, world_to_pixel
 
 PANEL_LINES = 4
 LINE_PX = 14             # pixel height of a status line
@@ -94,7 +94,6 @@ def render_game(core, k: int = 0, info: dict | None = None, pos=None, on=None, p
 def shot_frames(core, start_pos, start_on, log, info, anim: Animation):
     """Frames of one recorded shot: balls the log never mentions stay where they were."""
     fps, speedup, max_seconds, ppm = anim.fps, anim.speedup, anim.max_seconds, anim.ppm
-    from .draw import ball_paths
     B = core.n_balls
     t_end = float(log.time[-1]) if len(log) else 0.0
     n = int(min(t_end / speedup, max_seconds) * fps) + 1
