@@ -1,10 +1,18 @@
 import importlib.util
+import os
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from billiards_env.physics import Effects, PhysicsParams, Table, random_placement, simulate, strike_velocity
+
+MAX_WORKERS = 8  # `pytest -n auto`: at most this many workers (each compiles the kernel variants its tests use)
+
+
+def pytest_xdist_auto_num_workers(config):
+    """pytest-xdist's worker count for ``-n auto``: one per CPU, at most ``MAX_WORKERS``."""
+    return max(1, min(os.cpu_count() or 1, MAX_WORKERS))
 
 
 @pytest.fixture(scope="session", autouse=True)

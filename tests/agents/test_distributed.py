@@ -24,6 +24,9 @@ import pytest
 
 from agents.evaluation.distributed import MatchJob, chunks, pairing_results, play_jobs, tournament
 
+# one Ray user at a time: with pytest-xdist, every test of this group runs in the same worker, one after another
+pytestmark = pytest.mark.xdist_group("ray")
+
 ROOT = Path(__file__).resolve().parents[2]
 SHOTS = 16  # shot cap of the tiny matches (games cut there are draws)
 

@@ -22,6 +22,9 @@ import pytest
 
 from agents.config import load_config
 
+# one Ray user at a time: with pytest-xdist, every test of this group runs in the same worker, one after another
+pytestmark = pytest.mark.xdist_group("ray")
+
 # Tiny runs: 2 EnvRunners x 16 tables, 64-step batches, one SGD pass.
 TINY = ["rllib.num_env_runners=2", "rllib.num_envs_per_env_runner=16", "rllib.train_batch_size_per_learner=64",
         "rllib.minibatch_size=64", "rllib.num_epochs=1", "train.progress_bar=false", "train.tensorboard=false"]

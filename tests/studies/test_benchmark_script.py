@@ -100,8 +100,8 @@ def test_every_section_has_a_quick_test():
 
 
 # rllib starts Ray and trains both backends for 8,192 steps: about a minute
-@pytest.mark.parametrize("section", [pytest.param(k, marks=pytest.mark.slow) if k == "rllib" else k
-                                     for k in SECTION_TABLES])
+@pytest.mark.parametrize("section", [pytest.param(k, marks=[pytest.mark.slow, pytest.mark.xdist_group("ray")])
+                                     if k == "rllib" else k for k in SECTION_TABLES])
 def test_benchmark_section_quick(section, tmp_path):
     """``--only SECTION --quick`` at the smallest sizes writes SECTION.md naming
     its rows (and, but for games, benchmark.md and the CSV rows)."""
