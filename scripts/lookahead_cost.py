@@ -10,7 +10,8 @@ decides on all tables where a game is live, at once, ``--repeats`` times (after 
 which compiles the kernels): the median wall time and the process's CPU time per decision, and the previews per
 decision.
 
-``--budgets``: for each budget (``bots.game_lookahead.BUDGETS`` or ``default``), ``--racks`` paired racks against
+``--budgets``: for each budget (``bots.game_lookahead.BUDGETS`` or ``default``; ``value`` or ``value-<budget>``:
+value-lookahead with it), ``--racks`` paired racks against
 ``--opponent`` (``studies.matches.play_pairing``, each rack twice, each side breaking once) at ``--noise``: the win
 rate with its Wilson 95% interval and the lookahead's wall and CPU time per shot over the match (``TimedBot``). Writes
 ``<out>/budgets_<game>_<noise>.json`` and ``.md``.
@@ -28,13 +29,21 @@ sys.path.insert(0, str(ROOT))
 
 
 def bot_of(budget: str, seed: int):
+    """The lookahead with a budget: ``default``, a name of ``BUDGETS``, or ``value`` / ``value-<name>``:
+    value-lookahead (its blind leaves valued by the shipped learned value) with the default or that budget."""
     from billiards_env.bots.game_lookahead import BUDGETS, GameLookahead
-    if budget == "value":  # value-lookahead: the default search, its leaves ranked by the shipped learned value
+    learned = budget == "value" or budget.startswith("value-")
+    search = budget[len("value-"):] if budget.startswith("value-") else ("default" if learned else budget)
+    if search != "default" and search not in BUDGETS:
+        names = ["default", *sorted(BUDGETS)]
+        raise SystemExit(f"unknown budget {budget!r}; choose one of {names}, value or value-<one of them>")
+    changes = {} if search == "default" else BUDGETS[search]
+    if learned:
         from billiards_env.bots.learned.value import value_lookahead
-        return value_lookahead(seed=seed)
-    if budget != "default" and budget not in BUDGETS:
-        raise SystemExit(f"unknown budget {budget!r}; choose default or one of {sorted(BUDGETS)}")
-    bot = GameLookahead(seed=seed, **({} if budget == "default" else BUDGETS[budget]))
+        bot = value_lookahead(seed=seed, **changes)
+        bot.name = budget if search != "default" else "value-lookahead"
+        return bot
+    bot = GameLookahead(seed=seed, **changes)
     bot.name = "lookahead" if budget == "default" else f"lookahead-{budget}"
     return bot
 
@@ -114,7 +123,7 @@ def main(argv=None) -> int:
         rows = budgets(a.game, a.budgets, a.racks, a.opponent, a.noise, a.seed)
         head = f"# lookahead budgets, {a.game}, {a.noise} noise, against {a.opponent}\n\n" \
                f"`python scripts/lookahead_cost.py --game {a.game} --budgets {' '.join(a.budgets)} --racks {a.racks}" \
-               f" --noise {a.noise} --seed {a.seed}` ({a.racks} racks, each played twice)\n\n" \
+               f" --opponent {a.opponent} --noise {a.noise} --seed {a.seed}` ({a.racks} racks, each played twice)\n\n" \
                "| budget | games | win rate | 95% interval | lost without a shot | ms per shot | CPU ms per shot |" \
                " previews per shot |\n|---|---|---|---|---|---|---|---|\n"
         md = head + "".join(f"| {r['budget']} | {r['games']} | {r['win_rate']:.3f} | {r['ci95'][0]:.3f}-{r['ci95'][1]:.3f}"

@@ -26,7 +26,8 @@ For every table where the bot is to move (all tables at once, in batched ``GameV
    the opponent's reply is searched from the leave with this same machinery at the smaller ``REPLY_BUDGET``
    (``GameView.after`` builds the opponent's view from the preview), and the leave is worth 1 minus that reply's
    noisy value. Each such candidate's mean moves by the mean change over those outcomes, and the best of them is
-   played (``replies``).
+   played (``replies``). With ``reply_keep`` (off; ``BUDGETS["deep"]``) the outcomes where the mover keeps the table
+   are searched too: the leave is worth the mover's own searched next shot (a third ply along a run).
 5. **Declarations (9-ball).** Where a push-out is allowed, ``n_push`` soft pushes are previewed; a push leaving
    ease ``e`` is worth ``min(v, 1 - v)`` with ``v = position_value(e)`` (the opponent chooses whether to shoot),
    and is declared when it beats the best shot's value. After the opponent's push-out, the shot is passed back
@@ -306,6 +307,7 @@ class Budget:
     reply_safe: int = 4        # of them kept for safeties and kicks
     reply_samples: int = 8     # the noisy outcomes (at most n_samples) per candidate whose leaves are searched
     reply: tuple = ()          # (field, value) changes to REPLY_BUDGET, the opponent's search
+    reply_keep: bool = False   # also search the mover's own next shot on those outcomes where the mover keeps the table
 
 
 # --- the bot ------------------------------------------------------------------------------------------------------
@@ -751,7 +753,9 @@ class GameLookahead:
         safe [k], local row [k], rows n), ``pvn`` their noisy previews (k x S, candidate-major) on view rows
         ``prow``. The ``reply_eval`` best per row (``reply_safe`` kept for safeties and kicks) are selected; on
         their first ``reply_samples`` outcomes where the turn passes, the opponent's reply is searched from the
-        leave (``self.reply.decide`` on ``view.after``) and the leave is worth 1 minus its value. Each selected
+        leave (``self.reply.decide`` on ``view.after``) and the leave is worth 1 minus its value; with
+        ``reply_keep``, on the outcomes where the mover keeps the table too, the mover's own next shot searched the
+        same way, and the leave is worth its value. Each selected
         mean moves by the mean change over those samples (the other samples keep their one-shot value):
         (selected [k], means [k])."""
         vs, vn, safe, lp, n = judged
@@ -762,11 +766,13 @@ class GameLookahead:
         S2 = min(self.budget.reply_samples, S)
         ids = (j[:, None] * S + np.arange(S2)).ravel()
         rec, nxt = pvn.record, pvn.next
-        ids = ids[~rec.game_over[ids] & (nxt.shooter[ids] != rec.shooter[ids])]
+        keep = nxt.shooter == rec.shooter
+        ids = ids[~rec.game_over[ids] & (self.budget.reply_keep | ~keep[ids])]
         delta = np.zeros(k * S)
         for lo in range(0, len(ids), 4 * CHUNK):
             part = ids[lo:lo + 4 * CHUNK]
-            delta[part] = self.reply_value(view.after(pvn, part, prow[part])) - vs.ravel()[part]
+            r = self.reply_value(view.after(pvn, part, prow[part]))
+            delta[part] = np.where(keep[part], 1.0 - r, r) - vs.ravel()[part]
         vn = vn + delta.reshape(k, S)[:, :S2].sum(axis=1) / S2
         return sel, vn
 
@@ -801,6 +807,7 @@ def game_lookahead(seed: int = 0, **kw) -> GameLookahead:
 BUDGETS = dict(fast=dict(n_pots=3, n_eval=8, n_eval_safe=4, n_samples=4, reply_eval=0),
                medium=dict(n_pots=4, n_eval=16, n_eval_safe=4, n_samples=8, reply_eval=0),
                wide=dict(n_eval=64, n_samples=16),
+               deep=dict(reply_keep=True),  # the mover's own next shot searched too, where the mover keeps the table
                **{"one-ply": dict(reply_eval=0)})  # without the 2-ply judgement (the default before it)
 
 

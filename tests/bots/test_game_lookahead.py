@@ -169,6 +169,19 @@ def test_cost_script_quick(capsys, load_script):
     assert '"previews_per_decision"' in out and "| fast | 4 |" in out and "lost without a shot" in out
 
 
+def test_cost_script_budgets_by_name(load_script):
+    """scripts/lookahead_cost.py's budgets: a name of ``BUDGETS``, ``value`` (value-lookahead) or ``value-<name>``
+    (value-lookahead with that budget); anything else stops naming the choices."""
+    from billiards_env.bots.learned.value import ValueLookahead
+    mod = load_script("lookahead_cost")
+    deep, value_deep, value = mod.bot_of("deep", 0), mod.bot_of("value-deep", 0), mod.bot_of("value", 0)
+    assert deep.name == "lookahead-deep" and deep.budget.reply_keep and not isinstance(deep, ValueLookahead)
+    assert isinstance(value_deep, ValueLookahead) and value_deep.budget.reply_keep and value_deep.name == "value-deep"
+    assert isinstance(value, ValueLookahead) and not value.budget.reply_keep and value.name == "value-lookahead"
+    with pytest.raises(SystemExit, match="value-<one of them>"):
+        mod.bot_of("value-nope", 0)
+
+
 def test_value_of_a_sure_pot_grows_as_the_balls_run_out():
     """With ``q_run``, a sure pot on the last ball is worth 1 (it wins) and less with more balls left; no pot is
     worth ``v_none`` whatever is left; 8-ball counts the shooter's group and the 8."""
@@ -242,3 +255,17 @@ def test_reply_search_keeps_the_safety_and_is_deterministic():
     bot = GameLookahead(seed=3, **REPLY)
     mine = view.preview(bot.act(view))
     assert bot.last_kind[0] == "safety" and mine.record.legal[0] and mine.record.turn_over[0]
+
+
+def test_reply_keep_searches_the_movers_own_next_shot():
+    """``Budget.reply_keep``: where the mover keeps the table, the leave is worth the mover's own searched next shot
+    (not 1 minus it). On ``test_prefers_a_pot_that_leaves_a_shot``'s table the bot still pots the 1 and keeps the
+    table, valued above an even game (a wrong sign would value every kept table below 1/2 and prefer giving it
+    away), searching more previews than without it."""
+    view = nine_ball_view({0: (0.6, 0.6), 1: (0.3, 0.3), 2: (1.0, 2.2), 9: (0.92, 1.52)})
+    plain, deep = GameLookahead(seed=0, **REPLY), GameLookahead(seed=0, reply_keep=True, **REPLY)
+    plain.act(view)
+    mine = view.preview(deep.act(view))
+    assert deep.last_kind[0] == "pot" and mine.pocket[0, 1] >= 0 and not mine.record.turn_over[0]
+    assert deep.last_value[0] > 0.5, deep.last_value
+    assert deep.sims > plain.sims
