@@ -277,8 +277,9 @@ class Budget:
     ``v_full``, ``q_run``: see ``position_value``). Off by default, tried
     and measured without a gain (docs/games.md): ``q_run`` (a sure pot worth
     more as the balls run out), ``combos`` (9-ball combinations on the 9,
-    ``combo_shots``) and ``w_next`` (the leave looked at two balls deep,
-    ``_leave_ease2``). On by default: ``reply_eval`` (two plies: the
+    ``combo_shots``), ``w_next`` (the leave looked at two balls deep,
+    ``_leave_ease2``) and ``reply_keep`` (the mover's own next shot searched
+    on the kept tables; docs/league.md). On by default: ``reply_eval`` (two plies: the
     opponent's reply searched from the best candidates' leaves, ``replies``;
     ``reply_eval=0`` is the one-shot leave alone, ``one-ply`` in ``BUDGETS``)."""
 
