@@ -229,8 +229,11 @@ def algo_config(cfg: TrainConfig, lean: bool = True):
 # ------------------------------------------------------------------ ray --
 def start_ray(address: str | None = None, num_cpus: int | None = None) -> None:
     """Join the cluster at ``address`` (``auto`` or ``HOST:PORT``), or start
-    a local Ray instance on this machine (``num_cpus``: its CPU count; default
-    all cores). Workers import the project from the same Python environment
+    a new Ray instance on this machine (``num_cpus``: its CPU count; default
+    all cores), even where another one runs: Ray's ``address="local"``
+    (a bare ``ray.init()`` would join the newest ``ray start`` or
+    ``cluster_utils.Cluster`` head on the machine instead, and refuse
+    ``num_cpus``). Workers import the project from the same Python environment
     (``PYTHONPATH`` is passed on when set, so a source checkout works too).
     The workers' output reaches the driver only with ``BILLIARDS_RAY_LOGS=1``;
     a local instance starts Ray's dashboard only with
@@ -245,8 +248,8 @@ def start_ray(address: str | None = None, num_cpus: int | None = None) -> None:
     if address:
         ray.init(address=address, runtime_env=runtime_env, log_to_driver=logs)
     else:
-        ray.init(num_cpus=num_cpus, include_dashboard=os.environ.get(DASHBOARD_VAR) == "1", runtime_env=runtime_env,
-                 log_to_driver=logs)
+        ray.init(address="local", num_cpus=num_cpus, include_dashboard=os.environ.get(DASHBOARD_VAR) == "1",
+                 runtime_env=runtime_env, log_to_driver=logs)
 
 
 # ---------------------------------------------------------------- train --

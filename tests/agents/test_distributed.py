@@ -148,7 +148,10 @@ def test_match_script_gives_the_same_results_with_and_without_ray(tmp_path, ray_
 
 
 @pytest.mark.slow
-def test_throughput_script_quick_mode(tmp_path, ray_module):
+def test_throughput_script_quick_mode(tmp_path, two_nodes):
+    """The script starts its own Ray instance (``--num-cpus 2``) even with another cluster's head running on the
+    machine (the two-node Cluster, alive here on purpose): a bare ``ray.init()`` would join that head and refuse
+    ``num_cpus``."""
     r = subprocess.run([sys.executable, str(ROOT / "scripts" / "match_throughput.py"), "--quick", "--num-cpus", "2",
                         "--out", str(tmp_path)], cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)},
                        capture_output=True, text=True, timeout=240)
