@@ -41,7 +41,8 @@ def bot_of(budget: str, seed: int):
     if learned:
         from billiards_env.bots.learned.value import value_lookahead
         bot = value_lookahead(seed=seed, **changes)
-        bot.name = budget if search != "default" else "value-lookahead"
+        if search != "default":
+            bot.name = budget
         return bot
     bot = GameLookahead(seed=seed, **changes)
     bot.name = "lookahead" if budget == "default" else f"lookahead-{budget}"
