@@ -8,8 +8,14 @@ detection.pair_time) would keep the old code of a callee edited in another
 file (e.g. roots.first_entry) and link it into every kernel compiled
 afterwards. A cached kernel holds its callees' code, so helpers need no
 cache of their own.
+
+A kernel compiled rather than loaded from the disk cache says so once, on
+the logger ``billiards_env.physics.compile`` at WARNING level (so it shows
+without any logging set up): a compile takes 20-160 s and would otherwise
+look like a hang. A warm cache is silent.
 """
 import hashlib
+import logging
 import re
 
 import numba
@@ -89,17 +95,33 @@ def variant_njit(*choices):
     return decorate
 
 
+COMPILE_LOG = logging.getLogger("billiards_env.physics.compile")
+
+
 class _TaggedCache(FunctionCache):
     """numba's on-disk function cache, keyed on a tag instead of the
     closure's variables. numba keys a closure's cache entry on a pickle of
     its captured values; a captured jitted function pickles with a random
     per-process id, so a kernel that closes over its model functions would
     never find its cache entry again. The tag names everything the kernel's
-    code depends on (the sources' hash and the variant)."""
+    code depends on (the sources' hash and the variant).
 
-    def __init__(self, py_func, tag: str):
+    numba asks the cache first (``load_overload``) and compiles when it
+    finds nothing: that miss is announced, once per kernel, as ``label``."""
+
+    def __init__(self, py_func, tag: str, label: str):
         super().__init__(py_func)
         self._tag = tag
+        self._label = label
+        self._announced = False
+
+    def load_overload(self, sig, target_context):
+        found = super().load_overload(sig, target_context)
+        if found is None and not self._announced:
+            self._announced = True
+            COMPILE_LOG.warning("billiards_env: compiling the simulator's kernel for %s (first use only, "
+                                "20-160 s; cached on disk afterwards) ...", self._label)
+        return found
 
     def _index_key(self, sig, codegen):
         digest = lambda b: hashlib.sha256(b).hexdigest()
@@ -107,11 +129,11 @@ class _TaggedCache(FunctionCache):
                 (digest(self._py_func.__code__.co_code), digest(self._tag.encode())))
 
 
-def cached_kernel(py_func, tag: str, **options):
+def cached_kernel(py_func, tag: str, label: str, **options):
     """Compile ``py_func`` with the JIT flags and ``options`` (e.g.
     parallel=True), cached on disk under ``tag`` (its name tagged as in
-    ``variant_njit``)."""
+    ``variant_njit``); ``label`` names it in the message of a compile."""
     py_func.__qualname__ = f"{re.sub(r'[^0-9A-Za-z_]', '_', py_func.__qualname__)}_{hashlib.sha256(tag.encode()).hexdigest()[:12]}"
     kernel = numba.njit(**JIT, **options)(py_func)
-    kernel._cache = _TaggedCache(py_func, tag)  # what njit(cache=True) sets, with our key
+    kernel._cache = _TaggedCache(py_func, tag, label)  # what njit(cache=True) sets, with our key
     return kernel

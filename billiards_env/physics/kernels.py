@@ -9,6 +9,10 @@ freezes as compile-time constants: branches on them are pruned when the
 kernel compiles, so a disabled effect's code never runs. (Pockets need no
 flag: without them the table's geometry has no pockets or jaws.)
 
+In a process forked from one running numba's GNU OpenMP threads the
+kernels are compiled serial instead (``forking``: GNU OpenMP does not
+survive a fork), with the same results.
+
 Kernels: ``event_solver.make_run`` -> ``run(balls, geo, p, scr, out, log,
 max_events)``, ``step_solver.make_run`` -> ``run(balls, geo, p, out, log,
 max_events, dt, max_steps)`` (structures of ``layout``).
@@ -16,7 +20,7 @@ max_events, dt, max_steps)`` (structures of ``layout``).
 import hashlib
 import pathlib
 
-from . import ball_ball, cushion, event_solver, step_solver
+from . import ball_ball, cushion, event_solver, forking, step_solver
 from ._jit import cached_kernel
 from .effects import Effects
 from .impacts import make_impacts
@@ -69,7 +73,9 @@ def _code_tag(*functions) -> str:
 def make_kernel(kind: str, effects: Effects, models: Models, diagnostics: bool = False, contacts: bool = False):
     """The compiled kernel of solver ``kind`` ("event" or "step");
     ``contacts``: it notes the cue ball's contacts in order
-    (``impacts.note_contact``, ``SimOptions.contacts``)."""
+    (``impacts.note_contact``, ``SimOptions.contacts``). Parallel over
+    tables, or serial in a forked child that may not start threads
+    (``forking.threads_usable``)."""
     if kind not in KINDS:
         raise ValueError(f"unknown solver {kind!r}; choose one of {KINDS}")
     n = effects.normalized()
@@ -77,6 +83,9 @@ def make_kernel(kind: str, effects: Effects, models: Models, diagnostics: bool =
     key = (kind, n.spin, n.sliding, n.vertical_spin, bb_name, cu_name, bool(diagnostics))
     if contacts:  # the default kernels keep their keys
         key = key + ("contacts",)
+    serial = not forking.threads_usable()
+    if serial:
+        key = key + ("serial",)
     if key not in _kernels:
         bb = ball_ball.resolver(n.ball_friction, models.ball_ball_friction)
         cu = cushion.resolver(n.cushion_friction, models.cushion)
@@ -84,8 +93,17 @@ def make_kernel(kind: str, effects: Effects, models: Models, diagnostics: bool =
         solver = event_solver if kind == "event" else step_solver
         run = solver.make_run(n.spin, n.vertical_spin, bool(diagnostics), impacts)
         tag = f"{SOURCE_TAG}/{'/'.join(map(str, key))}/{_code_tag(bb, cu)}"
-        _kernels[key] = cached_kernel(run, tag, parallel=True)
+        _kernels[key] = cached_kernel(run, tag, _label(key), parallel=not serial)
     return _kernels[key]
+
+
+def _label(key: tuple) -> str:
+    """A kernel's key in words, for the message of its compile."""
+    kind, spin, sliding, vertical_spin, bb_name, cu_name, diagnostics = key[:7]
+    effects = [name for name, on in (("spin", spin), ("sliding", sliding), ("vertical spin", vertical_spin)) if on]
+    extras = [x for x in ("diagnostics" if diagnostics else "", *key[7:]) if x]
+    return (f"the {kind} solver ({', '.join(effects) or 'no spin'}; ball-ball {bb_name}, cushion {cu_name}"
+            f"{''.join('; ' + x for x in extras)})")
 
 
 def call(kernel, *args):
