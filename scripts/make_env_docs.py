@@ -72,6 +72,36 @@ def _defaults(path: Path) -> str:
     return "| key | default |\n|---|---|\n" + "\n".join(rows)
 
 
+# How the envs are made and used with Gymnasium: the section after the table of ids.
+USING = [
+    "## Making and using the envs", "",
+    "**The ids.** Importing `billiards_env` registers every id. Gymnasium 1.x loads no plugins (the "
+    "`gymnasium.envs` entry points of Gymnasium 0.x are gone), so in a process that has not imported the package, "
+    "name the module in the id: Gymnasium imports the part before the colon first.", "",
+    "```python",
+    "import gymnasium as gym",
+    "",
+    "env = gym.make(\"billiards_env:Billiards-PotOne-v0\")   # no import needed",
+    "vec = gym.make_vec(\"billiards_env:Billiards-PotOne-v0\", num_envs=256, vectorization_mode=\"vector_entry_point\")",
+    "",
+    "import billiards_env                                  # or import the package once: then the bare ids",
+    "env = gym.make(\"Billiards-PotOne-v0\")",
+    "```", "",
+    "**The env's own methods.** `gym.make` returns the env inside Gymnasium's wrappers (the order and "
+    "passive checks, and a time limit where the id has one), and Gymnasium 1.x wrappers pass no attribute through. The task's own "
+    "methods, `view()`, `actions_of(plan)`, `actions_to_shots(actions)`, `shots_to_actions(shots)`, "
+    "`shot_context()` and `set_state(state)`, are on `env.unwrapped` (Gymnasium's convention; "
+    "`env.get_wrapper_attr(\"view\")` finds them too): `env.unwrapped.view()`. The native vector env of "
+    "`make_vec(..., vectorization_mode=\"vector_entry_point\")` is not wrapped and has them itself.", "",
+    "**Worker processes.** `gym.make_vec(id, num_envs=n, vectorization_mode=\"async\")` runs each table in a "
+    "worker process, forked on Linux. The simulator's threads (numba's GNU OpenMP) do not survive a fork, so a "
+    "process forked from one that has run the simulator runs its kernels on one thread, with the same results "
+    "bit for bit (`billiards_env/physics/forking.py`; the first time, the one-thread kernels compile). "
+    "`vector_kwargs={\"context\": \"forkserver\"}` starts fresh workers instead. The native vector env, all "
+    "tables in one batched simulator call, is the fast way to many tables.",
+]
+
+
 def render() -> str:
     import billiards_env  # noqa: F401  (registers the tasks)
     from billiards_env.envs import billiards
@@ -92,6 +122,7 @@ def render() -> str:
         rel = t.default_config_path.relative_to(ROOT)
         parts.append(f"| [`{t.env_id}`](#{t.env_id.lower()}) | `{t.name}` | "
                      f"`{t.class_prefix}Env`, `{t.class_prefix}VectorEnv` | `{rel}` |")
+    parts += ["", *USING]
     for t in builtin:
         parts += ["", f"## {t.env_id}", "", _md(t.__doc__), "",
                   "Observation, action, reward, info: [common to every task](#common-to-every-task). "

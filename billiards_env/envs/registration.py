@@ -1,5 +1,11 @@
-"""Registration of the Billiards tasks with Gymnasium (also the
-``gymnasium.envs`` entry point declared in pyproject.toml).
+"""Registration of the Billiards tasks with Gymnasium, done when
+``billiards_env`` is imported (``billiards_env/__init__.py``).
+
+Gymnasium 1.x loads no plugins: an id is known once the module that
+registers it is imported. So either ``import billiards_env`` before
+``gym.make("Billiards-PotOne-v0")``, or name the module in the id,
+``gym.make("billiards_env:Billiards-PotOne-v0")`` (Gymnasium imports the
+part before the colon first; ``gym.make_vec`` too).
 
 The ids come from the task registry (``envs/tasks/``): registering a task
 registers its id, so ``register_envs`` only makes sure every registered

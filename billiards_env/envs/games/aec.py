@@ -27,6 +27,7 @@ class GameAECEnv(AECEnv):
     """ + OBSERVATION_DOC
 
     metadata = {"render_modes": [], "name": "billiards_game_v0", "is_parallelizable": False}
+    render_mode = None  # no render modes (PettingZoo's wrappers read the attribute)
     game = "nine_ball"
 
     def __init__(self, config=None, **overrides: Any):

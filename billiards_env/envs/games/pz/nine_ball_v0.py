@@ -1,0 +1,7 @@
+"""9-ball for two agents, as a PettingZoo game: ``env()``, ``raw_env()``, ``parallel_env()`` (``factories``)."""
+from ..aec import NineBallAECEnv
+from .factories import factories
+
+env, raw_env, parallel_env = factories(NineBallAECEnv)
+
+__all__ = ["env", "raw_env", "parallel_env"]
