@@ -30,6 +30,7 @@ import numpy as np
 from .browser import PagePerson
 
 FPS_SECONDS = 2.5        # s of break animation timed at 1x
+RUN_GAMES = 512          # the measuring server's store: a game per rack and bot (about 60 in a --docs run), none dropped
 WARM_TURNS = 40         # untimed turns per bot before its timings (its kernels compiled; numba caches them on disk)
 PHONE = {"width": 390, "height": 844, "deviceScaleFactor": 3, "mobile": True}
 
@@ -166,7 +167,7 @@ def run(bots, shots: int, out: Path | None, docs: Path | None = None, fps: bool 
 
     progress("compiling...")
     warm_up()
-    server, url = serve(port=0)
+    server, url = serve(port=0, max_games=RUN_GAMES)
     client = Client(url)
     driver, profile = chromium()
     rows = []

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import json
 import sys
 import threading
 import time
@@ -10,6 +11,38 @@ import webbrowser
 
 LOOPBACK = "127.0.0.1"
 DEFAULT_PORT = 8765
+LOOPBACK_HOSTS = ("127.0.0.1", "localhost")  # the Host names answered on loopback (a rebound name is refused)
+
+
+def json_http_protocol():
+    """uvicorn's HTTP/1.1 protocol (h11) with its own answer to a request it cannot parse (a malformed request
+    line or header, a Content-Length that is not a number) given as JSON like every other error answer."""
+    import h11
+    from uvicorn.protocols.http.h11_impl import H11Protocol
+
+    class JsonErrorsH11(H11Protocol):
+        def connection_made(self, transport):
+            super().connection_made(transport)
+            self.parse_problem, parse = None, self.conn.next_event
+
+            def next_event():  # keeps h11's own reason for the answer
+                try:
+                    return parse()
+                except h11.RemoteProtocolError as exc:
+                    self.parse_problem = str(exc)
+                    raise
+            self.conn.next_event = next_event
+
+        def send_400_response(self, msg: str) -> None:
+            why = getattr(self, "parse_problem", None) or msg
+            body = json.dumps({"error": f"the request is not valid HTTP/1.1 ({why[:200]})"}).encode()
+            head = [(b"content-type", b"application/json"), (b"content-length", str(len(body)).encode()),
+                    (b"connection", b"close")]
+            for event in (h11.Response(status_code=400, headers=head, reason=b"Bad Request"), h11.Data(data=body),
+                          h11.EndOfMessage()):
+                self.transport.write(self.conn.send(event))
+            self.transport.close()
+    return JsonErrorsH11
 
 
 def warm_up(games=("nine_ball",)) -> float:
@@ -38,17 +71,16 @@ def parser() -> argparse.ArgumentParser:
 
 
 def serve(host: str = LOOPBACK, port: int = DEFAULT_PORT, max_games: int | None = None, log_level: str = "warning",
-          extra_bots=()):
-    """A started uvicorn server in a background thread: (server, url). ``server.should_exit = True`` stops it."""
+          extra_bots=(), **limits):
+    """A started uvicorn server in a background thread: (server, url). ``server.should_exit = True`` stops it.
+    ``limits``: ``create_app``'s ``idle_s``, ``finished_idle_s``, ``body_timeout`` (tests shorten them)."""
     import uvicorn
 
     from .app import MAX_GAMES, create_app
-    app = create_app(MAX_GAMES if max_games is None else max_games, extra_bots)
-    trusted = None if host not in (LOOPBACK, "localhost") else ["127.0.0.1", "localhost"]
-    if trusted:  # a page on another site cannot reach this server through a rebound name
-        from starlette.middleware.trustedhost import TrustedHostMiddleware
-        app.add_middleware(TrustedHostMiddleware, allowed_hosts=trusted)
-    config = uvicorn.Config(app, host=host, port=port, log_level=log_level, lifespan="off")
+    trusted = LOOPBACK_HOSTS if host in (LOOPBACK, "localhost") else None  # on loopback: no rebound names
+    app = create_app(MAX_GAMES if max_games is None else max_games, extra_bots, allowed_hosts=trusted, **limits)
+    config = uvicorn.Config(app, host=host, port=port, log_level=log_level, lifespan="off",
+                            http=json_http_protocol())
     server = uvicorn.Server(config)
     thread = threading.Thread(target=server.run, daemon=True)
     thread.start()

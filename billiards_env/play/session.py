@@ -35,11 +35,12 @@ NOMINATING = ("snooker",)  # games whose call is a ball alone (snooker's nominat
 
 
 class PlayError(Exception):
-    """A request the game cannot take: ``status`` (an HTTP 4xx code) and a message saying what is wrong."""
+    """A request the game cannot take: ``status`` (an HTTP 4xx or 503 code), a message saying what is wrong,
+    and any ``headers`` of the answer (a 503's Retry-After)."""
 
-    def __init__(self, status: int, message: str):
+    def __init__(self, status: int, message: str, headers: dict | None = None):
         super().__init__(message)
-        self.status, self.message = int(status), str(message)
+        self.status, self.message, self.headers = int(status), str(message), dict(headers or {})
 
 
 def placement_problem(core: GameCore, xy) -> str | None:
@@ -92,7 +93,6 @@ class Session:
         self.lock = threading.Lock()
         self.inputs: list[dict] = []   # every turn as it was asked for (a person's request, or {"bot": name})
         self.timings: list[dict] = []  # seconds per turn: "think" (the bot) and "play" (step and record)
-        self.last_used = time.monotonic()
 
     # --- what the page shows ----------------------------------------------------
     @property
@@ -107,6 +107,17 @@ class Session:
     def shots(self, since: int = 0) -> list[dict]:
         rep = self.replay()
         return [] if rep is None else rep.shots[since:]
+
+    @property
+    def turn(self) -> int:
+        """The number of the turn to be played next (turns played so far): a shot request names it, so a
+        request sent twice, or for a turn another tab has played, is refused instead of played again."""
+        return len(self.timings)
+
+    def finished(self) -> bool:
+        """Whether the game is over (won, or cut at the shot cap)."""
+        g = self.core.game
+        return bool(g.over[0]) or bool(g.shots[0] >= self.core.config.max_shots)
 
     def n_shots(self) -> int:
         rep = self.replay()
@@ -151,7 +162,7 @@ class Session:
             "human_to_move": not over and self.bots[to_move] is None, "in_hand_code": int(cons.ball_in_hand[k]),
             "calls_ball": bool(c.rules.calls_ball), "calls_pocket": self.game not in NOMINATING,
             "n_shots": self.n_shots(), "points": g.score[k].astype(int).tolist() if c.rules.to_points else None,
-            "target": getattr(c.rules, "target", None),
+            "target": getattr(c.rules, "target", None), "turn": self.turn,
             "pos": c.state.pos[k].tolist(), "on_table": (c.state.pocket[k] < 0).tolist(),
             "limits": {"speed_min": float(draw_to_speed(c.cfg.min_draw, p)), "speed_max": float(p.max_speed),
                        "tip_max": float(p.miscue_limit), "R": float(p.R), "width": float(t.width),
@@ -172,9 +183,13 @@ class Session:
         return rep.shots[-1]["info"]["game"]["after"]["score"]
 
     # --- turns --------------------------------------------------------------------
-    def _check_turn(self, player) -> int:
+    def _check_turn(self, player, turn=None) -> int:
         c = self.core
-        if bool(c.game.over[0]) or c.game.shots[0] >= c.config.max_shots:
+        if turn is not None and turn != self.turn:
+            raise PlayError(409, f"this request is for turn {turn}, which has already been played: the game is at "
+                                 f"turn {self.turn} (read its state again)" if turn < self.turn else
+                            f"this request is for turn {turn}, but the game is at turn {self.turn}")
+        if self.finished():
             raise PlayError(409, "the game is over: start a new one")
         to_move = int(c.constraints().shooter[0])
         if player is not None and player != to_move:
@@ -182,9 +197,10 @@ class Session:
         return to_move
 
     def human_shot(self, req: dict) -> list[dict]:
-        """Play a person's turn ``req`` (checked by ``api.shot_request``): returns the new replay entries."""
+        """Play a person's turn ``req`` (checked by ``app.shot_request``; its ``turn``, when given, must be
+        ``self.turn``): returns the new replay entries."""
         c = self.core
-        to_move = self._check_turn(req.get("player"))
+        to_move = self._check_turn(req.get("player"), req.get("turn"))
         if self.bots[to_move] is not None:
             raise PlayError(409, f"it is the bot's turn ({self.players[to_move]}): ask it to play (POST .../bot)")
         cons = c.constraints()
@@ -242,9 +258,9 @@ class Session:
                             f"ball {ball} cannot be nominated as the free ball: nominate an object ball on the table")
         return ball
 
-    def bot_shot(self) -> list[dict]:
-        """Let the bot to move play its turn: returns the new replay entries."""
-        to_move = self._check_turn(None)
+    def bot_shot(self, turn: int | None = None) -> list[dict]:
+        """Let the bot to move play its turn (``turn``, when given, must be ``self.turn``): the new replay entries."""
+        to_move = self._check_turn(None, turn)
         bot = self.bots[to_move]
         if bot is None:
             raise PlayError(409, f"it is Player {to_move + 1}'s turn, a person's: no bot to ask")

@@ -80,8 +80,8 @@ def test_saved_game_opens_at_a_linked_moment(server, browser, tmp_path):
         st = server("GET", f"/api/games/{gid}")[1]["state"]
         assert not st["over"]
         if st["human_to_move"]:
-            assert server("POST", f"/api/games/{gid}/shot", {"player": st["to_move"], "aim": 1.5707963267948966,
-                                                             "speed": 8.0})[0] == 200
+            assert server("POST", f"/api/games/{gid}/shot", {"turn": st["turn"], "player": st["to_move"],
+                                                             "aim": 1.5707963267948966, "speed": 8.0})[0] == 200
         else:
             assert server("POST", f"/api/games/{gid}/bot")[0] == 200
     status, page = server.raw("GET", f"/api/games/{gid}/replay.html")
