@@ -63,7 +63,8 @@ def parser() -> argparse.ArgumentParser:
                                                      "another address lets other machines play on it)")
     ap.add_argument("--port", type=int, default=DEFAULT_PORT, help=f"port (default {DEFAULT_PORT}; 0: any free port)")
     ap.add_argument("--no-browser", action="store_true", help="do not open the page in a browser")
-    ap.add_argument("--max-games", type=int, default=None, help="games kept in memory (default play.app.MAX_GAMES)")
+    ap.add_argument("--max-games", type=int, default=None,
+                    help="games kept in memory (default play.store.MAX_GAMES); a game in play is never dropped")
     ap.add_argument("--bot", action="append", default=[], metavar="MODULE:FACTORY",
                     help="offer a bot of your own as well (docs/bots.md); repeatable")
     ap.add_argument("--no-warm-up", action="store_true", help="skip compiling the kernels before serving")
