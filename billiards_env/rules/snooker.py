@@ -16,18 +16,20 @@ pocketed on a foul are respotted, reds stay down. After a foul the incoming
 player may play, or put the offender back in (``ShotInput.passed``); if
 the cue ball lies snookered on every ball on (``snookered``, decided from
 the position), the incoming player may nominate a free ball
-(``called_ball``): it counts as the ball on and is respotted when potted.
-After an in-off the cue ball is in hand in the D. With only the black left
-the first score or foul ends the frame; on equal scores the black is
-respotted and played again with the cue ball in hand.
+(``called_ball``): it counts as the ball on, must be the first ball hit,
+and is respotted when potted. After an in-off the cue ball is in hand in
+the D. With only the black left the first score or foul ends the frame; on
+equal scores the black is spotted (potted or not) and played again with
+the cue ball in hand.
 """
 from __future__ import annotations
 
 import numpy as np
 import numba
 
-from ..physics.state import SPOT_CLEAR, SPOT_EDGE, free_spot, spot_free
+from ..physics.state import SPOT_CLEAR, SPOT_EDGE, spot_free
 from .common import Rules, next_state
+from .placement import d_of, legal_spots
 from .records import (END_LAST_BLACK, END_NONE, FOUL_NO_CONTACT, FOUL_NONE, FOUL_SCRATCH, FOUL_WRONG_BALL,
                       FOUL_WRONG_POT, IN_HAND_D, IN_HAND_NONE, PHASE_BREAK, PHASE_COLOUR, PHASE_OPTION, PHASE_PLAY,
                       Constraints, GameState, ShotInput, ShotRecord)
@@ -107,11 +109,50 @@ def snookered(pos: np.ndarray, before: np.ndarray, on: np.ndarray, R: float = SN
     return on.any(axis=1) & ~(clear & on).any(axis=1)
 
 
+# The last resort of the colour respot search: steps of R / 4 past a pocket's capture circle on the line.
+LINE_STEP = 0.25
+LINE_EPS = 1e-9                    # m: a point on the line is taken this far past the edge of a ball it would touch
+
+
+@numba.njit(cache=True, nogil=True)
+def _line_spot(pos, on, x, y, sgn, width, length, R, pockets):
+    """The nearest free point to (x, y) on the line x = const going
+    ``sgn`` (+1: towards the top cushion, -1: towards the bottom one),
+    the point itself included: every ball on the table within 2R of the
+    line shuts an interval of it, which the search steps past; a point in a
+    pocket's capture circle is stepped past by R / 4. Free: ``spot_free``
+    (edge R + SPOT_EDGE, min_dist 2R + SPOT_CLEAR). Returns (y, found)."""
+    edge, md = R + SPOT_EDGE, 2 * R + SPOT_CLEAR
+    for _ in range(1000):
+        if y < edge or y > length - edge:
+            return y, False
+        moved = False
+        for q in range(pos.shape[0]):
+            if on[q]:
+                dx = x - pos[q, 0]
+                if abs(dx) < md:
+                    h = np.sqrt(md * md - dx * dx)
+                    if abs(y - pos[q, 1]) < h:
+                        y = pos[q, 1] + sgn * (h + LINE_EPS)
+                        moved = True
+        if moved:
+            continue
+        if spot_free(x, y, pos, on, width, length, edge, pockets, md):
+            return y, True
+        y += sgn * LINE_STEP * R
+    return y, False
+
+
 @numba.njit(cache=True, nogil=True)
 def _respot(pos, on, balls, spots, width, length, R, pockets):
     edge, md = R + SPOT_EDGE, 2 * R + SPOT_CLEAR
     for e in range(pos.shape[0]):
-        for k in range(5, -1, -1):                            # the highest value first (WPBSA Section 3, rule 4)
+        if balls[e, 0]:                                       # the cue ball is in hand: it takes no spot
+            on[e, 0] = False
+        for k in range(6):
+            if balls[e, FIRST_COLOUR + k]:                    # a colour spotted from the table (the last black)
+                on[e, FIRST_COLOUR + k] = False               # never blocks its own spot
+        for k in range(5, -1, -1):                            # the highest value first
             b = FIRST_COLOUR + k
             if not balls[e, b]:
                 continue
@@ -123,8 +164,10 @@ def _respot(pos, on, balls, spots, width, length, R, pockets):
                     if spot_free(spots[j, 0], spots[j, 1], pos[e], on[e], width, length, edge, pockets, md):
                         x, y, found = spots[j, 0], spots[j, 1], True
                         break
-            if not found:                                     # as near its own spot as possible, along the long axis
-                x, y, found = free_spot(pos[e], on[e], spots[k, 0], spots[k, 1], 0.0, 1.0, width, length, R, pockets)
+            if not found:                                     # every spot taken: as near its own spot as possible,
+                y, found = _line_spot(pos[e], on[e], x, y, 1.0, width, length, R, pockets)  # towards the top
+                if not found:                                 # cushion, else below it, in line
+                    y, found = _line_spot(pos[e], on[e], x, spots[k, 1], -1.0, width, length, R, pockets)
             if not found:
                 return False
             pos[e, b, 0], pos[e, b, 1] = x, y
@@ -134,10 +177,17 @@ def _respot(pos, on, balls, spots, width, length, R, pockets):
 
 def respot_colours(pos: np.ndarray, pocket: np.ndarray, balls: np.ndarray, table, R: float,
                    pockets: np.ndarray) -> None:
-    """Put the colours marked in ``balls`` [n, B] back in place (WPBSA
-    Section 3, rule 4): each on its own spot, or, if that is occupied, the
-    highest-valued free spot, or else the nearest free point to its own spot
-    along the table's long axis; the highest-valued colour first."""
+    """Spot the colours marked in ``balls`` [n, B] (WPBSA Section 3, the
+    rule on spotting colours), in place, the highest value first: each on
+    its own spot; if that is occupied, on the highest-valued free spot; if
+    every spot is occupied, as near its own spot as possible on the straight
+    line from it to the top cushion (parallel to the long axis), or, if that
+    line has no room, as near as possible on the same line below the spot.
+    A colour marked while still on the table (the black of the re-spotted
+    black) is lifted first, so it never occupies its own spot. ``balls[:, 0]``
+    (the re-spotted black): the cue ball is in hand, so it occupies no spot;
+    if the spotted balls leave it touching one, it goes to the free point of
+    the D nearest the D's centre (the next stroke places it anyway)."""
     if not balls.any():
         return
     on = pocket < 0
@@ -145,7 +195,16 @@ def respot_colours(pos: np.ndarray, pocket: np.ndarray, balls: np.ndarray, table
                  table.width, table.length, R, pockets)
     if not ok:
         raise RuntimeError("no free spot on the table to respot a colour")
-    pocket[balls] = -1
+    pocket[:, 1:][balls[:, 1:]] = -1
+    hand = np.nonzero(balls[:, 0] & (pocket[:, 0] < 0))[0]
+    if len(hand):
+        d = np.linalg.norm(pos[hand, 1:] - pos[hand, :1], axis=2)
+        clash = hand[(np.where(pocket[hand, 1:] < 0, d, np.inf) < 2 * R + SPOT_CLEAR).any(axis=1)]
+        if len(clash):
+            m = table.marks
+            want = np.tile([m.d_centre[0], m.d_centre[1]], (len(clash), 1))
+            pos[clash, 0], _ = legal_spots(want, pos[clash], pocket[clash], np.zeros(len(clash), dtype=bool),
+                                           table.width, table.length, R, pockets, d_of(table))
 
 
 class SnookerRules(Rules):
@@ -229,7 +288,10 @@ class SnookerRules(Rules):
         is_free = np.zeros_like(on)
         is_free[ar[free >= 0], free[free >= 0]] = True
         value = np.where(is_free, on_value[:, None], VALUE[None, :])                  # a free ball is worth the ball on
-        first_ok = (first >= 1) & (on | is_free)[ar, np.clip(first, 0, N_BALLS)]
+        # the ball hit first must be a ball on; with a free ball nominated, the free ball itself (WPBSA Section 3,
+        # snookered after a foul: the cue ball must hit the nominated ball first, or it and a ball on at once;
+        # the simulator reports one first ball, so an exactly simultaneous hit counts as the one it reports)
+        first_ok = (first >= 1) & np.where(free >= 0, first == free, on[ar, np.clip(first, 0, N_BALLS)])
         bad_pot = (pk[:, 1:] & ~(on | is_free)[:, 1:]).any(axis=1)
         foul = np.full(E, FOUL_NONE, dtype=np.int64)
         foul[bad_pot] = FOUL_WRONG_POT
@@ -256,13 +318,16 @@ class SnookerRules(Rules):
         col = pk[:, FIRST_COLOUR:]
         keep_down = played & ~fouled & ~colour & ~red_turn                      # the clearance: the colour on stays down
         respot[:, FIRST_COLOUR:] = col & ~(keep_down[:, None] & on[:, FIRST_COLOUR:])
-        # the frame: with only the black left, the first score or foul ends it (a tie respots the black)
+        # the frame: with only the black left, the first score or foul ends it. On equal scores the black is
+        # spotted, potted or not (a foul that ties leaves it where it stopped: it goes back to its spot), and the
+        # cue ball is in hand (``respot[:, 0]``: it occupies no spot; ``respot_colours``)
         last_black = before[:, 1:].sum(axis=1) == 1
         last_black &= before[:, BLACK] & played & (fouled | (points > 0))
         tie = last_black & (g.score[:, 0] == g.score[:, 1])
         over = last_black & ~tie
         winner = np.where(over, np.argmax(g.score, axis=1), -1)
-        respot[tie, BLACK] = pk[tie, BLACK]
+        respot[tie, BLACK] = True
+        respot[tie, 0] = True
         turn_over = (fouled | (points == 0) | passed) & ~over
         rec = ShotRecord(legal=played & ~fouled, foul=foul, turn_over=turn_over, game_over=over, winner=winner,
                          end=np.where(over, END_LAST_BLACK, END_NONE), push_out=np.zeros(E, dtype=bool),

@@ -160,6 +160,46 @@ def test_sim_free_ball_after_a_foul_that_snookers():
     assert out["record"].foul[0] == R.FOUL_WRONG_BALL and out["info"]["penalty"][0] == 7
 
 
+def test_sim_a_foul_that_ties_on_the_last_black_spots_it():
+    """Only the black left, player 0 leads 47-40 and goes in-off after a thin hit on the black (the black
+    stays up): 7 to player 1 ties the frame, so the black goes back to its spot from where it stopped, the
+    cue ball is in hand in the D for player 1, and the next foul ends the frame."""
+    cue, corner = np.array([1.2, 3.0]), np.array([1.778, 3.569])
+    d = (corner - cue) / np.linalg.norm(corner - cue)
+    black = cue + 0.15 * d + 0.02 * np.array([-d[1], d[0]])
+    core = game_table("snooker", {0: tuple(cue), BLACK: tuple(black)})
+    core.game.score[0] = (47, 40)
+    core._changed()
+    out = shoot(core, math.atan2(d[1], d[0]) - 0.1425, 2.0, b=0.3)  # a thin cut with follow: into the corner
+    rec, info = out["record"], out["info"]
+    assert info["first_contact"][0] == BLACK and info["pocketed"][0, 0] and not info["pocketed"][0, BLACK]
+    assert rec.foul[0] == R.FOUL_SCRATCH and info["penalty"][0] == 7 and core.game.score[0].tolist() == [47, 47]
+    assert not rec.game_over[0] and core.state.pocket[0, BLACK] == -1
+    assert np.allclose(core.state.pos[0, BLACK], core.table.marks.spots[5])  # spotted, not where it stopped
+    c = core.constraints()
+    assert c.ball_in_hand[0] == R.IN_HAND_D and c.shooter[0] == 1 and c.targets[0, BLACK] and c.targets[0].sum() == 1
+    out = shoot(core, -math.pi / 2, 1.0, placement=(0.889, 0.6))  # from the D away from the black: no contact
+    assert out["record"].foul[0] == R.FOUL_NO_CONTACT and out["record"].game_over[0]
+    assert out["record"].winner[0] == 0 and core.game.score[0].tolist() == [54, 47]
+
+
+def test_sim_a_free_ball_nominated_must_be_hit_first():
+    """After player 0's foul the cue ball lies snookered on the only red (the pink covers one of its edges):
+    player 1 nominates the pink as the free ball but hits the red first on its open edge: a foul (4). Without
+    the free ball (the red nominated) the same stroke is legal."""
+    R_ = 0.02625
+    balls = {0: (0.889, 2.2), 1: (0.889, 3.0), PINK: (0.889 + 1.9 * R_, 2.6), BLACK: (0.889, 3.245)}
+    phi = math.atan2(0.8, -0.03)   # the cue ball's centre 3 cm to the red's open side: a thick hit on the red
+    for nominate, foul, penalty in ((PINK, R.FOUL_WRONG_BALL, 4), (1, R.FOUL_NONE, 0)):
+        core = game_table("snooker", balls, phase=R.PHASE_OPTION)
+        core.game.shooter[0] = 1
+        core._changed()
+        assert core.constraints().call_needed[0]  # snookered: a free ball may be nominated
+        out = shoot(core, phi, 1.5, ball=nominate)
+        assert out["info"]["first_contact"][0] == 1 and out["info"]["called_ball"][0] == nominate
+        assert out["record"].foul[0] == foul and out["info"]["penalty"][0] == penalty
+
+
 def test_sim_offender_put_back_in():
     core = game_table("snooker", {0: (0.9, 0.5), 1: (0.9, 2.0), BLACK: (0.9, 3.245)})
     out = shoot(core, math.pi, 0.5)  # away from the red: no ball hit

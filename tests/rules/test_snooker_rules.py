@@ -225,3 +225,114 @@ def test_colours_respot_on_their_spot_or_the_highest_free_one():
     pos[0, 0] = (0.3, 0.3)
     respot_colours(pos, pocket, balls, TABLE, P.R, TABLE.pockets)
     assert np.allclose(pos[0, BLACK], spots[5])          # its own spot when free
+
+
+def test_a_foul_that_ties_on_the_last_black_spots_the_black_where_it_lies():
+    # an in-off after hitting the black: 7 to the opponent ties the frame at 47 all; the black was not potted
+    g, p = position(off=[b for b in range(1, BLACK)], score=(47, 40))
+    rec, g2, c = judge(g, shot(p, BLACK, potted=[0]))
+    assert rec.foul[0] == R.FOUL_SCRATCH and rec.penalty[0] == 7 and g2.score[0].tolist() == [47, 47]
+    assert not rec.game_over[0] and rec.respot[0, BLACK] and rec.respot[0, 0]  # the black spotted, cue ball in hand
+    assert c.ball_in_hand[0] == R.IN_HAND_D and c.targets[0].tolist() == [i == BLACK for i in range(B)]
+    assert g2.shooter[0] == 1 - g.breaker[0] and g2.phase[0] == R.PHASE_PLAY
+    # a foul without contact that ties it, the cue ball left on the table: the same
+    g, p = position(off=[b for b in range(1, BLACK)], score=(47, 40))
+    rec, g2, c = judge(g, shot(p, -1))
+    assert not rec.game_over[0] and rec.respot[0, BLACK] and rec.respot[0, 0] and c.ball_in_hand[0] == R.IN_HAND_D
+    # the next score or foul ends the frame: a foul off the re-spotted black gives the frame to the other player
+    rec, g3, _ = judge(g2, shot(p, -1))
+    assert rec.game_over[0] and rec.winner[0] == 1 - g2.shooter[0] and rec.end[0] == R.END_LAST_BLACK
+    # not equal: the frame ends and nothing is spotted
+    g, p = position(off=[b for b in range(1, BLACK)], score=(47, 41))
+    rec, _, _ = judge(g, shot(p, BLACK, potted=[0]))
+    assert rec.game_over[0] and rec.winner[0] == 1 and not rec.respot[0].any()
+
+
+def test_the_re_spotted_black_is_lifted_from_where_it_stopped_and_the_cue_ball_gives_way():
+    spots = TABLE.marks.spots
+    pos = np.zeros((1, B, 2))
+    pocket = np.full((1, B), 0, dtype=np.int64)
+    pocket[0, [0, BLACK]] = -1
+    pos[0, BLACK] = spots[5] + (0.0, 0.5 * P.R)      # the black stopped half a radius from its spot
+    pos[0, 0] = spots[5] - (0.0, 1.5 * P.R)           # the cue ball (in hand) stopped across the spot
+    balls = np.zeros((1, B), dtype=bool)
+    balls[0, [0, BLACK]] = True                       # what the ruling of a tie marks
+    respot_colours(pos, pocket, balls, TABLE, P.R, TABLE.pockets)
+    assert np.allclose(pos[0, BLACK], spots[5]) and pocket[0, BLACK] == -1   # on its own spot, not the pink's
+    assert TABLE.marks.in_d(pos[0, 0, 0], pos[0, 0, 1]) and pocket[0, 0] == -1  # the cue ball moved into the D
+    # a cue ball in hand clear of the spotted balls stays where it is
+    pos[0, BLACK] = (0.3, 3.0)
+    pos[0, 0] = (1.2, 2.0)
+    respot_colours(pos, pocket, balls, TABLE, P.R, TABLE.pockets)
+    assert np.allclose(pos[0, BLACK], spots[5]) and np.allclose(pos[0, 0], (1.2, 2.0))
+
+
+def test_with_a_free_ball_nominated_the_red_hit_first_is_a_foul():
+    pos = _line((0, (0.9, 1.0)), (RED, (0.9, 2.0)), (BLACK, (0.9, 1.5)))
+    g, p = position(off=[b for b in range(2, BLACK)], phase=R.PHASE_OPTION)
+    assert SNK.constraints(g, p, pos=pos).call_needed[0]  # snookered on the red: a free ball
+    # the black nominated as the free ball, the red (the ball on) hit first and even potted: a foul worth 4
+    rec, g2 = SNK.judge(g, shot(p, RED, potted=[RED], nominate=BLACK, pos=pos))
+    assert rec.foul[0] == R.FOUL_WRONG_BALL and rec.penalty[0] == 4 and rec.points[0] == 0 and rec.turn_over[0]
+    # the free ball hit first and the red potted off it: legal, the red scores (a colour on next)
+    rec, g2 = SNK.judge(g, shot(p, BLACK, potted=[RED], nominate=BLACK, pos=pos))
+    assert rec.legal[0] and rec.points[0] == 1 and g2.phase[0] == R.PHASE_COLOUR
+    # the free ball not taken (the red nominated, or nothing): hitting the red first is an ordinary legal stroke
+    for nom in (RED, R.CALL_NONE):
+        rec, _ = SNK.judge(g, shot(p, RED, potted=[RED], nominate=nom, pos=pos))
+        assert rec.legal[0] and rec.points[0] == 1
+    # in the clearance (the yellow on), a free ball nominated and the yellow hit first: a foul too
+    off = reds_off() + [GREEN, BROWN, BLUE]
+    pos2 = _line((0, (0.9, 1.0)), (YELLOW, (0.9, 2.0)), (PINK, (0.9, 1.5)), (BLACK, (0.3, 3.0)))
+    g, p = position(off=off, phase=R.PHASE_OPTION)
+    assert SNK.constraints(g, p, pos=pos2).call_needed[0]
+    rec, _ = SNK.judge(g, shot(p, YELLOW, nominate=PINK, pos=pos2))
+    assert rec.foul[0] == R.FOUL_WRONG_BALL and rec.penalty[0] == 4  # the free ball is worth the ball on (2): 4
+
+
+def _all_spots_taken(extra=()):
+    """Every colour off, reds on all six spots (and at ``extra``), the cue ball far away."""
+    spots = TABLE.marks.spots
+    pos = np.zeros((1, B, 2))
+    pocket = np.full((1, B), 0, dtype=np.int64)
+    for k in range(6):
+        pos[0, 1 + k] = spots[k]
+        pocket[0, 1 + k] = -1
+    for j, xy in enumerate(extra):
+        pos[0, 7 + j] = xy
+        pocket[0, 7 + j] = -1
+    pos[0, 0], pocket[0, 0] = (0.3, 2.0), -1
+    return pos, pocket
+
+
+def _spot(pos, pocket, *colours):
+    balls = np.zeros((1, B), dtype=bool)
+    balls[0, list(colours)] = True
+    respot_colours(pos, pocket, balls, TABLE, P.R, TABLE.pockets)
+    return pos
+
+
+def test_every_spot_taken_the_colour_goes_above_its_own_spot_in_line():
+    spots, md = TABLE.marks.spots, 2 * P.R + 1e-6
+    # the black: right above the red on its spot (towards the top cushion, nearer than any point below)
+    pos = _spot(*_all_spots_taken(), BLACK)
+    assert np.isclose(pos[0, BLACK, 0], spots[5, 0]) and np.isclose(pos[0, BLACK, 1], spots[5, 1] + md, atol=1e-8)
+    # the yellow (a spot off the long axis): straight up from its own spot, not along the long axis; a red
+    # just beside that line, 1.5 R off it, shuts more of it: the yellow goes past it, touching it
+    side = (spots[0, 0] + 1.5 * P.R, spots[0, 1] + 3 * P.R)
+    pos = _spot(*_all_spots_taken([side]), YELLOW)
+    assert np.isclose(pos[0, YELLOW, 0], spots[0, 0])
+    assert np.isclose(pos[0, YELLOW, 1], side[1] + np.sqrt(md ** 2 - (1.5 * P.R) ** 2), atol=1e-8)
+    # two colours: the higher value first, each as near its own spot as it can
+    pos = _spot(*_all_spots_taken(), PINK, BLACK)
+    assert np.isclose(pos[0, BLACK, 1], spots[5, 1] + md, atol=1e-8)
+    assert np.isclose(pos[0, PINK, 1], spots[4, 1] + md, atol=1e-8)
+
+
+def test_every_spot_taken_and_no_room_above_the_black_goes_below_its_spot_in_line():
+    spots, md = TABLE.marks.spots, 2 * P.R + 1e-6
+    top = TABLE.length - P.R - 1e-4
+    chain = [(spots[5, 0], spots[5, 1] + k * 2 * P.R) for k in range(1, 6)]   # frozen reds up to the cushion
+    assert chain[-1][1] <= top < chain[-1][1] + md                             # no room above the last one
+    pos = _spot(*_all_spots_taken(chain), BLACK)
+    assert np.isclose(pos[0, BLACK, 0], spots[5, 0]) and np.isclose(pos[0, BLACK, 1], spots[5, 1] - md, atol=1e-8)
