@@ -71,6 +71,8 @@ PHASE_OPTION = 4         # 10-ball: the last shot pocketed a ball illegally (not
 PHASE_FINAL = 5          # games to a score with equal innings: the starting player reached the target; the
                          # opponent plays a last inning
 PHASE_COLOUR = 6         # snooker: a red (or a free ball taken as a red) was potted; a nominated colour is on
+PHASE_FINAL_OPENING = 7  # games to a score with equal innings (three-cushion): the opponent's last inning begins
+                         # from the starting position; this first shot must strike the red first, as the opening
 
 # --- 8-ball groups (GameState.group) ------------------------------------------------
 GROUP_OPEN = 0
@@ -194,13 +196,19 @@ class ShotRecord:
     (FOUL_*), ``turn_over`` (the other player shoots next), ``game_over``,
     ``winner`` (-1 none), ``end`` (END_*), ``push_out`` (this shot was a
     push-out), ``passed`` (no shot: the shot was handed back),
-    ``respot`` [E, B] balls the table must put back on the foot spot,
+    ``respot`` [E, B] balls the table must put back on the foot spot
+    (snooker: the colours to spot, a colour still on the table included, and
+    ``respot[:, 0]`` the cue ball in hand, which takes no spot: the
+    re-spotted black; ``rules.snooker.respot_colours``),
     ``shooter`` (who played it), ``option`` (10-ball: the shot pocketed a
     ball illegally without a foul, so the next player may shoot or pass the
     shot back; snooker: the shot was a foul, so the incoming player may put
     the offender back in; all False in the other games), ``points`` (the
-    points the shot scored for its shooter; games to a score, else zeros)
-    and ``penalty`` (what a foul gave the opponent; snooker, else zeros)."""
+    points the shot scored for its shooter; games to a score, else zeros),
+    ``penalty`` (what a foul gave the opponent; snooker, else zeros) and
+    ``restart`` (the balls go back to the starting position before the next
+    shot: three-cushion's equal-innings last inning,
+    ``envs.games.setup.restart_position``; all False elsewhere)."""
 
     legal: np.ndarray
     foul: np.ndarray
@@ -215,10 +223,12 @@ class ShotRecord:
     option: np.ndarray | None = None
     points: np.ndarray | None = None
     penalty: np.ndarray | None = None
+    restart: np.ndarray | None = None
 
     def __post_init__(self):
-        if self.option is None:
-            object.__setattr__(self, "option", np.zeros(len(self.legal), dtype=bool))
+        for name in ("option", "restart"):
+            if getattr(self, name) is None:
+                object.__setattr__(self, name, np.zeros(len(self.legal), dtype=bool))
         for name in ("points", "penalty"):
             if getattr(self, name) is None:
                 object.__setattr__(self, name, np.zeros(len(self.legal), dtype=np.int64))
@@ -246,6 +256,10 @@ class Constraints:
         """The lowest-numbered legal target of each table (-1 none): what
         relative aim and the geometric policies aim at."""
         return nominal_target(self.targets)
+
+    def take(self, idx) -> "Constraints":
+        """The constraints of tables ``idx`` (copies)."""
+        return Constraints(*(getattr(self, f.name)[idx] for f in dataclasses.fields(self)))
 
 
 def nominal_target(targets: np.ndarray) -> np.ndarray:

@@ -28,6 +28,10 @@ slot 0, ``Rules.own_cue_balls``).
   With ``equal_innings`` the opponent of the starting player gets a last
   inning when the starting player reaches the target (UMB's equal innings):
   reaching the target in it draws the game, else the starting player wins.
+  That inning starts from the starting position, with the opponent's own
+  ball beside the head spot (``ShotRecord.restart``; the envs re-place the
+  balls: ``envs.games.setup.restart_position``), and its first shot, like
+  the opening shot, must strike the red first (``PHASE_FINAL_OPENING``).
 """
 from __future__ import annotations
 
@@ -36,7 +40,7 @@ import numpy as np
 from ..physics import constants as PC
 from .common import Rules, next_state
 from .records import (END_INNINGS, END_NONE, END_TARGET, FOUL_NONE, FOUL_WRONG_BALL, IN_HAND_NONE, PHASE_BREAK,
-                      PHASE_FINAL, PHASE_PLAY, Constraints, GameState, ShotInput, ShotRecord)
+                      PHASE_FINAL, PHASE_FINAL_OPENING, PHASE_PLAY, Constraints, GameState, ShotInput, ShotRecord)
 
 CUE, OPPONENT_BALL, RED = 0, 1, 2  # slots in the shooter's frame
 POINT_CUSHIONS = 3                 # cushions the cue ball needs before its contact with the second object ball
@@ -99,7 +103,9 @@ class ThreeCushionRules(Rules):
         E = game.n
         ar, s = np.arange(E), game.shooter
         point, _ = point_made(shot.contacts, shot.n_contacts)
-        is_break = game.phase == PHASE_BREAK
+        # an opening shot: the game's first, or the first of the equal-innings last inning (from the starting
+        # position): the red must be struck first
+        is_break = (game.phase == PHASE_BREAK) | (game.phase == PHASE_FINAL_OPENING)
         first = np.asarray(shot.first_contact, dtype=np.int64)
         foul = np.where(is_break & (first == OPPONENT_BALL), FOUL_WRONG_BALL, FOUL_NONE).astype(np.int64)
         scored = point & (foul == FOUL_NONE)
@@ -107,7 +113,7 @@ class ThreeCushionRules(Rules):
         score[ar, s] += scored
         reached = scored & (score[ar, s] >= self.target)
         starter = s == game.breaker
-        final = game.phase == PHASE_FINAL
+        final = (game.phase == PHASE_FINAL) | (game.phase == PHASE_FINAL_OPENING)
         missed = ~scored
         # the game ends: the target reached (with equal innings, the starter's opponent first plays a last
         # inning), that last inning ended, or each player's innings limit played out
@@ -124,18 +130,18 @@ class ThreeCushionRules(Rules):
         rec = ShotRecord(legal=foul == FOUL_NONE, foul=foul, turn_over=turn_over, game_over=over,
                          winner=winner.astype(np.int64), end=end.astype(np.int64), push_out=np.zeros(E, dtype=bool),
                          passed=np.zeros(E, dtype=bool), respot=np.zeros(np.shape(shot.pocket_before), dtype=bool),
-                         shooter=s.copy(), points=scored.astype(np.int64))
+                         shooter=s.copy(), points=scored.astype(np.int64), restart=to_final)
         g = next_state(game, rec, foul, np.ones(E, dtype=bool))
         g.score = score
         g.innings[ar, 1 - s] += turn_over  # the incoming player begins an inning
-        g.phase = np.where(to_final | final, PHASE_FINAL, PHASE_PLAY).astype(np.int64)
+        g.phase = np.where(to_final, PHASE_FINAL_OPENING, np.where(final, PHASE_FINAL, PHASE_PLAY)).astype(np.int64)
         g.ball_in_hand = np.full(E, IN_HAND_NONE, dtype=np.int64)
         return rec, g
 
     def constraints(self, game: GameState, pocket: np.ndarray) -> Constraints:
         E, B = np.shape(pocket)
         live = ~game.over
-        brk = live & (game.phase == PHASE_BREAK)
+        brk = live & ((game.phase == PHASE_BREAK) | (game.phase == PHASE_FINAL_OPENING))
         targets = np.zeros((E, B), dtype=bool)
         targets[:, RED] = live
         targets[:, OPPONENT_BALL] = live & ~brk  # the opening shot must strike the red first
@@ -152,7 +158,7 @@ class ThreeCushionRules(Rules):
         x[:, 0] = np.minimum(game.score[ar, s] / self.target, 1.0)
         x[:, 1] = np.minimum(game.score[ar, 1 - s] / self.target, 1.0)
         x[:, 2] = np.minimum(game.innings[ar, s] / self.max_innings, 1.0)
-        x[:, 3] = game.phase == PHASE_FINAL
+        x[:, 3] = (game.phase == PHASE_FINAL) | (game.phase == PHASE_FINAL_OPENING)
         return x
 
     def new_game(self, breaker) -> GameState:

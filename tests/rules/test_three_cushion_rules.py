@@ -135,9 +135,10 @@ def test_opening_shot_must_strike_the_red_first(shots):
 
 def _scripted(rules, points, breaker=0):
     """Play shots that make a point (True) or miss (False) in turn; the state after each."""
-    good = ShotInput(np.full((1, 3), -1), np.full((1, 3), -1), np.array([1]), np.zeros((1, 3), int),
-                     contacts=np.array([[[C.EV_BALL_BALL, 1]] + [[C.EV_CUSHION, k] for k in (0, 1, 2)]
-                                        + [[C.EV_BALL_BALL, 2]]]), n_contacts=np.array([5]))
+    # a point off the red first (a point on any shot: the equal-innings last inning's first shot must strike it first)
+    good = ShotInput(np.full((1, 3), -1), np.full((1, 3), -1), np.array([2]), np.zeros((1, 3), int),
+                     contacts=np.array([[[C.EV_BALL_BALL, 2]] + [[C.EV_CUSHION, k] for k in (0, 1, 2)]
+                                        + [[C.EV_BALL_BALL, 1]]]), n_contacts=np.array([5]))
     miss = ShotInput(np.full((1, 3), -1), np.full((1, 3), -1), np.array([2]), np.zeros((1, 3), int),
                      contacts=np.array([[[C.EV_BALL_BALL, 2], [C.EV_CUSHION, 0], [C.EV_BALL_BALL, 1]] + [[-1, -1]] * 2]),
                      n_contacts=np.array([3]))
@@ -173,7 +174,8 @@ def test_equal_innings_gives_the_opponent_a_last_inning():
     rules = ThreeCushionRules(target=2, equal_innings=True)
     # the starter runs 2 points: the opponent gets a last inning and runs 2 as well: a draw
     out = _scripted(rules, [True, True, True, True])
-    assert not out[1][0].game_over[0] and out[1][1].phase[0] == R.PHASE_FINAL and out[1][1].shooter[0] == 1
+    assert not out[1][0].game_over[0] and out[1][1].phase[0] == R.PHASE_FINAL_OPENING and out[1][1].shooter[0] == 1
+    assert out[2][1].phase[0] == R.PHASE_FINAL  # after the last inning's first shot
     rec, g = out[-1]
     assert rec.game_over[0] and rec.winner[0] == -1 and g.score[0].tolist() == [2, 2]
     # the opponent misses in the last inning: the starter wins
@@ -195,3 +197,24 @@ def test_settings_and_missing_contacts_are_refused():
     pk = np.full((1, 3), -1)
     with pytest.raises(ValueError, match="contacts"):
         rules.judge(rules.new_game([0]), ShotInput(pk, pk, np.array([1]), np.zeros((1, 3), int)))
+
+
+def test_the_equal_innings_last_inning_starts_from_the_starting_position():
+    rules = ThreeCushionRules(target=2, equal_innings=True)
+    out = _scripted(rules, [True, True])
+    rec, g = out[-1]
+    # the starter reached the target: the balls go back to the starting position for the opponent's last inning
+    assert rec.restart[0] and rec.turn_over[0] and not rec.game_over[0] and g.phase[0] == R.PHASE_FINAL_OPENING
+    assert not out[0][0].restart[0]                        # an ordinary point: the balls stay where they lie
+    c = rules.constraints(g, np.full((1, 3), -1))
+    assert c.is_break[0] and c.targets[0].tolist() == [False, False, True]  # the red first, as on the opening
+    assert rules.observe_extra(g)[0, 3] == 1.0             # the last inning is flagged from its first shot
+    # that first shot strikes the opponent's ball first: a foul, the last inning ends, the starter wins
+    wrong = ShotInput(np.full((1, 3), -1), np.full((1, 3), -1), np.array([1]), np.zeros((1, 3), int),
+                      contacts=np.array([[[C.EV_BALL_BALL, 1]] + [[C.EV_CUSHION, k] for k in (0, 1, 2)]
+                                         + [[C.EV_BALL_BALL, 2]]]), n_contacts=np.array([5]))
+    rec2, g2 = rules.judge(g, wrong)
+    assert rec2.foul[0] == R.FOUL_WRONG_BALL and rec2.points[0] == 0 and rec2.game_over[0] and rec2.winner[0] == 0
+    assert not rec2.restart[0] and g2.score[0].tolist() == [2, 0]
+    # without equal innings, and in the other games, nothing is re-placed
+    assert not _scripted(ThreeCushionRules(target=2), [True, True])[-1][0].restart[0]

@@ -88,6 +88,23 @@ def hand_over(pos: np.ndarray, rows: np.ndarray) -> None:
     pos[r, 0], pos[r, 1] = pos[r, 1].copy(), pos[r, 0].copy()
 
 
+RESTART_SIDE = 1.0  # the side of the head spot (+x) of the mover's ball when the balls go back to the start
+
+
+def restart_position(pos: np.ndarray, rows: np.ndarray, table, R: float) -> None:
+    """Three-cushion: on the tables of ``rows`` [n] (bool; ``ShotRecord.restart``:
+    the equal-innings last inning) the balls go back to the starting position,
+    in place, in the frame of the player to move (call it after ``hand_over``:
+    slot 0 the mover's ball): the red on the foot spot, the other player's ball
+    on the head spot, the mover's own ball on the head string ``OPENING_OFFSET``
+    beside it, always on the same side (``RESTART_SIDE``; UMB lets the player
+    choose; the table is symmetric, so the side changes nothing but the mirror
+    image)."""
+    r = np.nonzero(rows)[0]
+    if len(r):
+        pos[r] = three_cushion_spots(table, R, np.full((len(r), 1), 0.5 + 0.5 * RESTART_SIDE))
+
+
 def respot_frozen(pos: np.ndarray, table, R: float) -> None:
     """Three-cushion: where the cue ball of the player to move (slot 0) is
     frozen to a ball (closer than 2R + ``FROZEN_GAP``), the balls go to the
