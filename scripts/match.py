@@ -5,13 +5,16 @@
     python scripts/match.py --policies my_bots:planner ghost search64 --racks 50   # a bot of your own
     python scripts/match.py --game eight_ball --noise high --racks 50 --out results/matches
     python scripts/match.py --game ten_ball --policies ghost ghost-safety search64 --racks 100
-    python scripts/match.py --summary    # every game and noise level of results/matches in one table
+    python scripts/match.py --summary --out results/matches   # every game and noise level there in one table
     python scripts/match.py --policies ghost search64 --racks 20 --save-replays 4   # + 4 whole games per pairing
     python scripts/match.py --protocol championship --policies lookahead search64 ghost-safety --racks 100
     python scripts/match.py --policies ghost ghost-safety search64 --racks 100 --address local --chunk-racks 25
 
 Every pairing plays ``--racks`` racks twice (each side breaks once on each
-rack). Writes ``<out>/<game>_<noise>.json``, ``.md`` and ``.png`` (ratings
+rack). Writes into ``--out`` (default: a new run folder,
+``runs/match/<timestamp>/``, git-ignored; the committed tables of
+``results/`` are rewritten only when ``--out results/...`` names them)
+``<out>/<game>_<noise>.json``, ``.md`` and ``.png`` (ratings
 with 95% intervals); with ``--save-replays N``, the first N games of every
 pairing (rack 1 with each side breaking, rack 2, ...) as replay pages and
 JSON in ``<out>/replays/<game>_<noise>/``. An entrant is a built-in bot (``random``, ``ghost``,
@@ -25,7 +28,7 @@ championship's conditions (``studies.championship``): the tournament at
 each of the noise levels ``tournament`` (1x), ``high`` (5x) and
 ``variable``, alternating breaks on the same racks, and every entrant's
 compute per shot; writes ``<out>/eight_ball_<noise>.*`` and
-``<out>/championship.md`` / ``.json`` (default out: results/matches/championship).
+``<out>/championship.md`` / ``.json``.
 ``--quick``: 2 racks, games cut at 20 shots (a smoke run).
 
 ``--address``: the pairings' racks played as Ray tasks, in chunks of
@@ -54,6 +57,7 @@ from billiards_env.envs.games.core import BREAK_NINE  # noqa: E402
 from billiards_env.envs.games.setup import RACKS  # noqa: E402
 from billiards_env.rendering import save_replay_html  # noqa: E402
 from billiards_env.studies import match_report  # noqa: E402
+from billiards_env.studies.run_folder import run_folder  # noqa: E402
 from billiards_env.studies.championship import GAME as CHAMPIONSHIP_GAME  # noqa: E402
 from billiards_env.studies.championship import championship, compute_table  # noqa: E402
 
@@ -93,10 +97,12 @@ def main(argv=None) -> int:
     ap.add_argument("--break-nine", choices=BREAK_NINE, default="wins", help="9-ball: the 9 on the break wins or is spotted")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--max-shots", type=int, default=200)
-    ap.add_argument("--out", type=Path, default=None, help="default results/matches (championship: its championship/)")
+    ap.add_argument("--out", type=Path, default=None,
+                    help="folder of the tables (default: a new runs/match/<timestamp>/; results/... only when named)")
     ap.add_argument("--save-replays", type=int, default=0, metavar="N",
                     help="write the first N games of every pairing as replays (HTML and JSON)")
-    ap.add_argument("--summary", action="store_true", help="only write <out>/summary.md from the JSON files there")
+    ap.add_argument("--summary", action="store_true",
+                    help="only write <out>/summary.md from the JSON files there (needs --out)")
     ap.add_argument("--address", default=None,
                     help="play on Ray: local (a Ray instance here), auto or HOST:PORT (a cluster); default: this process")
     ap.add_argument("--chunk-racks", type=int, default=None, metavar="N",
@@ -108,9 +114,10 @@ def main(argv=None) -> int:
     if champ and args.game not in (None, CHAMPIONSHIP_GAME):
         ap.error(f"--protocol championship plays {CHAMPIONSHIP_GAME}, got --game {args.game}")
     args.game = args.game or (CHAMPIONSHIP_GAME if champ else "nine_ball")
-    args.out = args.out or ROOT / "results" / "matches" / ("championship" if champ else "")
     config = dict(rack=args.rack, **({"break_nine": args.break_nine} if args.break_nine != "wins" else {}))
     if args.summary:
+        if args.out is None:
+            ap.error("--summary reads the JSON files of a folder of matches: name it, e.g. --out results/matches")
         md = match_report.summary(args.out)
         (args.out / "summary.md").write_text(md)
         print(md)
@@ -127,6 +134,9 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     for spec in args.policies:  # a bad entrant fails before any game is played
         bot_factory(spec, args.seed)
+    if args.out is None:
+        args.out = run_folder(ROOT, "match")
+        print(f"writing to {args.out} (--out names another folder)", file=sys.stderr, flush=True)
     command = " ".join(["python", "scripts/match.py"] + (argv if argv is not None else sys.argv[1:]))
     if champ:
         return run_championship(args, command)

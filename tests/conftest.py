@@ -1,5 +1,8 @@
+import contextlib
 import importlib.util
+import logging
 import os
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -15,16 +18,45 @@ def pytest_xdist_auto_num_workers(config):
     return max(1, min(os.cpu_count() or 1, MAX_WORKERS))
 
 
+COLD_CACHE_NOTE = ("billiards_env: the simulator's kernels compile on first use (20-160 s each) and are cached on "
+                   "disk: on a cold cache the first tests take several minutes")
+
+
+def pytest_sessionstart(session):
+    """One line before anything runs (in the main process, with -q and -n too): a cold numba cache
+    otherwise keeps the suite silent for its first minutes."""
+    if not hasattr(session.config, "workerinput"):  # not an xdist worker
+        reporter = session.config.pluginmanager.get_plugin("terminalreporter")
+        if reporter is not None:
+            reporter.write_line(COLD_CACHE_NOTE)
+
+
+@contextlib.contextmanager
+def _compile_messages_shown(config):
+    """The kernels' compile messages (logger ``billiards_env.physics.compile``) on the terminal as they
+    happen, past pytest's capture (shown with -n 0; xdist workers' output is not)."""
+    capture = config.pluginmanager.get_plugin("capturemanager")
+    log = logging.getLogger("billiards_env.physics.compile")
+    with capture.global_and_fixture_disabled() if capture else contextlib.nullcontext():
+        handler = logging.StreamHandler(sys.stderr)  # the real stderr while capture is off
+        log.addHandler(handler)
+        try:
+            yield
+        finally:
+            log.removeHandler(handler)
+
+
 @pytest.fixture(scope="session", autouse=True)
-def _compiled_kernels():
+def _compiled_kernels(request):
     """Compile (or load from the disk cache) the kernel variants the tests
     use, so that per-shot wall-time bounds measure simulation, not compilation."""
     P = PhysicsParams.standard()
     T = Table.pool(9)
     s = strike_velocity(random_placement(T, P, 2, seed=0), 0.3, 0.5, params=P)
-    for eff in (None, Effects.minimal()):
-        simulate(s, T, P, solver="event", effects=eff, diagnostics=True)
-        simulate(s, T, P, solver="step", dt=1e-3, effects=eff, diagnostics=True)
+    with _compile_messages_shown(request.config):
+        for eff in (None, Effects.minimal()):
+            simulate(s, T, P, solver="event", effects=eff, diagnostics=True)
+            simulate(s, T, P, solver="step", dt=1e-3, effects=eff, diagnostics=True)
 
 
 @pytest.fixture(scope="session")

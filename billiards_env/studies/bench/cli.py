@@ -3,14 +3,18 @@
 Compiles before timing, reports medians over repeats and ratios measured in
 the same run, prints Markdown tables (one file per section, joined in
 benchmark.md), appends rows with the git revision to benchmark.csv and plots
-the history of the headline figures (history.png).
+the history of the headline figures (history.png), all in ``--out``: by
+default a new run folder, ``runs/benchmark/<timestamp>/`` (git-ignored). The
+committed tables and history of ``results/benchmark`` are rewritten only
+when ``--out results/benchmark`` names them.
 
-    python scripts/benchmark.py                 # full run (a few minutes)
+    python scripts/benchmark.py                 # full run (a few minutes), into runs/benchmark/<timestamp>/
+    python scripts/benchmark.py --out results/benchmark   # the same, rewriting the committed tables
     python scripts/benchmark.py --quick         # smaller batches, fewer repeats
     python scripts/benchmark.py --only solver --against HEAD~1 --quick
     python scripts/benchmark.py --only models   # each non-default model (models.md)
     python scripts/benchmark.py --only rllib    # RLlib vs SB3 vs bare env (docs/distributed.md; needs [ray])
-    python scripts/benchmark.py --history       # only redraw history.png
+    python scripts/benchmark.py --history --out results/benchmark   # only redraw history.png there
     python scripts/benchmark.py --only games    # two-player games/s and vector-env steps/s (games.md)
     python scripts/benchmark.py --only snooker  # snooker openings/s against the pool break, frames/s (snooker.md)
 
@@ -27,6 +31,7 @@ import datetime
 import json
 from pathlib import Path
 
+from ..run_folder import run_folder
 from .options import DEFAULT_SECTIONS, ROOT, SECTION_NAMES, RunOptions
 
 
@@ -42,11 +47,13 @@ def parser() -> argparse.ArgumentParser:
                          "model, written to models.md)")
     ap.add_argument("--scene", action="append", default=None,
                     help="keep only scenes (or env ids) containing this text (repeatable)")
-    ap.add_argument("--out", type=Path, default=ROOT / "results" / "benchmark")
+    ap.add_argument("--out", type=Path, default=None,
+                    help="folder of the tables and CSV (default: a new runs/benchmark/<timestamp>/; results/benchmark "
+                         "only when named)")
     ap.add_argument("--against", metavar="REV", default=None,
                     help="time this tree and git revision REV (temporary worktree) in turn; writes against.md")
     ap.add_argument("--rounds", type=int, default=3, help="interleaved rounds per tree with --against")
-    ap.add_argument("--history", action="store_true", help="only redraw history.png from the CSVs")
+    ap.add_argument("--history", action="store_true", help="only redraw <out>/history.png from the CSVs there (needs --out)")
     ap.add_argument("--worker", type=Path, default=None, help=argparse.SUPPRESS)  # rows as JSON to this file
     return ap
 
@@ -104,9 +111,12 @@ def _run(args, opts: RunOptions, common: dict) -> None:
 
 
 def main(argv=None) -> None:
-    args = parser().parse_args(argv)
+    ap = parser()
+    args = ap.parse_args(argv)
     opts = RunOptions.make(args.batch, args.repeats, args.quick, args.scene)
     if args.history:
+        if args.out is None:
+            ap.error("--history redraws history.png from a folder's benchmark CSVs: name it, e.g. --out results/benchmark")
         from .report import plot_history
         path = plot_history(args.out)
         print(f"wrote {path}" if path else f"no full-size rows in {args.out}/benchmark*.csv: nothing to plot")
@@ -115,6 +125,9 @@ def main(argv=None) -> None:
         from .sections import run_sections
         args.worker.write_text(json.dumps(run_sections(opts, args.only)))
         return
+    if args.out is None:
+        args.out = run_folder(ROOT, "benchmark")
+        print(f"writing to {args.out} (--out names another folder)", flush=True)
     args.out.mkdir(parents=True, exist_ok=True)
     if "games" in args.only:
         _games(opts, args.out)

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numba
 
-from .options import SECTION_NAMES
+from .options import ROOT, SECTION_NAMES
 
 # the columns that name a row (the same row in two trees or two rounds)
 ROW_KEY = ("section", "scene", "solver", "effects", "batch", "autoreset", "note")
@@ -170,7 +170,9 @@ def plot_history(out_dir: Path) -> Path | None:
         ax.set_ylim(bottom=0)
         ax.grid(True, alpha=0.3)
     fig.autofmt_xdate()
-    fig.suptitle("Benchmark history (results/benchmark/benchmark.csv, full runs)")
+    where = out_dir.resolve()
+    where = where.relative_to(ROOT) if where.is_relative_to(ROOT) else where
+    fig.suptitle(f"Benchmark history ({where}/benchmark.csv, full runs)")
     fig.tight_layout()
     path = out_dir / "history.png"
     fig.savefig(path, dpi=110)
