@@ -108,13 +108,15 @@ def test_no_import_cycle():
 
 
 # Layers, lowest first: a module may import its own layer and the layers below, never above.
-# envs, bots and rendering share a layer (the envs build the views bots act on, take bots as
-# opponents and render themselves; the bots use the tasks' rules and geometry; the renderer
-# plays games between bots); the cycle test above keeps them acyclic.
+# The bot contract (views, plans, the preview, the turn the env and the preview share, the action
+# codec) lies below both the bots and the envs; envs and rendering share a layer above the bots (the
+# envs take bots as opponents and render themselves); the cycle test above keeps them acyclic.
 LAYERS = (
     ("billiards_env.physics",),
     ("billiards_env.rules",),
-    ("billiards_env.envs", "billiards_env.bots", "billiards_env.rendering"),
+    ("billiards_env.contract",),
+    ("billiards_env.bots",),
+    ("billiards_env.envs", "billiards_env.rendering"),
     ("billiards_env.studies", "billiards_env.testing", "billiards_env"),
     ("billiards_env.play",),  # the play server: an app on top of the library (nothing in it is imported below)
     ("agents",),
@@ -133,7 +135,8 @@ def layer_of(mod: str) -> int:
 
 
 def test_layers_only_look_down():
-    """physics below rules below envs and bots, the library below agents and scripts:
+    """physics below rules below the bot contract below the bots below the envs, the library below agents and
+    scripts (so no bots module imports envs):
     no import (lazy ones included) reaches up a layer."""
     bad = [f"{a} (layer {layer_of(a)}) imports {b} (layer {layer_of(b)})"
            for a, targets in import_graph().items() for b in sorted(targets) if layer_of(b) > layer_of(a)]
@@ -141,7 +144,8 @@ def test_layers_only_look_down():
 
 
 def test_layer_check_sees_a_violation():
-    assert layer_of("billiards_env.physics.simulate") == 0 and layer_of("billiards_env.bots.ghost") == 2
-    assert layer_of("billiards_env") == 3 and layer_of("billiards_env.play.app") == 4
-    assert layer_of("agents.sb3.training") == 5
+    assert layer_of("billiards_env.physics.simulate") == 0 and layer_of("billiards_env.contract.turn") == 2
+    assert layer_of("billiards_env.bots.ghost") == 3 and layer_of("billiards_env.envs.games.core") == 4
+    assert layer_of("billiards_env") == 5 and layer_of("billiards_env.play.app") == 6
+    assert layer_of("agents.sb3.training") == 7
     assert layer_of("billiards_env.envs.games.versus") < layer_of("agents.evaluation.entrants")

@@ -17,7 +17,7 @@ import numpy as np
 from gymnasium import spaces
 
 from billiards_env.bots.learned.game_view import AGENT_ACTION_DIM, OnePlayerView as GameView  # noqa: F401
-from billiards_env.envs.unwrap import env_chain
+from billiards_env.contract.unwrap import env_chain
 from billiards_env.envs.games import GameCore
 
 

@@ -55,7 +55,7 @@ def env_indices(n: int, indices: VecEnvIndices) -> list[int]:
 
 def native_vec_env(env) -> "NativeVecEnv":
     """The ``NativeVecEnv`` under SB3 wrappers (VecNormalize, features)."""
-    from billiards_env.envs.unwrap import env_chain
+    from billiards_env.contract.unwrap import env_chain
 
     for e in env_chain(env):
         if isinstance(e, NativeVecEnv):

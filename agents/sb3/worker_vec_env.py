@@ -64,7 +64,7 @@ class TableEnvSpec(NamedTuple):
 
 def find_workers(env) -> "WorkerVecEnv | None":
     """The ``WorkerVecEnv`` under SB3 wrappers, or None when the tables are in this process."""
-    from billiards_env.envs.unwrap import env_chain
+    from billiards_env.contract.unwrap import env_chain
 
     return next((e for e in env_chain(env) if isinstance(e, WorkerVecEnv)), None)
 

@@ -19,7 +19,7 @@ import numpy as np
 from ..physics import constants as C
 from ..physics.strike import Shots
 from ..rules.three_cushion import point_made
-from .plan import ShotPlan
+from ..contract.plan import ShotPlan
 
 DEFAULT_K = 96       # candidate strikes per table
 TOP = 6              # candidates re-played under noise

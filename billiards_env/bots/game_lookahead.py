@@ -62,7 +62,7 @@ from ..physics.strike import Shots
 from ..rules import records as RR
 from .geometry.lines import blocked, ghost_ball
 from .ghost import GhostBot
-from .plan import ShotPlan
+from ..contract.plan import ShotPlan
 
 _jit = numba.njit(cache=True, nogil=True)
 

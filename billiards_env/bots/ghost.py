@@ -20,8 +20,8 @@ a full hit its target into the pocket straight ahead of it, a searched
 shot (a safety) a safety; a pot on the 10 is chosen in the simulator as
 the 8 is.
 
-It acts on a ``GameView`` and returns a ``ShotPlan`` (``bots.view``,
-``bots.plan``); every look ahead goes through ``GameView.preview``.
+It acts on a ``GameView`` and returns a ``ShotPlan`` (``contract.view``,
+``contract.plan``); every look ahead goes through ``GameView.preview``.
 """
 from __future__ import annotations
 
@@ -29,14 +29,14 @@ import math
 
 import numpy as np
 
-from ..envs.target_frame import CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG
-from ..envs.tasks.nine_ball import break_shots
+from ..contract.pockets import CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG
+from .geometry.breaks import break_shots
 from ..physics.noise import perturb
 from ..physics.strike import Shots
 from ..rules import records as R
 from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP
 from . import geometry as G
-from .plan import ShotPlan
+from ..contract.plan import ShotPlan
 
 APPROACH_CORNER = math.radians(CORNER_ACCEPT_DEG)  # steepest approach to a corner pocket a pot accepts
 APPROACH_SIDE = math.radians(SIDE_ACCEPT_DEG)      # and to a side pocket (envs/target_frame.py)

@@ -36,8 +36,8 @@ from ..physics.noise import NoiseConfig
 from ..physics.strike import Shots
 from . import geometry as G
 from .one_player import SearchPolicy
-from .plan import ShotPlan
-from .preview import rest_state
+from ..contract.plan import ShotPlan
+from ..contract.preview import rest_state
 
 # a score this small still beats "no candidate works"; it orders the fallbacks
 # by the search's closeness to the ghost-ball shot

@@ -1,7 +1,7 @@
 """The one-player tasks' baseline bots (``random``, ``ghost``, ``search<K>``).
 
 A one-player bot acts like a game bot, on a read-only ``TaskView``
-(``bots.view``: float64 positions, the legal target, the equipment, the
+(``contract.view``: float64 positions, the legal target, the equipment, the
 noise and the task's rules) and returns a ``ShotPlan`` (only its shots
 matter here) or the env's actions [n, 4]. The env turns a plan into its
 actions with its own inverse mapping (``actions_of``), so a bot works with
@@ -25,12 +25,12 @@ from typing import Protocol
 
 import numpy as np
 
-from ..envs.unwrap import env_chain
+from ..contract.unwrap import env_chain
 from ..physics import BallState
 from ..physics.strike import Shots, draw_to_speed
 from . import geometry as G
-from .plan import ShotPlan
-from .preview import play_shots, rest_state
+from ..contract.plan import ShotPlan
+from ..contract.preview import play_shots, rest_state
 
 
 class Policy(Protocol):
@@ -41,7 +41,7 @@ class Policy(Protocol):
 
 def task_env(env):
     """The native one-player vector env (or core) under wrappers: the first
-    env of ``envs.unwrap.env_chain(env)`` that has ``view()`` and ``actions_of()``."""
+    env of ``contract.unwrap.env_chain(env)`` that has ``view()`` and ``actions_of()``."""
     for e in env_chain(env):
         if hasattr(e, "view") and hasattr(e, "actions_of"):
             return e

@@ -4,7 +4,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..physics.strike import Shots, draw_to_speed
-from .plan import ShotPlan
+from ..contract.plan import ShotPlan
 
 N_POCKETS = 6
 

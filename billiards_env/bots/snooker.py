@@ -24,7 +24,7 @@ from ..physics.strike import Shots
 from ..rules import records as R
 from . import geometry as G
 from .ghost import GhostBot
-from .plan import ShotPlan
+from ..contract.plan import ShotPlan
 
 # Points of the D tried for ball in hand: (fraction of the radius, angle from the baulk line's +x end, deg).
 D_SPOTS = ((0.0, 90.0), (0.5, 10.0), (0.5, 90.0), (0.5, 170.0), (0.95, 20.0), (0.95, 90.0), (0.95, 160.0),

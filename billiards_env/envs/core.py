@@ -27,78 +27,18 @@ import numpy as np
 from ..physics import BallState, SimOptions, simulate
 from ..physics.noise import OFFSET_SAFETY, clip_offset as _clip_offset, perturb  # noqa: F401 (OFFSET_SAFETY re-exported)
 from ..physics.strike import Shots, apply_strike, draw_to_speed, speed_to_draw
-from ..bots.view import TaskView
+from ..contract.codec import ShotContext, _action_to_shot, _context, shot_actions
+from ..contract.outcome import ShotOutcome
+from ..contract.view import TaskView
 from . import target_frame
 from .config import TaskConfig
 from .impact import impact_actions, impact_phis
 from .streams import TableStreams, place_balls
-from .tasks.base import ShotOutcome
 from .tasks.registry import get_task
 
 
 
-# Per-step bookkeeping over all tables, fused into single passes (numpy would
-# take one pass, and a temporary, per operation).
 _jit = numba.njit(cache=True, nogil=True)
-
-
-@_jit
-def _context(pos, tgt, pockets, diag, aim, phi, ang):
-    """Per table with legal target ``tgt`` (-1 none): Phi = -(its distance to
-    the nearest pocket centre) / diag (0 without target or pockets) into
-    ``phi`` and, if ``aim``, the direction cue ball -> target (rad, 0 without
-    target) into ``ang``."""
-    for e in range(pos.shape[0]):
-        t = tgt[e]
-        phi[e] = 0.0
-        ang[e] = 0.0
-        if t < 0:
-            continue
-        if aim:
-            ang[e] = math.atan2(pos[e, t, 1] - pos[e, 0, 1], pos[e, t, 0] - pos[e, 0, 0])
-        if pockets.shape[0] == 0:
-            continue
-        d2 = math.inf
-        for p in range(pockets.shape[0]):
-            dx, dy = pos[e, t, 0] - pockets[p, 0], pos[e, t, 1] - pockets[p, 1]
-            d2 = min(d2, dx * dx + dy * dy)
-        phi[e] = -math.sqrt(d2) / diag
-
-
-@_jit
-def _action_to_shot(actions, base, lo, hi, limit, out):
-    """Actions [n, 4] -> rows (phi, draw, a, b) of ``out`` [4, n]: clipped to
-    [-1, 1]; phi = base + pi * a0 wrapped to [-pi, pi); (a, b) scaled
-    radially just inside the miscue limit (``_clip_offset``)."""
-    for e in range(actions.shape[0]):
-        a0 = min(max(actions[e, 0], -1.0), 1.0)
-        a1 = min(max(actions[e, 1], -1.0), 1.0)
-        a2 = min(max(actions[e, 2], -1.0), 1.0)
-        a3 = min(max(actions[e, 3], -1.0), 1.0)
-        out[0, e] = (base[e] + math.pi * a0 + math.pi) % (2 * math.pi) - math.pi
-        out[1, e] = lo + (a1 + 1.0) * 0.5 * (hi - lo)
-        out[2, e], out[3, e] = _clip_offset(a2 * limit, a3 * limit, limit)
-
-
-def shot_actions(shots, origin, min_draw: float, params, log_speed: bool = False) -> np.ndarray:
-    """The inverse of ``_action_to_shot`` on the unclipped range: ``Shots``
-    (absolute aim phi, speed, tip offsets a, b; arrays [n] or scalars) ->
-    actions a0..a3 [n, 4], not yet clipped: a0 the aim relative to
-    ``origin`` [n] over pi, wrapped to [-1, 1); a1 the cue draw between
-    ``min_draw`` and ``params.max_draw`` (linear, or geometric with
-    ``log_speed``); a2, a3 the offsets over the miscue limit. The one
-    mapping of the one-player tasks and the games' ``ActionCodec``."""
-    n = len(origin)
-    phi, speed, a, b = (np.broadcast_to(np.asarray(v, dtype=np.float64), (n,)) for v in shots)
-    rel = (phi - origin) / math.pi
-    rel = (rel + 1.0) % 2.0 - 1.0
-    lo, hi, lim = min_draw, params.max_draw, params.miscue_limit
-    draw = speed_to_draw(speed, params)
-    if log_speed:
-        a1 = 2.0 * np.log(np.maximum(draw, lo) / lo) / math.log(hi / lo) - 1.0
-    else:
-        a1 = 2.0 * (draw - lo) / (hi - lo) - 1.0
-    return np.stack([rel, a1, a / lim, b / lim], axis=1)
 
 
 @_jit
@@ -114,20 +54,6 @@ def _observe(pos, pocket, tgt, shots, max_shots, width, length, obs):
         if tgt[e] > 0:
             obs[e, 3 * B + tgt[e]] = 1.0
         obs[e, 4 * B] = min(shots[e] / max_shots, 1.0)
-
-
-@dataclasses.dataclass(frozen=True, eq=False)
-class ShotContext:
-    """What every shot of the current tables is relative to, arrays [N]:
-    ``target`` the legal target ball (int, -1 if none), ``aim_origin`` the
-    direction (rad) that action a0 = 0 aims at (cue ball -> target for
-    ``aim="relative"``, 0 for ``"absolute"`` or without target) and
-    ``potential`` Phi = -(distance of the target to its nearest pocket) /
-    table diagonal (0 without target), the shaping potential."""
-
-    target: np.ndarray
-    aim_origin: np.ndarray
-    potential: np.ndarray
 
 
 class BilliardsCore:
@@ -237,7 +163,8 @@ class BilliardsCore:
         return TaskView.build(task=self.cfg.task, rows=idx.copy(), pos=s.pos[idx], pocket=s.pocket[idx],
                               target=self.legal_target()[idx], shots=self.shots[idx], table=self.table,
                               params=self.params, effects=self.effects, models=self.models, noise=self.cfg.noise,
-                              min_draw=self.cfg.min_draw, rules=self.task, _observe=lambda: self.observe()[idx])
+                              min_draw=self.cfg.min_draw, rules=self.task, solver=self.cfg.solver, dt=self.cfg.dt,
+                              _observe=lambda: self.observe()[idx])
 
     def actions_of(self, plan, idx=None) -> np.ndarray:
         """The actions [n, 4] (float32, clipped) that play a bot's ``ShotPlan``

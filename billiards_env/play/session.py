@@ -2,7 +2,7 @@
 ``GameRecorder`` and the bots of the players who are not people.
 
 Every turn goes through the library: a person's shot is encoded with the
-table's ``ActionCodec`` (``envs.games.codec``) and played by
+table's ``ActionCodec`` (``contract.codec``) and played by
 ``GameCore.step``, a bot's through ``envs.games.play.bot_actions``, so the
 rules, the simulator and the record are the ones every env and match uses.
 The recorder (``rendering.game_replay``) writes each turn as a replay entry;

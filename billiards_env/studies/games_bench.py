@@ -37,8 +37,9 @@ from ..envs.games.vector import GameVectorEnv
 
 
 def _timed_simulate(calls: dict):
-    """Wrap ``physics.simulate`` as seen by the bots' preview so its time is counted."""
-    pv = importlib.import_module("billiards_env.bots.preview")  # the module (bots re-exports the function)
+    """Wrap ``physics.simulate`` as seen by ``contract.turn`` (every game shot: the env's and the bots'
+    previews) so its time is counted."""
+    pv = importlib.import_module("billiards_env.contract.turn")
     inner = pv.simulate
 
     def timed(*a, **kw):
@@ -90,7 +91,7 @@ def games_per_second(game: str = "nine_ball", n_tables: int = 1024, n_games: int
     sim, rules = core.timers["simulate"], core.timers["rules"]
     return dict(game=game, tables=n_tables, policies=list(policies), noise=noise, rule_options=dict(rule_options or {}),
                 games=games, steps=steps, seconds=wall, games_per_second=games / wall, shots_per_game=float(np.mean(shots)),
-                split=dict(simulate=sim, rules=rules, policies=t_pol - psim["t"], policy_simulate=psim["t"],
+                split=dict(simulate=sim, rules=rules, policies=t_pol - (psim["t"] - sim), policy_simulate=psim["t"] - sim,
                            other=wall - sim - rules - t_pol))
 
 

@@ -4,7 +4,7 @@ import pytest
 
 from billiards_env.bots import make_bot
 from billiards_env.bots.game_lookahead import GameLookahead
-from billiards_env.bots.plan import ShotPlan
+from billiards_env.contract import ShotPlan
 from billiards_env.physics.strike import Shots
 from billiards_env.rules import records as R
 from billiards_env.testing.positions import game_table

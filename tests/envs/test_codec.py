@@ -1,4 +1,4 @@
-"""The game envs' action convention (``envs.games.codec.ActionCodec``): what a
+"""The game envs' action convention (``contract.codec.ActionCodec``): what a
 view's codec encodes is what the env's step decodes, placements and aims
 included, on tables in every phase of a game."""
 import math
@@ -46,7 +46,7 @@ def test_encoded_plans_decode_to_the_same_shots(game, rounds):
     # the same actions through the env's decoding
     hand = view.in_hand
     spots_plan, _ = view.legal_placement(want[hand], np.nonzero(hand)[0])
-    spots_env, _ = core.legal_placement(core.placement_of(a[hand]), idx[hand])
+    spots_env, _ = core.legal_placement(core.codec(idx).placement_of(a[hand]), idx[hand])
     assert np.allclose(spots_env, spots_plan, atol=1e-9)
     if hand.any():
         core.state.pos[idx[hand], 0] = spots_env

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from billiards_env.bots import make_bot
-from billiards_env.bots.plan import ShotPlan
+from billiards_env.contract import ShotPlan
 from billiards_env.envs.games import GameConfig, GameCore
 from billiards_env.physics.strike import Shots
 from billiards_env.rules import records as R

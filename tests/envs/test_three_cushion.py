@@ -6,7 +6,7 @@ import pytest
 
 import billiards_env  # noqa: F401 (registers the ids)
 from billiards_env.envs.games import GameConfig, GameCore
-from billiards_env.envs.games.setup import hand_over, respot_frozen, restart_position
+from billiards_env.rules.respot import hand_over, respot_frozen, restart_position
 from billiards_env.envs.games.vector import GameVectorEnv
 from billiards_env.physics.table import Table
 from billiards_env.rules import records as R
@@ -165,21 +165,6 @@ def test_restart_position_puts_the_movers_ball_beside_the_head_spot():
     assert np.allclose(pos[1], [(1.1, 2.0), (0.3, 0.4), (0.5, 2.5)])
 
 
-def _restart_wired() -> bool:
-    """Whether the env's step re-places the balls on ``ShotRecord.restart`` (the game core, or the turn
-    function the core is being moved to, calls ``setup.restart_position``)."""
-    import importlib
-    import inspect
-    for name in ("billiards_env.envs.games.core", "billiards_env.contract.turn"):
-        try:
-            if "restart_position" in inspect.getsource(importlib.import_module(name)):
-                return True
-        except ImportError:
-            pass
-    return False
-
-
-@pytest.mark.skipif(not _restart_wired(), reason="GameCore.step does not yet call setup.restart_position")
 def test_equal_innings_last_inning_played_from_the_starting_position():
     """Through the simulator: tables where the starter, one point short, plays random shots; where a shot makes
     the point the starter has reached the target, and the opponent's last inning begins with the balls at the

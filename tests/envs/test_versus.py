@@ -104,7 +104,7 @@ def test_view_places_the_cue_ball_where_the_shot_is_played_from():
         on = np.nonzero(st.pocket[j, 1:] < 0)[0] + 1
         assert (np.linalg.norm(st.pos[j, on] - st.pos[j, 0], axis=1) >= 2 * R_ - 1e-12).all()
     a = view.complete_actions(np.zeros((16, 4), dtype=np.float32))
-    np.testing.assert_allclose(env.core.placement_of(a[k].astype(np.float64)), st.pos[k, 0], atol=1e-5)
+    np.testing.assert_allclose(env.core.codec(np.arange(16)).placement_of(a[k].astype(np.float64)), st.pos[k, 0], atol=1e-5)
     spot = st.pos[k, 0].copy()
     obs, r, term, trunc, info = env.step(a)
     np.testing.assert_allclose(info["placement"][k], spot, atol=1e-5)
@@ -131,7 +131,7 @@ def test_view_shots_keep_their_aim_and_the_menu_calls_its_pocket():
     shots = env.core.actions_to_shots(a[:, :4].astype(np.float64), idx)
     d = (shots.phi - m.phi[:, 2] + np.pi) % (2 * np.pi) - np.pi
     np.testing.assert_allclose(d[play], 0.0, atol=1e-5)
-    assert (env.core.called_pocket(a.astype(np.float64))[play] == 2).all()
+    assert (env.core.codec(idx).called_pocket(a.astype(np.float64))[play] == 2).all()
 
 
 def test_game_baselines_and_names():

@@ -20,6 +20,7 @@ One job per module:
   contact and one-rail kick shots: used by the one-player bots
   (``bots.one_player``, ``bots.lookahead``) and the agents' features and
   shot menu;
+- ``breaks``: the seeded 9-ball break (the NineBall task's and ``ghost``'s);
 - ``game``: the game bots' per-table searches (``bots.ghost``,
   ``bots.search``): the easiest legal pot, a ball-in-hand spot, open lines.
 

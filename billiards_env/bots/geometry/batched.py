@@ -15,7 +15,7 @@ import math
 import numba
 import numpy as np
 
-from ...envs.target_frame import CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG
+from ...contract.pockets import CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG
 from ...physics import PhysicsParams, Table
 from ...physics.strike import Shots
 from .lines import (MIN_CUE_PATH, MIN_LINE, approach_cos, as_bool, blocked, cut_cos_of_units, ghost_ball,

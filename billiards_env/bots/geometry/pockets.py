@@ -9,8 +9,8 @@ import math
 
 import numpy as np
 
-from ...envs.target_frame import pocket_axes as _pocket_axes
-from ...envs.target_frame import side_pockets
+from ...contract.pockets import pocket_axes as _pocket_axes
+from ...contract.pockets import side_pockets
 from ...physics import Table
 
 

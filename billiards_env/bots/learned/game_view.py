@@ -32,11 +32,11 @@ import types
 
 import numpy as np
 
-from ...envs.core import ShotContext
-from ...envs.games.codec import ACTION_DIM, N_POCKETS
+from ...contract.codec import ShotContext
+from ...contract.codec import ACTION_DIM, N_POCKETS
 from ...rules import records as R
 from ..ghost import GhostBot, PotGeometry
-from ..preview import rest_state
+from ...contract.preview import rest_state
 
 AGENT_ACTION_DIM = 4  # the policy's part of a game action: aim, draw, side, height (a0..a3)
 

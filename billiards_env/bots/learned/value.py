@@ -15,7 +15,7 @@ here. Its input (``value_features``, one row per table, in the shooter's frame):
   (``ball_eases``). They say which balls a run must still get position on, which the best pot's ease alone
   does not.
 
-Fouls in a row are not an input: the previewed leaves (``bots.preview.Preview``) carry the next shooter's
+Fouls in a row are not an input: the previewed leaves (``contract.preview.Preview``) carry the next shooter's
 constraints but not the fouls count, and the value must be computed the same way at the leaves as in training.
 
 The network is a correction to the lookahead's own leave model: its output is

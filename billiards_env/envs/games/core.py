@@ -46,18 +46,17 @@ import time
 
 import numpy as np
 
-from ...bots.view import GameView
-from ...physics import BallState, Effects, Models, PhysicsParams, SimOptions, Table, simulate
-from ...physics.strike import apply_strike
-from ...rules import GameState, ShotInput, get_rules
+from ...contract.codec import ACTION_DIM, N_POCKETS, ActionCodec, ShotContext, _context, placement_to_actions
+from ...contract.turn import Equipment, play_turn
+from ...contract.view import GameView
+from ...physics import BallState, Effects, Models, PhysicsParams, Table
+from ...rules import GameState, get_rules
 from ...rules import records as R
 from ..config import NoiseConfig, _number
-from ..core import BilliardsCore, ShotContext, _context, _observe
+from ..core import BilliardsCore, _observe
 from ..streams import TableStreams
-from .codec import ACTION_DIM, N_POCKETS, ActionCodec, placement_to_actions
 from ...rules.placement import FOOT_SPOT, HEAD_STRING, d_of, legal_spots
-from ...rules.snooker import respot_colours
-from .setup import RACKS, hand_over, loosen, rack, respot, respot_frozen
+from .setup import RACKS, loosen, rack
 
 EXTRA_OBS = 13  # observation entries after the one-player layout (see ``observation_doc``)
 GAMES = ("nine_ball", "eight_ball", "ten_ball", "three_cushion", "snooker")
@@ -281,10 +280,6 @@ class GameCore(BilliardsCore):
         """Cue-ball positions [n, 2] (m) -> action components a4, a5 [n, 2]."""
         return placement_to_actions(xy, self.table, self.params)
 
-    def placement_of(self, a: np.ndarray) -> np.ndarray:
-        R_, t = self.params.R, self.table
-        return R_ + (a[:, 4:6] + 1.0) / 2.0 * np.array([t.width - 2 * R_, t.length - 2 * R_])
-
     def legal_placement(self, xy: np.ndarray, idx) -> tuple[np.ndarray, np.ndarray]:
         """The legal cue-ball spots nearest to ``xy`` [n, 2] on tables
         ``idx`` under their ball-in-hand constraint: (spots [n, 2], moved [n])."""
@@ -296,95 +291,42 @@ class GameCore(BilliardsCore):
         return legal_spots(xy, pos, pocket, kitchen, self.table.width, self.table.length, self.params.R, self.pockets,
                            d_of(self.table))  # snooker: in hand means in the D
 
-    def called_pocket(self, a: np.ndarray) -> np.ndarray:
-        return np.minimum(np.floor((a[:, 7] + 1.0) / 2.0 * N_POCKETS), N_POCKETS - 1).astype(np.int64)
-
-    def called_ball(self, a: np.ndarray) -> np.ndarray:
-        """a8 -> the called ball (0: a called safety; 10-ball)."""
-        k = self.n_balls  # calls: 0 (safety) and the object balls 1 .. n_balls - 1
-        return np.minimum(np.floor((a[:, 8] + 1.0) / 2.0 * k), k - 1).astype(np.int64)
-
     # --- one shot -------------------------------------------------------------------
     def step(self, actions: np.ndarray, idx) -> dict:
         """Play validated actions [n, action_dim] on tables ``idx`` (each table's
-        shooter's): place the cue ball, shoot (or pass), judge, respot;
-        return the record, the reward of the player who played and the info."""
+        shooter's): decode them (``ActionCodec.decode``), then play the turn
+        (``contract.turn.play_turn``: place the cue ball, shoot or pass,
+        judge, respot), the one way a bot's preview plays it too; return the
+        record, the reward of the player who played and the info."""
         idx = np.asarray(idx, dtype=np.int64)
-        n, B = len(idx), self.n_balls
         for listener in self.listeners:
             listener.before_step(self, idx, actions)
         clipped = (np.abs(actions) > 1.0).any(axis=1)
-        a = np.clip(actions, -1.0, 1.0)
-        c = self.constraints()
-        hand, may_pass = c.ball_in_hand[idx], c.may_pass[idx]
-        decl = a[:, 6] > 0
-        passed = may_pass & decl
-        push = c.push_out_allowed[idx] & decl
-        called = np.where(c.call_needed[idx], self.called_pocket(a), -1)
-        ball = (np.where(c.call_needed[idx], self.called_ball(a), R.CALL_NONE) if self.rules.calls_ball
-                else np.full(n, R.CALL_NONE, dtype=np.int64))
-        moved = np.zeros(n, dtype=bool)
-        h = np.nonzero((hand != R.IN_HAND_NONE) & ~passed)[0]
-        if len(h):
-            spots, moved[h] = self.legal_placement(self.placement_of(a[h]), idx[h])
-            self.state.pos[idx[h], 0] = spots
-            self.state.pocket[idx[h], 0] = -1
-            self._context = None
-        start = self.state.take(idx)
-        placed = start.pos[:, 0].copy()  # where each cue ball is played from
-        shoot = np.nonzero(~passed)[0]
-        if (start.pocket[shoot, 0] >= 0).any():
-            raise RuntimeError("the cue ball is pocketed without ball in hand: the game has ended, reset it")
-        pocket_after = start.pocket.copy()
-        pos_after = start.pos.copy()
-        first = np.full(n, -1, dtype=np.int64)
-        rails = np.zeros((n, B), dtype=np.int64)
-        object_rails = np.zeros((n, B), dtype=np.int64)
-        n_events, sim_time = np.zeros(n, dtype=np.int64), np.zeros(n)
-        K = self.rules.contacts
-        contacts = np.full((n, K, 2), -1, dtype=np.int64) if K else None
-        n_contacts = np.zeros(n, dtype=np.int64) if K else None
-        if len(shoot):
-            sel = idx[shoot]
-            shots = self.apply_noise(self.actions_to_shots(np.ascontiguousarray(a[shoot, :4]), sel), sel,
-                                     self.noise_scale[sel])
-            t0 = time.perf_counter()
-            struck = start.take(shoot)  # a copy, struck in place: the actions were checked at the boundary
-            apply_strike(struck, *shots, self.params.R)
-            res = self.simulate(struck)
-            self.timers["simulate"] += time.perf_counter() - t0
-            pocket_after[shoot], pos_after[shoot] = res.state.pocket, res.state.pos
-            first[shoot] = res.first_contact
-            rails[shoot] = res.cushion_hits_after_contact
-            object_rails[shoot] = res.cushion_hits
-            n_events[shoot], sim_time[shoot] = res.n_events, res.time
-            if K:
-                contacts[shoot], n_contacts[shoot] = res.contacts, res.n_contacts
-            if res.events is not None:
-                for j, k in enumerate(sel):
-                    self.last_start[k] = start.take([shoot[j]])
-                    self.last_events[k] = res.events[j]
+        c = self.constraints().take(idx)
+        plan, moved = self.codec(idx).decode(actions)
+        scale = self.noise_scale
+        draw = lambda rows: self.streams.normal(idx[rows], 4) * scale[idx[rows]][:, None]  # noqa: E731
         t0 = time.perf_counter()
-        shot = ShotInput(start.pocket, pocket_after, first, rails, object_rails, push, called, passed, ball,
-                         contacts, n_contacts, pos_before=start.pos if self.rules.reads_position else None)
-        rec, game = self.rules.judge(self.game.take(idx), shot)
-        self.timers["rules"] += time.perf_counter() - t0
-        (respot_colours if self.table.marks is not None else respot)(pos_after, pocket_after, rec.respot, self.table,
-                                                                     self.params.R, self.pockets)
-        if self.rules.own_cue_balls:  # the incoming player's ball to slot 0; a frozen cue ball respotted
-            hand_over(pos_after, rec.turn_over & ~rec.game_over)
-            respot_frozen(pos_after, self.table, self.params.R)
-        self.state.pos[idx], self.state.pocket[idx] = pos_after, pocket_after
+        turn = play_turn(self.rules, self.equipment, self.game.take(idx), c, self.state.pos[idx],
+                         self.state.pocket[idx], plan, self.cfg.noise, draw, self.record)
+        self.timers["simulate"] += turn.sim_wall
+        self.timers["rules"] += time.perf_counter() - t0 - turn.sim_wall
+        if turn.events is not None:
+            for j, k in enumerate(idx[turn.shoot]):
+                self.last_start[k] = turn.start.take([turn.shoot[j]])
+                self.last_events[k] = turn.events[j]
+        rec, game, shot = turn.record, turn.state, turn.shot
+        self.state.pos[idx], self.state.pocket[idx] = turn.pos, turn.pocket
         self.game.put(idx, game)
         self._changed()
         truncated = ~game.over & (game.shots >= self.config.max_shots)
         reward = np.where(rec.winner < 0, 0.0, np.where(rec.winner == rec.shooter, 1.0, -1.0))
         info = dict(legal=rec.legal, foul=rec.foul, turn_over=rec.turn_over, game_over=rec.game_over,
                     winner=rec.winner, end=rec.end, push_out=rec.push_out, passed=rec.passed, shooter=rec.shooter,
-                    respotted=rec.respot, option=rec.option, pocketed=shot.pocketed, first_contact=first,
-                    called_pocket=called, called_ball=ball, points=rec.points, score=game.score.copy(),
-                    placement=placed, placement_moved=moved, action_clipped=clipped, n_events=n_events,
-                    sim_time=sim_time, shot=game.shots.copy())
+                    respotted=rec.respot, option=rec.option, pocketed=shot.pocketed, first_contact=shot.first_contact,
+                    called_pocket=shot.called_pocket, called_ball=shot.called_ball, points=rec.points,
+                    score=game.score.copy(), placement=turn.placed, placement_moved=moved & ~shot.passed,
+                    action_clipped=clipped, n_events=turn.n_events, sim_time=turn.sim_time, shot=game.shots.copy())
         if self.rules.foul_points:  # snooker: a foul's points to the opponent
             info["penalty"] = rec.penalty
         out = dict(record=rec, reward=reward, terminated=game.over.copy(), truncated=truncated, info=info)
@@ -392,14 +334,11 @@ class GameCore(BilliardsCore):
             listener.after_step(self, idx, out)
         return out
 
-    def simulate(self, state: BallState):
-        """``BilliardsCore.simulate``, keeping the cue ball's contacts in order where the rules read them."""
-        if not self.rules.contacts:
-            return super().simulate(state)
+    @property
+    def equipment(self) -> Equipment:
+        """The table, physics, effects, models and solver every shot of these tables is played with."""
         c = self.cfg
-        return simulate(state, self.table, self.params, solver=c.solver, dt=c.dt, record=self.record,
-                        effects=self.effects, models=self.models,
-                        options=SimOptions(validate=False, contacts=self.rules.contacts, inplace=True))
+        return Equipment(self.table, self.params, self.effects, self.models, c.solver, c.dt)
 
     # --- bots ------------------------------------------------------------------------
     def view(self, idx) -> GameView:
@@ -417,7 +356,7 @@ class GameCore(BilliardsCore):
             groups=g.group[idx], fouls=g.fouls[idx], shots=g.shots[idx], table=self.table, params=self.params,
             effects=self.effects, models=self.models, noise=self.cfg.noise, noise_scale=self.noise_scale[idx],
             min_draw=self.cfg.min_draw, rules=self.rules, state=g.take(idx), codec=codec,
-            _observe=lambda: self.observe()[idx])
+            solver=self.cfg.solver, dt=self.cfg.dt, _observe=lambda: self.observe()[idx])
 
     def codec(self, idx) -> ActionCodec:
         """The ``ActionCodec`` (the action convention) of tables ``idx``."""
@@ -433,7 +372,7 @@ class GameCore(BilliardsCore):
         tgt = np.maximum(ctx.target[idx], 0)
         aim = np.where(is_break[:, None], np.array([t.width / 2, FOOT_SPOT * t.length]), pos[np.arange(len(idx)), tgt])
         return ActionCodec(ctx.aim_origin[idx], aim, in_hand, place, t, self.params, self.cfg.min_draw,
-                           tgt, self.action_dim if self.rules.calls_ball else 0, self.n_balls)
+                           tgt, self.action_dim if self.rules.calls_ball else 0, self.n_balls, pos[:, 0], is_break)
 
     def actions_of(self, plan, idx, codec: ActionCodec | None = None) -> np.ndarray:
         """The actions [n, action_dim] (float64, validated) that play a bot's

@@ -24,10 +24,10 @@ bot needs is on the view:
   factor of ``variable`` noise; 1 otherwise);
 - helpers: ``legal_placement`` (the ball-in-hand test), ``preview`` (try
   candidate shots in the simulator and judge them by the rules: see
-  ``bots.preview``), ``take`` (a view of some rows);
+  ``contract.preview``), ``take`` (a view of some rows);
 - for learned bots that act in the env's own action space: ``observation()``
   (the env's float32 observation rows) and ``codec`` (the env's action
-  convention, ``envs.games.codec.ActionCodec``: ``encode`` shots, the aim
+  convention, ``contract.codec.ActionCodec``: ``encode`` shots, the aim
   origin, ``placement_to_actions``); such a bot may return actions [n, 8].
 
 All arrays are read-only; copy one to change it.
@@ -42,6 +42,7 @@ from ..physics import Effects, Models, PhysicsParams, Table
 from ..physics.noise import NoiseConfig
 from ..rules import records as R
 from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP, d_of, legal_spots
+from .turn import Equipment
 
 
 @dataclasses.dataclass(frozen=True)
@@ -97,7 +98,9 @@ class GameView:
     min_draw: float               # m: the shortest cue draw the env plays (its slowest shot)
     rules: object                 # the ruleset (``rules.get_rules(game)``): ``preview`` judges with it
     state: R.GameState            # the rows' game states (``preview`` judges from them)
-    codec: object = None          # the env's action convention (``envs.games.codec.ActionCodec``), for learned bots
+    codec: object = None          # the env's action convention (``contract.codec.ActionCodec``), for learned bots
+    solver: str = "event"         # the env's solver (``"event"``, or ``"step"`` with time step ``dt``)
+    dt: float | None = None
     _observe: object = None       # () -> float32 observation rows, or None
 
     @classmethod
@@ -125,6 +128,17 @@ class GameView:
         return np.ascontiguousarray(self.table.geometry(True)[3], dtype=np.float64)
 
     @property
+    def equipment(self) -> Equipment:
+        """What the env simulates every shot with (``contract.turn.Equipment``)."""
+        return Equipment(self.table, self.params, self.effects, self.models, self.solver, self.dt)
+
+    @property
+    def constraints(self) -> R.Constraints:
+        """The rows' shooter constraints as the rules' ``Constraints``."""
+        return R.Constraints(self.to_move, self.ball_in_hand, self.targets, self.push_out_allowed, self.may_pass,
+                             self.call_needed, self.is_break, np.zeros(self.n, dtype=bool))
+
+    @property
     def on_table(self) -> np.ndarray:
         """[n, B] bool: the ball is on the table."""
         return self.pocket < 0
@@ -149,20 +163,20 @@ class GameView:
         return legal_spots(xy, self.pos[rows], self.pocket[rows], self.ball_in_hand[rows] == R.IN_HAND_KITCHEN,
                            self.table.width, self.table.length, self.params.R, self.pockets, d_of(self.table))
 
-    def preview(self, plan, rows=None, noise=None, rng=None):
+    def preview(self, plan, rows=None, noise=None, rng=None, draws=None):
         """Play ``plan`` (one row per entry of ``rows``, default one per view
-        row) on copies of the rows' tables and judge each by the rules:
-        ``bots.preview.Preview``. See ``bots.preview.preview``."""
+        row) on copies of the rows' tables exactly as the env plays it:
+        ``contract.preview.Preview``. See ``contract.preview.preview``."""
         from .preview import preview
-        return preview(self, plan, rows, noise, rng)
+        return preview(self, plan, rows, noise, rng, draws=draws)
 
     def after(self, pv, idx, rows) -> "GameView":
         """The view of the next shooter on the tables that previewed shots ``idx`` [m] (rows of ``pv``, a
-        ``bots.preview.Preview`` of this view) leave; ``rows`` [m]: the view rows those shots were played on
+        ``contract.preview.Preview`` of this view) leave; ``rows`` [m]: the view rows those shots were played on
         (their noise factor carries over). A bot looking at the reply to its shot previews from it."""
         idx, rows = np.asarray(idx, dtype=np.int64), np.asarray(rows, dtype=np.int64)
         if pv.state is None:
-            raise ValueError("GameView.after needs a Preview with its state (bots.preview.preview keeps it)")
+            raise ValueError("GameView.after needs a Preview with its state (contract.preview.preview keeps it)")
         if len(idx) != len(rows):
             raise ValueError(f"GameView.after: {len(idx)} previewed shots, {len(rows)} view rows")
         nx, st = pv.next, pv.state
@@ -172,7 +186,7 @@ class GameView:
             may_pass=nx.may_pass[idx], call_needed=nx.call_needed[idx], is_break=nx.is_break[idx],
             groups=st.group[idx], fouls=st.fouls[idx], shots=st.shots[idx], table=self.table, params=self.params,
             effects=self.effects, models=self.models, noise=self.noise, noise_scale=self.noise_scale[rows],
-            min_draw=self.min_draw, rules=self.rules, state=st.take(idx))
+            min_draw=self.min_draw, rules=self.rules, state=st.take(idx), solver=self.solver, dt=self.dt)
 
     def take(self, rows) -> "GameView":
         """A view of some of this view's rows."""
@@ -219,16 +233,19 @@ class TaskView:
     noise: NoiseConfig
     min_draw: float
     rules: object
+    solver: str = "event"
+    dt: float | None = None
     _observe: object = None
 
-    def preview(self, plan, rows=None, noise=None, rng=None, start=None):
+    def preview(self, plan, rows=None, noise=None, rng=None, start=None, draws=None):
         """Play ``plan`` on copies of the rows' tables (or on ``start``, a
-        ``BallState``) and judge each shot by the task: ``bots.preview.TaskPreview``."""
+        ``BallState``) and judge each shot by the task: ``contract.preview.TaskPreview``."""
         from .preview import preview
-        return preview(self, plan, rows, noise, rng, start)
+        return preview(self, plan, rows, noise, rng, start, draws=draws)
 
     build = classmethod(GameView.build.__func__)
     n = GameView.n
     n_balls = GameView.n_balls
+    equipment = GameView.equipment
     on_table = GameView.on_table
     observation = GameView.observation

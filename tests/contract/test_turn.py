@@ -1,0 +1,129 @@
+"""The preview is the env: ``GameView.preview`` and ``GameCore.step`` play a
+turn through the one ``contract.turn.play_turn``, so the same plan under the
+same noise draws gives the same record, balls, game state and next
+constraints, bit for bit, in every game; and the three cases where the
+preview once disagreed with the env (the 9 pocketed on a foul, a declared
+push-out, a placement without ball in hand) each have their test."""
+from __future__ import annotations
+
+import copy
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from billiards_env.contract import ShotPlan, common_draws
+from billiards_env.envs.games import GAMES, GameConfig, GameCore
+from billiards_env.physics.strike import Shots
+from billiards_env.rules import records as R
+from billiards_env.rules.placement import FOOT_SPOT
+from billiards_env.testing.positions import game_table
+
+N_TABLES = 24
+TURNS = 6  # turns per game: the break, open play, ball in hand, push-outs and passes all come up at this seed
+
+
+def _same(a, b, what):
+    for f in dataclasses.fields(a):
+        x, y = getattr(a, f.name), getattr(b, f.name)
+        if isinstance(x, np.ndarray):
+            assert np.array_equal(x, y), f"{what}.{f.name} differs: preview {x} env {y}"
+
+
+def _actions(rng, core, n):
+    a = rng.uniform(-1, 1, (n, core.action_dim))
+    a[rng.random(n) < 0.3, 6] = 1.0  # declare often: push-outs and passes
+    return a
+
+
+@pytest.mark.parametrize("game", GAMES)
+def test_preview_is_the_env_bit_for_bit(game):
+    """Random positions (the games played on by random turns) and random plans
+    (the env's own decoding of random actions), under the env's noise with
+    the env's own draws: the preview and the step agree on everything."""
+    core = GameCore(GameConfig(game=game, noise="variable"), N_TABLES)
+    idx = np.arange(N_TABLES)
+    core.streams.seed(idx, 100 + idx)
+    core.reset_tables(idx)
+    rng = np.random.default_rng(1)
+    for _ in range(TURNS):
+        view = core.view(idx)
+        actions = _actions(rng, core, N_TABLES)
+        plan, moved = view.codec.decode(actions)
+        shoot = ~(view.may_pass & plan.declare)
+        draws = np.zeros((N_TABLES, 4))
+        draws[shoot] = copy.deepcopy(core.streams).normal(idx[shoot], 4)  # what the step will draw
+        pv = view.preview(plan, noise="env", draws=draws)
+        out = core.step(actions, idx)
+        _same(pv.record, out["record"], "record")
+        assert np.array_equal(pv.pos, core.state.pos) and np.array_equal(pv.pocket, core.state.pocket)
+        _same(pv.state, core.game, "state")
+        _same(pv.next, core.constraints(), "next")
+        assert np.array_equal(pv.turn.placed, out["info"]["placement"])
+        after = view.after(pv, idx, idx)  # the next shooter's view equals the env's own
+        mine = core.view(idx)
+        for f in ("pos", "pocket", "to_move", "ball_in_hand", "targets", "call_needed", "may_pass", "fouls"):
+            assert np.array_equal(getattr(after, f), getattr(mine, f)), f
+        done = np.nonzero(out["terminated"] | out["truncated"])[0]
+        if len(done):
+            core.reset_tables(done)
+
+
+def test_the_nine_pocketed_on_a_foul_is_spotted_in_the_preview():
+    """The cue ball hits the 9 first (the 1 is on) and the 9 drops: a foul, the
+    9 back on the foot spot in the preview's balls and in ``view.after``."""
+    core = game_table("nine_ball", {0: (0.32, 0.32), 9: (0.2, 0.2), 1: (0.9, 1.5)})
+    view = core.view([0])
+    pv = view.preview(ShotPlan.of(Shots(np.array([math.atan2(-1, -1)]), np.array([1.5]), 0.0, 0.0)))
+    assert pv.record.foul[0] == R.FOUL_WRONG_BALL and not pv.record.game_over[0]
+    t = core.table
+    assert pv.pocket[0, 9] == -1
+    assert np.allclose(pv.pos[0, 9], (t.width / 2, FOOT_SPOT * t.length), atol=4 * core.params.R)
+    after = view.after(pv, [0], [0])
+    assert after.on_table[0, 9] and after.in_hand[0]
+
+
+def test_a_declared_push_out_is_previewed_as_a_push_out():
+    """Right after the break the shooter may push out: a declared push-out
+    that touches nothing is legal (the opponent may pass), where the same
+    shot undeclared is a foul."""
+    core = game_table("nine_ball", {0: (0.5, 0.5), 1: (0.9, 1.5), 9: (0.3, 2.0)}, phase=R.PHASE_AFTER_BREAK)
+    view = core.view([0])
+    assert view.push_out_allowed[0]
+    shots = Shots(np.array([math.pi / 2, math.pi / 2]), np.array([0.3, 0.3]), 0.0, 0.0)
+    pv = view.preview(ShotPlan.of(shots, declare=np.array([True, False])), rows=[0, 0])
+    assert pv.record.push_out[0] and pv.record.foul[0] == R.FOUL_NONE and pv.next.may_pass[0]
+    assert pv.record.foul[1] == R.FOUL_NO_CONTACT
+    push = ShotPlan.of(Shots(np.array([math.pi / 2]), np.array([0.3]), 0.0, 0.0), declare=np.array([True]))
+    out = core.step(core.actions_of(push, [0]), [0])
+    assert out["record"].push_out[0] and out["record"].foul[0] == R.FOUL_NONE
+
+
+def test_a_placement_without_ball_in_hand_is_ignored():
+    """A plan's placement counts only with ball in hand: without it the cue
+    ball is played from where it lies, as the env plays it."""
+    core = game_table("nine_ball", {0: (0.5, 0.5), 1: (0.9, 1.5), 9: (0.3, 2.0)})
+    view = core.view([0])
+    assert not view.in_hand[0]
+    plan = ShotPlan.of(Shots(np.array([1.0]), np.array([1.0]), 0.0, 0.0), placement=np.array([[0.6, 1.0]]))
+    pv = view.preview(plan)
+    assert np.array_equal(pv.turn.placed[0], view.pos[0, 0])
+    out = core.step(core.actions_of(plan, [0]), [0])
+    assert np.allclose(out["info"]["placement"][0], (0.5, 0.5))
+
+
+def test_common_draws_give_each_group_the_same_numbers():
+    rng = np.random.default_rng(0)
+    z = common_draws([0, 1, 0, 2, 1], rng)
+    assert z.shape == (5, 4)
+    assert np.array_equal(z[0], z[2]) and np.array_equal(z[1], z[4]) and not np.array_equal(z[0], z[1])
+
+
+def test_preview_draws_are_checked():
+    core = game_table("nine_ball", {0: (0.5, 0.5), 1: (0.9, 1.5), 9: (0.3, 2.0)})
+    plan = ShotPlan.of(Shots(np.array([1.0]), np.array([1.0]), 0.0, 0.0))
+    with pytest.raises(ValueError, match="draws must have shape"):
+        core.view([0]).preview(plan, noise="tournament", draws=np.zeros((2, 4)))
+    with pytest.raises(ValueError, match="needs rng"):
+        core.view([0]).preview(plan, noise="tournament")
