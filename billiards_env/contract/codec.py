@@ -27,7 +27,6 @@ import numpy as np
 from ..physics import PhysicsParams, Table
 from ..physics.noise import clip_offset as _clip_offset
 from ..physics.strike import Shots, draw_to_speed, speed_to_draw
-from ..rules.placement import FOOT_SPOT
 from .plan import ShotPlan
 
 ACTION_DIM = 8
