@@ -23,6 +23,9 @@ docs/bots.md; the module is looked up on PYTHONPATH and in the current
 directory) or the path of a saved model. Noise levels: ``tournament``, ``high`` (5x), ``variable``
 (a factor uniform in [0, 5] per game), ``none``.
 
+Every protocol reports each entrant's compute per shot (wall and CPU
+milliseconds per decided shot, measured where the games are played).
+
 ``--protocol championship``: 8-ball under the 2011 computer pool
 championship's conditions (``studies.championship``): the tournament at
 each of the noise levels ``tournament`` (1x), ``high`` (5x) and
@@ -59,7 +62,7 @@ from billiards_env.rendering import save_replay_html  # noqa: E402
 from billiards_env.studies import match_report  # noqa: E402
 from billiards_env.studies.run_folder import run_folder  # noqa: E402
 from billiards_env.studies.championship import GAME as CHAMPIONSHIP_GAME  # noqa: E402
-from billiards_env.studies.championship import championship, compute_table  # noqa: E402
+from billiards_env.studies.championship import TimedBot, championship, compute_table, per_shot  # noqa: E402
 
 
 def write_replays(folder: Path, results) -> None:
@@ -71,6 +74,17 @@ def write_replays(folder: Path, results) -> None:
             rep.save(stem.with_suffix(".json"))
             save_replay_html(rep, stem.with_suffix(".html"))
             print(f"wrote {stem.with_suffix('.html')} ({len(rep)} shots)")
+
+
+def timed_bot(spec, seed):
+    """An entrant whose decisions are timed (``studies.championship.TimedBot``): compute per shot in every protocol,
+    measured where the games are played (here or on a Ray worker)."""
+    return TimedBot(bot_factory(spec, seed), spec if isinstance(spec, str) else type(spec).__name__, {})
+
+
+def bot_clocks(job, bots, result) -> list:
+    """After each chunk, where it ran: every timed bot's (name, [shots decided, wall seconds, CPU seconds])."""
+    return [(b.name, list(b.clock[b.name])) for b in bots]
 
 
 def _progress(done: int, total: int) -> None:
@@ -140,14 +154,28 @@ def main(argv=None) -> int:
     command = " ".join(["python", "scripts/match.py"] + (argv if argv is not None else sys.argv[1:]))
     if champ:
         return run_championship(args, command)
+    clocks: dict = {}
+
+    def add_clock(chunk, entries):
+        for name, (shots, wall, cpu) in entries:
+            c = clocks.setdefault(name, [0, 0.0, 0.0])
+            c[0], c[1], c[2] = c[0] + shots, c[1] + wall, c[2] + cpu
+
     results, table = distributed.tournament(args.policies, args.game, args.racks, args.seed, args.noise, args.address,
                                             args.chunk_racks, args.max_shots, config, save_replays=args.save_replays,
-                                            progress=_progress)
+                                            progress=_progress, bot_factory=timed_bot, extra=bot_clocks,
+                                            on_extra=add_clock)
     seconds = time.perf_counter() - t0
     write_replays(args.out / "replays" / f"{args.game}_{args.noise}", results)
+    compute = {name: per_shot(c) for name, c in sorted(clocks.items())}
     doc = dict(command=command, game=args.game, **config, noise=args.noise, racks=args.racks, seed=args.seed, seconds=seconds,
-               pairings=[r.summary() for r in results], ratings=table)
-    md = match_report.write(args.out / f"{args.game}_{args.noise}", doc, results, table)
+               pairings=[r.summary() for r in results], ratings=table, compute=compute)
+    stem = args.out / f"{args.game}_{args.noise}"
+    md = match_report.write(stem, doc, results, table)
+    md += ("\n## Compute per shot\n\nEach entrant's decisions (breaks included), timed where the games were played: "
+           "shots decided, wall ms per shot and, in brackets, CPU ms per shot (the process's, numba's threads "
+           "included).\n\n" + compute_table([dict(noise=args.noise, compute=compute)]) + "\n")
+    stem.with_suffix(".md").write_text(md)
     print(md)
     return 0
 

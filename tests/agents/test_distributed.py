@@ -145,6 +145,9 @@ def test_match_script_gives_the_same_results_with_and_without_ray(tmp_path, ray_
         assert "chunks played: 2/2" in r.stderr
         docs.append(json.loads((out / "nine_ball_tournament.json").read_text()))
     assert docs[0]["pairings"] == docs[1]["pairings"] and docs[0]["ratings"] == docs[1]["ratings"]
+    for doc in docs:  # compute per shot, timed where the games were played (Ray workers too), the same shot counts
+        assert set(doc["compute"]) == {"ghost", "ghost-safety"} and doc["compute"]["ghost"]["shots"] > 0
+    assert {k: v["shots"] for k, v in docs[0]["compute"].items()} == {k: v["shots"] for k, v in docs[1]["compute"].items()}
 
 
 @pytest.mark.slow
