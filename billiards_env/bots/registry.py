@@ -6,6 +6,12 @@ games benchmark accept.
   their leave under sampled noise): the built-in bots of the games (the
   one-player tasks' ``lookahead`` is ``bots.lookahead.LookaheadPolicy``,
   named by the tasks' own policy registry);
+- ``lookahead-2026.12``: ``lookahead`` frozen as it was on 2026-12-07 (``GameLookahead()`` with that day's
+  default ``Budget``, every field spelled out in ``FROZEN_LOOKAHEAD``), the fixed yardstick later changes are
+  measured against;
+- ``champion`` (``bots.planner.Champion``): Monte-Carlo over throw-corrected pots aimed into pocket windows
+  measured in the simulator, safeties and kicks, candidates judged by successive halving under noise
+  (docs/games.md#champion);
 - ``snooker`` (``bots.snooker.SnookerBot``): pots on the ball on with its
   nomination, safeties and a break-off chosen in the preview (snooker only);
 - ``carom<K>`` (K candidate strikes per table, default 96): the
@@ -24,12 +30,39 @@ from __future__ import annotations
 
 import importlib
 
-BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "carom<K>", "snooker", "ladder-<k>",
+BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "lookahead-2026.12", "champion", "carom<K>", "snooker", "ladder-<k>",
              "value-lookahead", "<module>:<factory>")
 DEFAULT_SEARCH_K = 64
+# ``lookahead-2026.12``: the Budget of ``lookahead`` on 2026-12-07, spelled out so later changes to the defaults
+# do not move the yardstick (bots.game_lookahead.Budget's fields; REPLY_BUDGET as it was that day)
+FROZEN_LOOKAHEAD = dict(
+    n_pots=6, hand_pots=3, n_safe=16, n_kick=8, n_bank=16, n_push=24, n_eval=32, n_eval_safe=8, n_samples=12,
+    throws=(0.0, 0.03490658503988659), speeds=(1.1, 1.5, 2.2, 3.2), heights=(-0.35, 0.0, 0.35),
+    sigma_model=0.012, v_none=0.5, v_full=0.9, q_run=0.0, combos=False, w_next=0.0, break_search=128,
+    break_racks=16, break_samples=2, reply_eval=6, reply_safe=4, reply_samples=8, reply_keep=False,
+    # the opponent's reply search: that day's REPLY_BUDGET, every field given as a change so it stays put
+    reply=(("n_pots", 3), ("hand_pots", 2), ("n_safe", 6), ("n_kick", 2), ("n_bank", 4), ("n_push", 0),
+           ("n_eval", 8), ("n_eval_safe", 2), ("n_samples", 8), ("throws", (0.0,)), ("speeds", (1.15, 1.8, 2.8)),
+           ("break_search", 0), ("reply_eval", 0)))
 # The bot a game is played by when none is named (the play app's opponent and hint): ``ghost``, but the pool
 # bots pot balls, so a game without pockets has its own.
 DEFAULT_BOTS = {"three_cushion": "carom", "snooker": "snooker"}
+
+# fields of the frozen Budget that were off that day; a later Budget without them plays the same
+FROZEN_OFF = dict(q_run=0.0, combos=False, w_next=0.0)
+
+
+def frozen_budget():
+    """``lookahead-2026.12``'s ``Budget``: ``FROZEN_LOOKAHEAD``, less the ``FROZEN_OFF`` fields (off that day) a
+    later ``Budget`` no longer has."""
+    import dataclasses
+
+    from .game_lookahead import Budget
+    known = {f.name for f in dataclasses.fields(Budget)}
+    gone = set(FROZEN_LOOKAHEAD) - known
+    if gone - set(FROZEN_OFF) or any(FROZEN_LOOKAHEAD[k] != FROZEN_OFF[k] for k in gone):
+        raise RuntimeError(f"lookahead-2026.12: Budget lost the fields {sorted(gone)} it was played with")
+    return Budget(**{k: v for k, v in FROZEN_LOOKAHEAD.items() if k in known})
 
 
 def default_bot(game: str) -> str:
@@ -40,7 +73,7 @@ def default_bot(game: str) -> str:
 def is_bot_name(name) -> bool:
     """Whether ``name`` names a built-in bot or a ``module:factory``."""
     return isinstance(name, str) and (name in ("random", "ghost", "ghost-safety", "lookahead", "snooker",
-                                                   "value-lookahead") or ":" in name
+                                                   "value-lookahead", "lookahead-2026.12", "champion") or ":" in name
                                       or (name.startswith("search") and (name[6:].isdigit() or name == "search"))
                                       or (name.startswith("carom") and (name[5:].isdigit() or name == "carom"))
                                       or (name.startswith("ladder-") and name[7:].isdigit()))
@@ -64,6 +97,14 @@ def make_bot(spec, seed: int = 0):
     if spec == "lookahead":
         from .game_lookahead import GameLookahead
         return GameLookahead(seed=seed)
+    if spec == "lookahead-2026.12":
+        from .game_lookahead import GameLookahead
+        bot = GameLookahead(seed=seed, budget=frozen_budget())
+        bot.name = "lookahead-2026.12"
+        return bot
+    if spec == "champion":
+        from .planner import Champion
+        return Champion(seed=seed)
     if spec == "value-lookahead":
         from .learned.value import value_lookahead
         return value_lookahead(seed=seed)

@@ -1,0 +1,157 @@
+"""``Champion``: the game bot of ``bots.planner`` (``make_bot("champion")``).
+
+Per table to move: the candidates (``candidates``: window-aimed, throw-corrected pots from the cue ball or from
+searched ball-in-hand spots; safeties, kicks and a 360-degree kick fan) are previewed once without noise and
+valued with the one-ply leave (``GameLookahead.values``: a win 1, a loss 0, the next shooter's best pot's ease
+otherwise); the best few per table go through successive halving under the env's noise (``halving``) and the best
+mean among the last survivors is played. 9-ball and 10-ball push-outs and passes as lookahead decides them (a push
+that beats the shot; a pass when the shot is worth less than 1/2); 10-ball pots call their ball and pocket. The
+break is searched once per game and table (``breaks``).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ...contract.plan import ShotPlan
+from ...physics.strike import Shots
+from ..game_lookahead import Budget, GameLookahead
+from . import candidates as CAND
+from .breaks import BreakSearch
+from .halving import ROUNDS, halve
+
+CHUNK = 128                # tables decided per batch of previews (memory stays bounded)
+FIRST_POTS = 20            # pots per table entering the noisy rounds (by noise-free value)
+FIRST_SAFE = 8             # safeties and kicks per table entering them
+MIN_AIM_SIGMA = math.radians(0.125)  # rad: aim noise the pot ranking assumes at least (tournament level)
+# the lookahead whose parts are reused: its starts, safeties, leave valuation, pushes and break strikes
+HELPER = dict(reply_eval=0, n_safe=16, n_kick=8, n_bank=16, n_push=24, hand_pots=3)
+
+
+class Champion:
+    name = "champion"
+
+    def __init__(self, seed: int = 0, throw: bool = True, windows: bool = True, rounds=ROUNDS,
+                 first_pots: int = FIRST_POTS, first_safe: int = FIRST_SAFE, searched_break: bool = True):
+        self.rng = np.random.default_rng(seed)
+        self.la = GameLookahead(seed=int(self.rng.integers(2 ** 31)), budget=Budget(**HELPER))
+        self.throw, self.windows, self.rounds = throw, windows, tuple(rounds)
+        self.first_pots, self.first_safe = first_pots, first_safe
+        self.breaks = BreakSearch() if searched_break else None
+        self.sims = 0
+        self.last_value = self.last_kind = None
+
+    # --- acting -------------------------------------------------------------------------------------------------
+    def act(self, view) -> ShotPlan:
+        if not view.table.has_pockets:
+            raise ValueError(f"champion pots balls: it cannot play {view.game} on a table without pockets")
+        n = view.n
+        phi, speed, a, b = np.zeros(n), np.ones(n), np.zeros(n), np.zeros(n)
+        placement, declare = np.full((n, 2), np.nan), np.zeros(n, bool)
+        pocket, ball = np.zeros(n, np.int64), np.full(n, -1, np.int64)
+        value, kind = np.full(n, np.nan), np.full(n, "break", dtype=object)
+        brk = np.flatnonzero(view.is_break)
+        if len(brk):
+            if self.breaks is not None:
+                s = self.breaks.strike(self, view, brk)
+            else:
+                s = np.array([0.0, 0.0, 8.0, -0.025])
+            g = self.la.break_plan(view, brk, np.broadcast_to(s, (len(brk), 4)))
+            phi[brk], speed[brk], a[brk], b[brk] = g.phi, g.speed, g.a, g.b
+            placement[brk] = g.placement
+        play = np.flatnonzero(~view.is_break)
+        for lo in range(0, len(play), CHUNK):
+            rows = play[lo:lo + CHUNK]
+            c, best, val = self.decide(view, rows)
+            phi[rows], speed[rows], a[rows], b[rows] = c["phi"][best], c["speed"][best], c["a"][best], c["b"][best]
+            placement[rows], pocket[rows], ball[rows] = c["placement"][best], c["pocket"][best], c["ball"][best]
+            value[rows] = val
+            kind[rows] = np.where(c["safe"][best], "safety", "pot")
+        if len(play):
+            push = play[view.push_out_allowed[play]]
+            if len(push) and self.la.n_push:
+                (pph, psp), pval = self.la.push_values(view, push)
+                use = pval > value[push]
+                r = push[use]
+                declare[r] = True
+                phi[r], speed[r], a[r], b[r] = pph[use], psp[use], 0.0, 0.0
+                placement[r], value[r], kind[r] = np.nan, pval[use], "push"
+            pas = play[view.may_pass[play] & (value[play] < 0.5)]
+            declare[pas] = True
+            value[pas] = 1.0 - value[pas]
+            kind[pas] = "pass"
+        self.last_value, self.last_kind = value, kind
+        speed = np.clip(speed, 0.05, view.params.max_speed)
+        return ShotPlan.of(Shots(phi, speed, a, b), placement, declare, pocket, ball)
+
+    # --- the search ---------------------------------------------------------------------------------------------
+    def candidates(self, view, rows):
+        srow, cue, placed = self.la.starts(view, rows)
+        aim_sigma = max(math.radians(view.noise.aim_deg), MIN_AIM_SIGMA)
+        if self.windows:
+            pots = CAND.pots(self, view, srow, cue, placed, aim_sigma, throw=self.throw)
+        else:
+            pots = self.lookahead_pots(view, rows)
+        first = np.searchsorted(srow, rows)
+        saf = CAND.safeties(self, view, rows, cue[first], placed[first])
+        c = {k: np.concatenate([pots[k], saf[k]]) for k in saf}
+        if not getattr(view.rules, "calls_ball", False):
+            c["ball"][:] = -1
+        o = np.argsort(c["row"], kind="stable")
+        return {k: v[o] for k, v in c.items()}
+
+    def lookahead_pots(self, view, rows):
+        """The ablation without windows: lookahead's own pot candidates (centre-aimed, its overcut variants)."""
+        c = self.la.candidates(view, rows)
+        pot = ~c["safe"]
+        out = {k: v[pot] for k, v in c.items()}
+        out["ball"] = np.full(pot.sum(), -1, np.int64)
+        out["prob"] = np.zeros(pot.sum())
+        return out
+
+    def plan(self, c, idx):
+        return ShotPlan.of(Shots(c["phi"][idx], c["speed"][idx], c["a"][idx], c["b"][idx]),
+                           placement=c["placement"][idx], pocket=c["pocket"][idx], ball=c["ball"][idx])
+
+    def decide(self, view, rows):
+        """(candidates, the chosen candidate of each row [n], its value [n]) for view rows ``rows``."""
+        c = self.candidates(view, rows)
+        n = len(rows)
+        local = np.searchsorted(rows, c["row"])
+        allidx = np.arange(len(local))
+        pv = view.preview(self.plan(c, allidx), c["row"])
+        self.sims += len(local)
+        v0 = self.la.values(view, pv)
+        # the first noisy round: the best pots and the best safeties of each table by noise-free value
+        first = (_rank(-v0, local, n, ~c["safe"]) < self.first_pots) | (_rank(-v0, local, n, c["safe"])
+                                                                          < self.first_safe)
+        noise = self.la.noise(view)
+
+        def judge(idx, draws):
+            p = view.preview(self.plan(c, idx), c["row"][idx], noise=noise, draws=draws)
+            self.sims += len(idx)
+            return self.la.values(view, p)
+
+        mean, count = halve(judge, local, n, v0, first, self.rng, self.rounds)
+        top = count == np.maximum.reduceat(count, np.searchsorted(local, np.arange(n)))[local]
+        score = np.where(top & (count > 0), mean + 1e-3 * v0, -np.inf)
+        o = np.lexsort((-score, local))
+        best = o[np.searchsorted(local[o], np.arange(n))]
+        val = np.where(np.isfinite(score[best]), mean[best], v0[best])
+        return c, best, val
+
+
+def _rank(key, row, n, mask):
+    """[k] each masked entry's place (0 first) within its row by ``key`` (unmasked entries: a large rank)."""
+    order = np.lexsort((key, ~mask, row))
+    starts = np.searchsorted(row[order], np.arange(n))
+    rank = np.empty(len(order), np.int64)
+    rank[order] = np.arange(len(order)) - np.repeat(starts, np.diff(np.append(starts, len(order))))
+    return np.where(mask, rank, 1 << 30)
+
+
+def champion(seed: int = 0, **kw) -> Champion:
+    """The ``champion`` bot (``bots.make_bot("champion")``); ``kw``: ablations (``throw``, ``windows``,
+    ``rounds``, ``searched_break``)."""
+    return Champion(seed=seed, **kw)

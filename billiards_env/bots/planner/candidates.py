@@ -1,0 +1,130 @@
+"""The shots the search considers, as flat arrays (row, phi, speed, a, b, placement, pocket, ball, safe):
+
+- **pots** from every start (the cue ball where it lies, or searched ball-in-hand spots): every legal ball into
+  every pocket whose measured window (``windows``) admits the approach, the paths clear, ranked by a success
+  estimate (the window's angular half-width against the aim noise carried through the contact), the best few in
+  speed and tip-height variants, each aim corrected for throw (``aim``);
+- **safeties and kicks**: ``GameLookahead``'s soft shots at the legal balls and one-rail kicks, plus a 360-degree
+  fan of cue directions at a few speeds (the preview keeps what the rules call legal).
+"""
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from ..geometry.lines import blocked
+from . import aim as AIM
+from .windows import windows_of
+
+MAX_CUT = math.radians(80)        # a cut thinner than this is not tried (the contact error explodes)
+CLEAR = 0.003                     # m: a pot's paths keep this clear of other balls beyond 2R
+SIGMA_MODEL = 0.004               # rad: object-ball direction error left after the throw correction
+N_POTS = 8                        # pots tried per start (cue ball where it lies)
+N_POTS_HAND = 2                   # and per ball-in-hand spot
+SPEEDS = (1.15, 1.6, 2.3, 3.3)    # factors of the speed that just drops the ball (soft to firm, for position)
+HEIGHTS = (-0.4, 0.0, 0.4)        # tip heights (units of R): draw, stun, follow
+SIDES = (0.0,)                    # tip side offsets (units of R): centre ball (side spin measured no gain here)
+FAN_DIRS = 48                     # the kick scan: this many cue directions around the full circle
+FAN_SPEEDS = (1.2, 2.6, 4.5)      # m/s: at these speeds
+
+
+@numba.njit(cache=True, nogil=True)
+def _paths_open(pos, on, srow, ball, cue, ghost, aimpt, d2, out):
+    """out[k]: cue -> ghost and ball -> aim point clear of every other ball on table srow[k]."""
+    for k in range(len(out)):
+        e, b = srow[k], ball[k]
+        out[k] = not (blocked(pos[e], on[e], b, -1, cue[k, 0], cue[k, 1], ghost[k, 0], ghost[k, 1], d2)
+                      or blocked(pos[e], on[e], b, -1, pos[e, b, 0], pos[e, b, 1], aimpt[k, 0], aimpt[k, 1], d2))
+
+
+def pot_options(view, pos, on, tg, cue, aim_sigma):
+    """Every open pot of the legal balls from cue balls ``cue`` [S, 2] on tables ``pos`` [S, B, 2]: dict of flat
+    arrays (start, ball, pocket, want (the object ball's direction), phi0 (ghost-ball aim), prob, dcg, dop, cut)."""
+    R = view.params.R
+    w = windows_of(view)
+    S, B = pos.shape[:2]
+    P = len(w.ref)
+    s_i, b_i, p_i = np.nonzero((tg & on)[:, :, None] & np.ones((1, 1, P), bool))
+    keep = b_i > 0
+    s_i, b_i, p_i = s_i[keep], b_i[keep], p_i[keep]
+    obj = pos[s_i, b_i]
+    th, half, aimpt, dop = w.aim(p_i, obj)
+    u = np.column_stack([np.cos(th), np.sin(th)])
+    ghost = obj - 2 * R * u
+    v = ghost - cue[s_i]
+    dcg = np.linalg.norm(v, axis=1)
+    cos_cut = np.einsum("ij,ij->i", v, u) / np.maximum(dcg, 1e-9)
+    cut = np.arccos(np.clip(cos_cut, -1, 1))
+    ok = (half > 0) & (cut < MAX_CUT) & (dcg > 1e-6)
+    s_i, b_i, p_i, th, half, aimpt, dop, ghost, dcg, cut = (x[ok] for x in (s_i, b_i, p_i, th, half, aimpt, dop,
+                                                                           ghost, dcg, cut))
+    opened = np.zeros(len(s_i), np.bool_)
+    _paths_open(np.ascontiguousarray(pos), np.ascontiguousarray(on), s_i, b_i, np.ascontiguousarray(cue[s_i]),
+                np.ascontiguousarray(ghost), np.ascontiguousarray(aimpt), (2 * R + CLEAR) ** 2, opened)
+    sig = np.hypot(aim_sigma * dcg / (2 * R * np.maximum(np.cos(cut), 0.15)), SIGMA_MODEL)
+    tol = np.arctan2(half, np.maximum(dop, 1e-6))
+    prob = np.where(opened, np.array([math.erf(x) for x in (tol / (math.sqrt(2) * sig))]), 0.0)
+    vg = ghost - cue[s_i]
+    phi0 = np.arctan2(vg[:, 1], vg[:, 0])
+    return dict(start=s_i, ball=b_i, pocket=p_i, want=th, phi0=phi0, prob=prob, dcg=dcg, dop=dop, cut=cut)
+
+
+def top_per_start(start, prob, n_start, k_of_start):
+    """Indices of the ``k_of_start[s]`` most probable options of each start (probability > 0)."""
+    order = np.lexsort((-prob, start))
+    st = start[order]
+    first = np.searchsorted(st, np.arange(n_start))
+    rank = np.arange(len(order)) - first[st]
+    sel = order[(rank < k_of_start[st]) & (prob[order] > 0)]
+    return np.sort(sel)
+
+
+def pots(bot, view, srow, cue, placed, aim_sigma, throw=True):
+    """The pot candidates of starts (view rows ``srow`` [S], cue balls ``cue`` [S, 2], ``placed`` [S])."""
+    pos = view.pos[srow].copy()
+    pos[:, 0] = cue
+    on = view.on_table[srow].copy()
+    on[:, 0] = True
+    o = pot_options(view, pos, on, view.targets[srow], cue, aim_sigma)
+    k = np.where(placed, N_POTS_HAND, N_POTS)
+    sel = top_per_start(o["start"], o["prob"], len(srow), k)
+    o = {key: val[sel] for key, val in o.items()}
+    sp, hb, sd = (np.asarray(x, dtype=np.float64).ravel() for x in np.meshgrid(SPEEDS, HEIGHTS, SIDES, indexing="ij"))
+    V = len(sp)
+    rep = np.repeat(np.arange(len(sel)), V)
+    var = np.tile(np.arange(V), len(sel))
+    st = o["start"][rep]
+    v0 = bot.la.pot_speed(view, o["dcg"], o["dop"], o["cut"])[rep]
+    speed = np.minimum(v0 * sp[var], view.params.max_speed)
+    a, b = sd[var], hb[var]
+    phi = o["phi0"][rep]
+    if throw and len(rep):
+        phi = AIM.corrected(view, cue[st], pos[st, o["ball"][rep]], o["want"][rep], phi, speed, a, b)
+    m = len(rep)
+    return dict(row=srow[st], phi=phi, speed=speed, a=a, b=b,
+                placement=np.where(placed[st, None], cue[st], np.nan), pocket=o["pocket"][rep],
+                ball=o["ball"][rep], safe=np.zeros(m, bool), prob=o["prob"][rep])
+
+
+def safeties(bot, view, rows, cue, placed):
+    """``GameLookahead``'s safeties and one-rail kicks, and the kick fan, from cue balls ``cue`` [n, 2]."""
+    c = bot.la.safeties(view, rows, cue, placed)
+    n = len(rows)
+    F = FAN_DIRS * len(FAN_SPEEDS)
+    rep = np.repeat(np.arange(n), F)
+    phi = np.tile(np.repeat(np.linspace(0, 2 * np.pi, FAN_DIRS, endpoint=False), len(FAN_SPEEDS)), n)
+    phi = phi + bot.rng.uniform(0, 2 * np.pi / FAN_DIRS, n)[rep]     # the fan turned at random per table
+    speed = np.tile(np.asarray(FAN_SPEEDS, dtype=np.float64), FAN_DIRS * n)
+    call = np.zeros(n, np.int64)
+    need = view.call_needed[rows]
+    if need.any():
+        call[need] = bot.la.eight_pocket(view, rows[need])            # the pocket lookahead's safeties call
+    pocket = call[rep]
+    fan = dict(row=rows[rep], phi=phi, speed=speed, a=np.zeros(len(rep)), b=np.zeros(len(rep)),
+               placement=np.where(placed[rep, None], cue[rep], np.nan), pocket=pocket, safe=np.ones(len(rep), bool))
+    out = {key: np.concatenate([c[key], fan[key]]) for key in fan}
+    out["ball"] = np.full(len(out["row"]), -1, np.int64)
+    out["prob"] = np.zeros(len(out["row"]))
+    return out
