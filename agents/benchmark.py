@@ -20,8 +20,8 @@ from pathlib import Path
 
 from .config import CONFIG_DIR, load_config, load_run_config
 
-TASKS = ("Billiards-PotOne-v0", "Billiards-RunOut-v0", "Billiards-NineBall-v0", "Billiards-NineBall2P-v0",
-         "Billiards-EightBall-v0")  # the games: against the ghost-ball game policy (configs/ppo_games.yaml)
+TASKS = ("Billiards-PotOne-v1", "Billiards-RunOut-v1", "Billiards-NineBall-v1", "Billiards-NineBall2P-v1",
+         "Billiards-EightBall-v1")  # the games: against the ghost-ball game policy (configs/ppo_games.yaml)
 ALGOS = ("ppo", "sac")
 
 
@@ -73,7 +73,7 @@ def run_one(env_id: str, algo: str, out_dir: Path, b: Budget, command: str = "",
             f"train.eval_every_episodes={curve_episodes}", "train.eval_episodes=0", "train.progress_bar=false",
             "train.tensorboard=false", "train.checkpoint_every=0", *extra]
     cfg = load_config(path, env_id, over, algo=algo)
-    short = env_id.replace("Billiards-", "").replace("-v0", "").lower()
+    short = env_id.replace("Billiards-", "").replace("-v1", "").lower()
     variant = "" if config is None else "_" + Path(config).stem
     run_dir = out_dir / "runs" / f"{algo}_{short}{variant}"
     s = train(cfg, run_dir, f"benchmark_agents {algo} {env_id} steps={budget}")

@@ -3,7 +3,7 @@ into frozen dataclasses, with dotted command-line overrides.
 
 ``configs/ppo.yaml`` / ``configs/sac.yaml`` map an env id to a block::
 
-    Billiards-PotOne-v0:
+    Billiards-PotOne-v1:
       algo: ppo
       n_envs: 128
       ppo: {learning_rate: 3.0e-4, n_steps: 4, ...}   # SB3 constructor kwargs

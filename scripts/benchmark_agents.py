@@ -3,9 +3,9 @@
 
     python scripts/benchmark_agents.py                       # every configured task x algo, config budgets
     python scripts/benchmark_agents.py --all                 # ... and the other configs of the table (hours)
-    python scripts/benchmark_agents.py --steps 100000 --task Billiards-RunOut-v0 --algo ppo
+    python scripts/benchmark_agents.py --steps 100000 --task Billiards-RunOut-v1 --algo ppo
     python scripts/benchmark_agents.py --quick --out /tmp/bench   # smoke test (tiny runs, 20 episodes)
-    python scripts/benchmark_agents.py --config configs/ppo_direct.yaml --task Billiards-PotOne-v0 --algo ppo
+    python scripts/benchmark_agents.py --config configs/ppo_direct.yaml --task Billiards-PotOne-v1 --algo ppo
     python scripts/benchmark_agents.py --from-run runs/ppo_nineball --config configs/ppo_nineball.yaml
 
 Trains PPO and SAC on every task that has a block in configs/<algo>.yaml,

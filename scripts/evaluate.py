@@ -2,14 +2,14 @@
 """Evaluate saved models and/or baselines on a task over N seeded episodes.
 
     python scripts/evaluate.py --policy ghost --policy search --policy runs/<run> \
-        --env Billiards-PotOne-v0 --episodes 1000 --seed 12345 --noise none --noise tournament \
+        --env Billiards-PotOne-v1 --episodes 1000 --seed 12345 --noise none --noise tournament \
         --out results/agents/potone
 
 ``--policy``: ``random``, ``ghost``, ``search`` (K from ``--search-k``, or
 ``search64``), ``lookahead`` (pots that leave a next shot), or a run directory / model .zip (its config.yaml and
 vecnormalize.pkl are read). Every policy plays the first episode of the same
-seeded tables. On the two-player games (``Billiards-NineBall2P-v0``,
-``Billiards-EightBall-v0``) a policy's success is a won game against
+seeded tables. On the two-player games (``Billiards-NineBall2P-v1``,
+``Billiards-EightBall-v1``) a policy's success is a won game against
 ``--opponent`` (``ghost-safety`` is a policy there too). Prints a Markdown table (success rate with its 95% Wilson
 interval, mean reward, scratch and foul rates, balls per episode) and writes
 <out>.json and <out>.png.
@@ -32,7 +32,7 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--policy", action="append", required=True, help="baseline name or model path (repeatable)")
     ap.add_argument("--name", action="append", default=None, help="display name per --policy (optional)")
-    ap.add_argument("--env", default="Billiards-PotOne-v0")
+    ap.add_argument("--env", default="Billiards-PotOne-v1")
     ap.add_argument("--episodes", type=int, default=1000)
     ap.add_argument("--seed", type=int, default=12345)
     ap.add_argument("--noise", action="append", default=None,

@@ -81,11 +81,11 @@ USING = [
     "```python",
     "import gymnasium as gym",
     "",
-    "env = gym.make(\"billiards_env:Billiards-PotOne-v0\")   # no import needed",
-    "vec = gym.make_vec(\"billiards_env:Billiards-PotOne-v0\", num_envs=256, vectorization_mode=\"vector_entry_point\")",
+    "env = gym.make(\"billiards_env:Billiards-PotOne-v1\")   # no import needed",
+    "vec = gym.make_vec(\"billiards_env:Billiards-PotOne-v1\", num_envs=256, vectorization_mode=\"vector_entry_point\")",
     "",
     "import billiards_env                                  # or import the package once: then the bare ids",
-    "env = gym.make(\"Billiards-PotOne-v0\")",
+    "env = gym.make(\"Billiards-PotOne-v1\")",
     "```", "",
     "**The env's own methods.** `gym.make` returns the env inside Gymnasium's wrappers (the order and "
     "passive checks, and a time limit where the id has one), and Gymnasium 1.x wrappers pass no attribute through. The task's own "

@@ -1,7 +1,7 @@
 #!/usr/bin/env python
 """Decisions per second of a baseline policy on N tables at once.
 
-    python scripts/policy_speed.py --policy lookahead --env Billiards-NineBall-v0 --tables 1024
+    python scripts/policy_speed.py --policy lookahead --env Billiards-NineBall-v1 --tables 1024
 
 Resets N seeded tables, lets the policy choose one shot for each (after a
 warm-up call on a few tables, which compiles the kernels), and reports the
@@ -22,7 +22,7 @@ sys.path.insert(0, str(ROOT))
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--policy", default="lookahead")
-    ap.add_argument("--env", default="Billiards-RunOut-v0")
+    ap.add_argument("--env", default="Billiards-RunOut-v1")
     ap.add_argument("--tables", type=int, default=1024)
     ap.add_argument("--repeats", type=int, default=1, help="decisions timed (the median is reported)")
     ap.add_argument("--seed", type=int, default=12345)

@@ -1,7 +1,7 @@
 #!/usr/bin/env python
 """Where the time of a training run goes: a cProfile of PPO rollouts and updates.
 
-    python scripts/profile_training.py --env Billiards-NineBall2P-v0 --rollouts 4
+    python scripts/profile_training.py --env Billiards-NineBall2P-v1 --rollouts 4
     python scripts/profile_training.py --quick --out /tmp/prof.txt    # 8 tables, 1 rollout (the test's run)
     python scripts/profile_training.py --compare new --compare "old:n_envs=256,ppo.n_steps=16,ppo.batch_size=1024"
 
@@ -128,7 +128,7 @@ def compare(args) -> int:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--config", default=str(ROOT / "configs" / "ppo_games.yaml"))
-    ap.add_argument("--env", default="Billiards-NineBall2P-v0")
+    ap.add_argument("--env", default="Billiards-NineBall2P-v1")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
     ap.add_argument("--rollouts", type=int, default=4)
     ap.add_argument("--out", type=Path, default=None)

@@ -19,7 +19,7 @@ import sys
 
 import numpy as np
 
-ENV_IDS = ("Billiards-PotOne-v0", "Billiards-RunOut-v0", "Billiards-NineBall-v0")
+ENV_IDS = ("Billiards-PotOne-v1", "Billiards-RunOut-v1", "Billiards-NineBall-v1")
 MODES = ("next_step", "same_step")
 POLICIES = ("random", "ghost")
 

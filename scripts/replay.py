@@ -3,9 +3,9 @@
 HTML viewer page, a GIF or MP4 animation, or replay JSON.
 
     python scripts/replay.py --replay episode-0000.json --out episode.html
-    python scripts/replay.py --env Billiards-NineBall-v0 --policy search64 --seed 3 \
+    python scripts/replay.py --env Billiards-NineBall-v1 --policy search64 --seed 3 \
         --out nine.html --out nine.json --out nine.gif
-    python scripts/replay.py --env Billiards-NineBall2P-v0 --policy search64 --opponent ghost --seed 3 \
+    python scripts/replay.py --env Billiards-NineBall2P-v1 --policy search64 --opponent ghost --seed 3 \
         --out game.html
     python scripts/replay.py --scene break --out break.html
 
@@ -144,7 +144,7 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     src = ap.add_mutually_exclusive_group(required=True)
     src.add_argument("--replay", help="a saved replay (.json)")
-    src.add_argument("--env", help="env id, e.g. Billiards-NineBall-v0 (with --policy and --seed)")
+    src.add_argument("--env", help="env id, e.g. Billiards-NineBall-v1 (with --policy and --seed)")
     src.add_argument("--scene", choices=["cut-draw", "break"], help="a demo shot")
     ap.add_argument("--policy", default="ghost", help="ghost | random | search<K> | model path (default ghost)")
     ap.add_argument("--opponent", default="ghost", help="two-player games: player 2's bot (default ghost)")

@@ -2,7 +2,7 @@
 """What kind of shots a policy plays on a multi-shot task, and what it leaves.
 
     python scripts/shot_stats.py --policy runs/<run> --policy ghost --policy search64 \
-        --env Billiards-NineBall-v0 --episodes 1000
+        --env Billiards-NineBall-v1 --episodes 1000
 
 Plays the first episode of the held tables of scripts/evaluate.py (same
 seed, no noise) and classifies every shot by the position before it: the
@@ -84,7 +84,7 @@ def shot_stats(spec: str, env_id: str, episodes: int, seed: int) -> dict:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--policy", action="append", required=True, help="baseline name or run directory (repeatable)")
-    ap.add_argument("--env", default="Billiards-NineBall-v0")
+    ap.add_argument("--env", default="Billiards-NineBall-v1")
     ap.add_argument("--episodes", type=int, default=1000)
     ap.add_argument("--seed", type=int, default=12345)
     ap.add_argument("--out", default=None, help="write <out>.json")

@@ -3,7 +3,7 @@
 
     python scripts/train.py                                   # PotOne PPO, configs/ppo.yaml
     python scripts/train.py --config configs/sac.yaml
-    python scripts/train.py --env Billiards-RunOut-v0 --set ppo.learning_rate=1e-4 --set n_envs=64
+    python scripts/train.py --env Billiards-RunOut-v1 --set ppo.learning_rate=1e-4 --set n_envs=64
     python scripts/train.py --resume runs/<name>              # continue a stopped run (either backend)
     python scripts/train.py --backend rllib --set rllib.num_env_runners=4   # Ray RLlib (docs/distributed.md)
     python scripts/train.py --backend rllib --address auto                   # on a running Ray cluster
@@ -57,7 +57,7 @@ def main(argv=None) -> int:
             train_and_evaluate(None, args.resume, command, t_start, resume=True)
         return 0
     cfg = load_config(args.config, args.env, args.set)
-    short = cfg.env_id.replace("Billiards-", "").replace("-v0", "").lower()
+    short = cfg.env_id.replace("Billiards-", "").replace("-v1", "").lower()
     prefix = cfg.algo if args.backend == "sb3" else f"rllib_{cfg.algo}"
     name = args.name or f"{prefix}_{short}_{time.strftime('%Y%m%d-%H%M%S')}"
     run_dir = Path(args.runs_dir) / name

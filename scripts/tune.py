@@ -1,8 +1,8 @@
 #!/usr/bin/env python
 """Tune hyper-parameters with Optuna (TPE sampler, median pruner on held-seed evaluations).
 
-    python scripts/tune.py --env Billiards-PotOne-v0 --algo ppo --trials 30
-    python scripts/tune.py --env Billiards-PotOne-v0 --algo ppo --trials 30 --storage postgresql://user@host/db
+    python scripts/tune.py --env Billiards-PotOne-v1 --algo ppo --trials 30
+    python scripts/tune.py --env Billiards-PotOne-v1 --algo ppo --trials 30 --storage postgresql://user@host/db
     python scripts/tune.py --config configs/ppo_direct.yaml --trials 12 --steps 1000000   # another config's block
 
 Each trial trains with hyper-parameters drawn from agents.tuning.SPACES and
@@ -26,7 +26,7 @@ sys.path.insert(0, str(ROOT))
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--env", default="Billiards-PotOne-v0")
+    ap.add_argument("--env", default="Billiards-PotOne-v1")
     ap.add_argument("--algo", default="ppo", choices=["ppo", "sac"])
     ap.add_argument("--trials", type=int, default=20, help="finished trials wanted in the study")
     ap.add_argument("--storage", default=None, help="Optuna storage URL (default sqlite:///<run-dir>/study.db)")
@@ -51,7 +51,7 @@ def main(argv=None) -> int:
 
     from agents.tuning import Trials, tune
 
-    short = a.env.replace("Billiards-", "").replace("-v0", "").lower()
+    short = a.env.replace("Billiards-", "").replace("-v1", "").lower()
     run_dir = Path(a.run_dir) if a.run_dir else ROOT / "runs" / f"tune_{a.algo}_{short}"
     t0 = time.perf_counter()
     trials = Trials(a.steps, a.evals, a.eval_episodes, a.seed, tuple(a.set), a.startup_trials)

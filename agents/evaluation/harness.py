@@ -253,7 +253,7 @@ def evaluate_policies(specs: list[str], env_id: str, n_episodes: int = 1000, see
 
 def format_table(results: list[EvalResult]) -> str:
     """A Markdown table of results."""
-    multi = any(r.env_id not in ("Billiards-PotOne-v0",) for r in results)
+    multi = any(r.env_id not in ("Billiards-PotOne-v1",) for r in results)
     head = ["policy", "task", "noise", "episodes", "success", "95% CI", "mean reward", "scratch", "foul"]
     if multi:
         head += ["balls/episode"]

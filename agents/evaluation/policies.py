@@ -33,7 +33,7 @@ def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
     if view is not None and is_policy_name(name):
         return GamePolicy(name, view.env, seed=seed)
     if name in GAME_ONLY_NAMES:
-        raise ValueError(f"{name!r} plays the two-player games only (Billiards-NineBall2P-v0, Billiards-EightBall-v0)")
+        raise ValueError(f"{name!r} plays the two-player games only (Billiards-NineBall2P-v1, Billiards-EightBall-v1)")
     if name == "random":
         return RandomPolicy(seed=seed)
     if name == "ghost":

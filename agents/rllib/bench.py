@@ -46,7 +46,7 @@ import time
 
 import numpy as np
 
-ENV_ID = "Billiards-PotOne-v0"
+ENV_ID = "Billiards-PotOne-v1"
 
 
 def _cfg(overrides=()):

@@ -16,8 +16,8 @@ from billiards_env.bots.learned.mlp import NORM_EPS, MLPPolicy, ObsNorm
 
 from .policy import SB3Network, SB3Policy
 
-GAME_OF_ENV = {"Billiards-NineBall2P-v0": "nine_ball", "Billiards-EightBall-v0": "eight_ball",
-               "Billiards-TenBall-v0": "ten_ball"}
+GAME_OF_ENV = {"Billiards-NineBall2P-v1": "nine_ball", "Billiards-EightBall-v1": "eight_ball",
+               "Billiards-TenBall-v1": "ten_ball"}
 
 
 def numpy_network(policy: SB3Policy, activation: str, clip: float) -> MLPPolicy:

@@ -3,8 +3,8 @@
 
 Gymnasium 1.x loads no plugins: an id is known once the module that
 registers it is imported. So either ``import billiards_env`` before
-``gym.make("Billiards-PotOne-v0")``, or name the module in the id,
-``gym.make("billiards_env:Billiards-PotOne-v0")`` (Gymnasium imports the
+``gym.make("Billiards-PotOne-v1")``, or name the module in the id,
+``gym.make("billiards_env:Billiards-PotOne-v1")`` (Gymnasium imports the
 part before the colon first; ``gym.make_vec`` too).
 
 The ids come from the task registry (``envs/tasks/``): registering a task
@@ -21,15 +21,15 @@ ENV_IDS = {t.env_id: (f"{t.class_prefix}Env", f"{t.class_prefix}VectorEnv") for 
 
 # The two-player games: id -> (single-agent class against a fixed opponent, self-play vector entry point).
 GAME_IDS = {
-    "Billiards-NineBall2P-v0": ("billiards_env.envs.games.single:NineBall2PEnv",
+    "Billiards-NineBall2P-v1": ("billiards_env.envs.games.single:NineBall2PEnv",
                                 "billiards_env.envs.games.vector:nine_ball_vector"),
-    "Billiards-EightBall-v0": ("billiards_env.envs.games.single:EightBallEnv",
+    "Billiards-EightBall-v1": ("billiards_env.envs.games.single:EightBallEnv",
                                "billiards_env.envs.games.vector:eight_ball_vector"),
-    "Billiards-TenBall-v0": ("billiards_env.envs.games.single:TenBallEnv",
+    "Billiards-TenBall-v1": ("billiards_env.envs.games.single:TenBallEnv",
                              "billiards_env.envs.games.vector:ten_ball_vector"),
-    "Billiards-ThreeCushion-v0": ("billiards_env.envs.games.single:ThreeCushionEnv",
+    "Billiards-ThreeCushion-v1": ("billiards_env.envs.games.single:ThreeCushionEnv",
                                   "billiards_env.envs.games.vector:three_cushion_vector"),
-    "Billiards-Snooker-v0": ("billiards_env.envs.games.single:SnookerEnv",
+    "Billiards-Snooker-v1": ("billiards_env.envs.games.single:SnookerEnv",
                              "billiards_env.envs.games.vector:snooker_vector"),
 }
 

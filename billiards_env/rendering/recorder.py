@@ -20,12 +20,12 @@ class RecordReplay(gym.Wrapper):
     ``reset()`` if it was left unfinished.
 
     The env must keep each shot's event log, which it does when created
-    with a render mode: ``gymnasium.make("Billiards-PotOne-v0",
+    with a render mode: ``gymnasium.make("Billiards-PotOne-v1",
     render_mode="rgb_array")``. An episode's first shot starts from the
     table ``reset()`` set up; for NineBall that is the table after the break
     (the env simulates the break inside ``reset()`` and keeps no log of it).
 
-    A two-player game env (``Billiards-NineBall2P-v0``, ...) is recorded a
+    A two-player game env (``Billiards-NineBall2P-v1``, ...) is recorded a
     game at a time, every shot of both players from the break, the
     opponent's too (``GameRecorder``): ``folder/<name_prefix>-NNNN`` is the
     NNNN-th game the env played, a game the opponent ended before the

@@ -60,7 +60,7 @@ def main(argv=None) -> int:
     r = play_pairing("ladder-3", "ghost", "nine_ball", n_racks=1, seed=0, max_shots=60)  # the shipped weights load
     assert r.n == 2, r
     print(f"ok  match: ladder-3 vs ghost, {r.n} games of 9-ball (the package's ladder weights)")
-    env = RecordReplay(gym.make("Billiards-PotOne-v0", render_mode="rgb_array"), out, name_prefix="smoke")
+    env = RecordReplay(gym.make("Billiards-PotOne-v1", render_mode="rgb_array"), out, name_prefix="smoke")
     env.reset(seed=0)
     done = False
     while not done:

@@ -22,7 +22,7 @@ from agents.sb3.vec_env import NativeVecEnv, make_sb3_vec_env  # noqa: E402
 from billiards_env.physics import BallState  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
-POT = "Billiards-PotOne-v0"
+POT = "Billiards-PotOne-v1"
 
 
 # ---------------------------------------------------------------- Wilson CI
@@ -100,7 +100,7 @@ def test_adapter_shapes_terminal_obs_and_seeding():
 
 
 def test_adapter_partial_resets_on_multi_shot_task():
-    env = make_sb3_vec_env("Billiards-RunOut-v0", 8, seed=0)
+    env = make_sb3_vec_env("Billiards-RunOut-v1", 8, seed=0)
     obs = env.reset()
     rng = np.random.default_rng(0)
     for _ in range(5):

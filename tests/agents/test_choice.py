@@ -21,7 +21,7 @@ from billiards_env.physics import simulate, strike_velocity  # noqa: E402
 from billiards_env.physics.strike import Shots  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
-NINE = "Billiards-NineBall-v0"
+NINE = "Billiards-NineBall-v1"
 NOMINAL = (choice.SPEED_LEVELS.index(1.0), choice.HEIGHT_LEVELS.index(0.0))
 
 

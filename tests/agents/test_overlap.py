@@ -39,7 +39,7 @@ def test_rollouts_are_collected_one_update_behind():
     """Rollouts 1 and 2 are collected with the initial weights (update 1
     runs during rollout 2), rollout 3 with the weights after update 1, and
     every rollout gets its update (n_epochs each)."""
-    cfg = load_config("configs/ppo_games.yaml", "Billiards-NineBall2P-v0", SETS)
+    cfg = load_config("configs/ppo_games.yaml", "Billiards-NineBall2P-v1", SETS)
     env, _ = build_env(cfg, 0)
     model = build_model(cfg, env, None)
     assert isinstance(model, OverlappedPPO)
@@ -57,7 +57,7 @@ def test_rollouts_are_collected_one_update_behind():
 
 
 def test_an_update_error_reaches_the_caller(monkeypatch):
-    cfg = load_config("configs/ppo_games.yaml", "Billiards-NineBall2P-v0", SETS)
+    cfg = load_config("configs/ppo_games.yaml", "Billiards-NineBall2P-v1", SETS)
     env, _ = build_env(cfg, 0)
     model = build_model(cfg, env, None)
 
@@ -82,7 +82,7 @@ def test_a_checkpoint_holds_every_update_of_its_steps(tmp_path):
     from agents.sb3.checkpoints import latest_checkpoint
     from agents.sb3.training import EpisodeLogger
 
-    cfg = load_config("configs/ppo_games.yaml", "Billiards-NineBall2P-v0", SETS)
+    cfg = load_config("configs/ppo_games.yaml", "Billiards-NineBall2P-v1", SETS)
     env, vecnorm = build_env(cfg, 0)
     model = build_model(cfg, env, None)
     seen = ActingWeights()

@@ -44,7 +44,7 @@ def local_ray(ray_module):
 
 
 def _cfg(*extra):
-    return load_config(None, "Billiards-PotOne-v0", TINY + list(extra))
+    return load_config(None, "Billiards-PotOne-v1", TINY + list(extra))
 
 
 def _progress(run_dir) -> list[dict]:
@@ -63,9 +63,9 @@ def test_vector_features_wrapper_matches_the_sb3_wrapper():
     from agents.sb3.vec_env import make_sb3_vec_env
 
     n = 8
-    sb3 = make_sb3_vec_env("Billiards-PotOne-v0", n, seed=3)
+    sb3 = make_sb3_vec_env("Billiards-PotOne-v1", n, seed=3)
     sb3 = ShotFeatures(sb3, sb3.unwrapped, True, 0.004, "residual")
-    venv = VectorShotFeatures(gym.make_vec("Billiards-PotOne-v0", num_envs=n, vectorization_mode="vector_entry_point",
+    venv = VectorShotFeatures(gym.make_vec("Billiards-PotOne-v1", num_envs=n, vectorization_mode="vector_entry_point",
                                            autoreset_mode="next_step"), True, 0.004, "residual")
     obs_a = sb3.reset()
     obs_b, _ = venv.reset(seed=3)
@@ -102,10 +102,10 @@ def test_local_run_steps_the_vector_env_and_loads_into_the_harness(local_ray, tm
         assert (run / name).exists()
     policy = load_trained(run)
     assert isinstance(policy, RLlibPolicy)
-    res = evaluate(lambda env: policy.bind(env), "Billiards-PotOne-v0", 64, 12345, "none", name=policy.name)
+    res = evaluate(lambda env: policy.bind(env), "Billiards-PotOne-v1", 64, 12345, "none", name=policy.name)
     assert res.n_episodes == 64 and math.isfinite(res.mean_reward)
     # the policy is deterministic: the same seeds give the same episodes
-    again = evaluate(lambda env: policy.bind(env), "Billiards-PotOne-v0", 64, 12345, "none")
+    again = evaluate(lambda env: policy.bind(env), "Billiards-PotOne-v1", 64, 12345, "none")
     assert again.per_episode == res.per_episode
     # a trained residual policy stays near the ghost-ball shot: far above random (~3%)
     assert res.success_rate > 0.3
@@ -125,7 +125,7 @@ def test_distributed_evaluation_equals_local(local_ray, tmp_path):
     from agents.rllib.evaluation import evaluate_spec
 
     specs = ["random", "ghost", "search8"]
-    kw = dict(env_id="Billiards-PotOne-v0", n_episodes=48, seed=777, noises=["none", "tournament"], batch_size=16)
+    kw = dict(env_id="Billiards-PotOne-v1", n_episodes=48, seed=777, noises=["none", "tournament"], batch_size=16)
     local = evaluate_policies(specs, **kw)
     dist = evaluate_policies(specs, **kw, run=evaluate_spec)
     assert [r.policy for r in dist] == [r.policy for r in local]
@@ -253,7 +253,7 @@ def test_lean_runner_gives_the_learner_complete_episodes(ray_module):
 
     from agents.rllib.backend import algo_config
 
-    cfg = load_config(None, "Billiards-PotOne-v0", ["rllib.num_env_runners=0", "rllib.num_envs_per_env_runner=16"])
+    cfg = load_config(None, "Billiards-PotOne-v1", ["rllib.num_env_runners=0", "rllib.num_envs_per_env_runner=16"])
     runner = SingleAgentEnvRunner(config=algo_config(cfg, lean=True))
     try:
         eps = runner.sample(num_timesteps=64)

@@ -28,7 +28,7 @@ def test_quick_study_runs_and_resumes(tmp_path):
     # the same study resumed in-process (no second interpreter start-up), one trial more
     from agents.tuning import Trials, tune
     fixed = ("n_envs=64", "policy.net_arch=[16]", "ppo.n_steps=8", "ppo.batch_size=256")
-    second = tune("Billiards-PotOne-v0", "ppo", 3, tmp_path / "study",
+    second = tune("Billiards-PotOne-v1", "ppo", 3, tmp_path / "study",
                   trials=Trials(steps=2048, n_evals=2, eval_episodes=50, fixed=fixed, startup_trials=2))
     assert second["finished_before_this_run"] == 2 and second["finished_trials"] == 3
     study = optuna.load_study(study_name=second["study"], storage=second["storage"])
@@ -39,7 +39,7 @@ def test_quick_study_runs_and_resumes(tmp_path):
     best = second["best"]
     assert (tmp_path / "study" / "best_overrides.yaml").read_text().count("- ") == len(best["overrides"])
     # a study over another config's block: its trials keep that block's env options
-    direct = tune("Billiards-PotOne-v0", "ppo", 1, tmp_path / "direct",
+    direct = tune("Billiards-PotOne-v1", "ppo", 1, tmp_path / "direct",
                   trials=Trials(steps=2048, n_evals=2, eval_episodes=50, fixed=fixed, startup_trials=1),
                   config=ROOT / "configs" / "ppo_direct.yaml")
     assert direct["finished_trials"] == 1

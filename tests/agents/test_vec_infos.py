@@ -33,7 +33,7 @@ def _eager(info: dict, n: int, j: int) -> dict:
 
 
 def _game_info(n: int = 16, steps: int = 3) -> dict:
-    env = gym.make_vec("Billiards-NineBall2P-v0", num_envs=n, vectorization_mode="vector_entry_point",
+    env = gym.make_vec("Billiards-NineBall2P-v1", num_envs=n, vectorization_mode="vector_entry_point",
                        autoreset_mode="same_step", opponent="ghost")
     env.reset(seed=3)
     env.action_space.seed(3)

@@ -17,7 +17,7 @@ N_ENVS, STEPS, SEED = 8, 6, 7
 
 def _cfg(*sets):
     # the agent against ghost (GameVersusVectorEnv): tables whose opponents draw random numbers too
-    return load_config(GAMES, "Billiards-NineBall2P-v0", [f"n_envs={N_ENVS}", "env_kwargs={opponent: ghost}",
+    return load_config(GAMES, "Billiards-NineBall2P-v1", [f"n_envs={N_ENVS}", "env_kwargs={opponent: ghost}",
                                                           "normalize.obs=false", "normalize.reward=false", *sets])
 
 
@@ -89,7 +89,7 @@ def test_workers_that_do_not_divide_the_tables_are_an_error():
 
 
 def test_a_failing_worker_names_its_error():
-    spec = table_spec(_cfg())._replace(env_id="Billiards-NoSuchGame-v0")
+    spec = table_spec(_cfg())._replace(env_id="Billiards-NoSuchGame-v1")
     with pytest.raises(RuntimeError, match="(?s)env worker 0 failed.*NoSuchGame"):
         WorkerVecEnv(spec, N_ENVS, 2)
 

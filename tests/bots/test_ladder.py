@@ -37,7 +37,7 @@ def test_mlp_forward_is_the_hand_computed_argmax():
         net.act(np.zeros((1, 3)))
 
 
-@pytest.mark.parametrize("game,env_id", [("nine_ball", "Billiards-NineBall2P-v0"), ("eight_ball", "Billiards-EightBall-v0")])
+@pytest.mark.parametrize("game,env_id", [("nine_ball", "Billiards-NineBall2P-v1"), ("eight_ball", "Billiards-EightBall-v1")])
 def test_numpy_network_chooses_the_torch_policys_actions(game, env_id, tmp_path):
     """A PPO over the shot menu (configs/ppo_games.yaml, 8 tables) with its
     normaliser fed a few steps: on seeded game positions the exported numpy
@@ -106,7 +106,7 @@ def test_ladder_agent_is_an_opponent_of_the_game_env():
     import billiards_env  # noqa: F401
 
     name = _shipped("eight_ball")[0]
-    env = gym.make("Billiards-EightBall-v0", opponent=name)
+    env = gym.make("Billiards-EightBall-v1", opponent=name)
     env.reset(seed=5)
     total = 0
     for _ in range(6):

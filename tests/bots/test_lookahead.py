@@ -8,7 +8,7 @@ from agents.evaluation.policies import make_policy
 from agents.evaluation.harness import evaluate
 from billiards_env.bots.lookahead import LookaheadPolicy
 
-RUNOUT = "Billiards-RunOut-v0"
+RUNOUT = "Billiards-RunOut-v1"
 # A straight-in pot of ball 1 into the top-right corner from the same cue
 # position, and ball 2 with ball 3 frozen beside it (a blocker). Both
 # candidate shots pot ball 1 every time under tournament noise; the stun shot

@@ -67,12 +67,12 @@ def test_user_bot_as_the_versus_opponent(bot_dir):
 
     import billiards_env  # noqa: F401
     from my_bots import Planner
-    env = gym.make_vec("Billiards-NineBall2P-v0", num_envs=4, vectorization_mode="vector_entry_point",
+    env = gym.make_vec("Billiards-NineBall2P-v1", num_envs=4, vectorization_mode="vector_entry_point",
                        opponent=Planner(seed=1, k=4))
     env.reset(seed=0)
     for _ in range(3):
         env.step(np.zeros((4, 8), dtype=np.float32))
-    env2 = gym.make("Billiards-NineBall2P-v0", opponent="my_bots:planner")
+    env2 = gym.make("Billiards-NineBall2P-v1", opponent="my_bots:planner")
     env2.reset(seed=0)
     env2.step(np.zeros(8, dtype=np.float32))
 
@@ -83,7 +83,7 @@ def test_bad_bots_are_named():
     import billiards_env  # noqa: F401
     from billiards_env.bots import make_bot
     with pytest.raises(ValueError, match="opponent must be a bot name"):
-        gym.make("Billiards-NineBall2P-v0", opponent=42)
+        gym.make("Billiards-NineBall2P-v1", opponent=42)
     with pytest.raises(ValueError, match="cannot import module 'no_such_bots'"):
         make_bot("no_such_bots:x")
     with pytest.raises(ValueError, match="unknown bot 'gost'"):

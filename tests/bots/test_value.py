@@ -127,7 +127,7 @@ def test_value_lookahead_is_an_opponent_of_the_game_env_and_plays_the_aec_env():
 
     if not (V.VALUE_DIR / "nine_ball.json").exists():
         pytest.skip("no value network shipped")
-    env = gym.make("Billiards-NineBall2P-v0", opponent="value-lookahead")
+    env = gym.make("Billiards-NineBall2P-v1", opponent="value-lookahead")
     obs, _ = env.reset(seed=2)
     obs, *_ = env.step(env.action_space.sample())
     assert np.isfinite(obs).all()

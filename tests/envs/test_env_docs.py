@@ -15,6 +15,6 @@ def test_environments_doc_is_up_to_date():
 
 def test_every_builtin_task_has_a_section():
     text = (ROOT / "docs" / "environments.md").read_text()
-    for env_id in ("Billiards-PotOne-v0", "Billiards-RunOut-v0", "Billiards-NineBall-v0"):
+    for env_id in ("Billiards-PotOne-v1", "Billiards-RunOut-v1", "Billiards-NineBall-v1"):
         assert f"## {env_id}" in text
     assert "| a1 | cue draw" in text and "Autoreset" in text

@@ -86,7 +86,7 @@ def test_vector_matches_single_envs(env_id):
 
 
 def test_autoreset_next_step():
-    v = make_vec("Billiards-PotOne-v0", 4).unwrapped
+    v = make_vec("Billiards-PotOne-v1", 4).unwrapped
     v.reset(seed=3)
     _, _, te, tr, info = v.step(np.zeros((4, 4), np.float32))
     assert np.all(te | tr)  # PotOne: one shot per episode
@@ -101,17 +101,17 @@ def test_autoreset_next_step():
 
 
 def test_reset_seeding_reproducible_and_tables_differ():
-    v = make_vec("Billiards-RunOut-v0", 4).unwrapped
+    v = make_vec("Billiards-RunOut-v1", 4).unwrapped
     a, _ = v.reset(seed=5)
     b, _ = v.reset(seed=5)
     np.testing.assert_array_equal(a, b)
     assert len({tuple(row) for row in a}) == 4  # each table seeded differently
-    e = gym.make("Billiards-RunOut-v0").unwrapped
+    e = gym.make("Billiards-RunOut-v1").unwrapped
     np.testing.assert_array_equal(e.reset(seed=7)[0], a[2])
 
 
 def test_observation_layout():
-    env = gym.make("Billiards-RunOut-v0", n_balls=3).unwrapped
+    env = gym.make("Billiards-RunOut-v1", n_balls=3).unwrapped
     obs, _ = env.reset(seed=1)
     B = 4
     assert obs.shape == (4 * B + 1,) and obs.dtype == np.float32
@@ -208,14 +208,14 @@ def test_models_config(tmp_path):
 
 
 def test_step_solver_runs():
-    v = make_vec("Billiards-PotOne-v0", 2, solver="step", dt=1e-3)
+    v = make_vec("Billiards-PotOne-v1", 2, solver="step", dt=1e-3)
     v.reset(seed=0)
     obs, r, te, tr, info = v.step(np.array([[0, -0.6, 0, 0]] * 2, np.float32))
     assert np.all(np.isfinite(obs)) and np.all(info["n_events"] > 0)
 
 
 def test_bad_actions_raise_and_clip_is_reported():
-    env = gym.make("Billiards-PotOne-v0").unwrapped
+    env = gym.make("Billiards-PotOne-v1").unwrapped
     env.reset(seed=0)
     with pytest.raises(ValueError, match="NaN or infinite"):
         env.step(np.array([0, np.nan, 0, 0], np.float32))
@@ -227,7 +227,7 @@ def test_bad_actions_raise_and_clip_is_reported():
     assert info["action_clipped"] is True
     with pytest.raises(RuntimeError, match="reset"):
         env.step(np.zeros(4))
-    v = make_vec("Billiards-PotOne-v0", 3).unwrapped
+    v = make_vec("Billiards-PotOne-v1", 3).unwrapped
     v.reset(seed=0)
     with pytest.raises(ValueError, match=r"shape \(3, 4\)"):
         v.step(np.zeros((2, 4)))
@@ -241,7 +241,7 @@ def test_bad_actions_raise_and_clip_is_reported():
 
 @pytest.mark.parametrize("aim", ["relative", "absolute"])
 def test_action_shot_round_trip(aim):
-    v = make_vec("Billiards-RunOut-v0", 5, aim=aim).unwrapped
+    v = make_vec("Billiards-RunOut-v1", 5, aim=aim).unwrapped
     v.reset(seed=2)
     p = v.params
     rng = np.random.default_rng(0)
@@ -287,7 +287,7 @@ def test_random_policy_1000_vector_steps(env_id):
 def test_autoreset_modes_other_than_next_step(mode):
     import gymnasium as gym
     from gymnasium.vector import AutoresetMode
-    env = gym.make_vec("Billiards-PotOne-v0", num_envs=4, vectorization_mode="vector_entry_point",
+    env = gym.make_vec("Billiards-PotOne-v1", num_envs=4, vectorization_mode="vector_entry_point",
                        autoreset_mode=mode)
     assert env.metadata["autoreset_mode"] == {"same_step": AutoresetMode.SAME_STEP,
                                               "disabled": AutoresetMode.DISABLED}[mode]
@@ -314,7 +314,7 @@ def test_autoreset_modes_other_than_next_step(mode):
 def test_same_step_matches_next_step_episodes():
     """The two autoreset modes give the same episodes, only arranged in time differently."""
     import gymnasium as gym
-    envs = {m: gym.make_vec("Billiards-PotOne-v0", num_envs=3, vectorization_mode="vector_entry_point",
+    envs = {m: gym.make_vec("Billiards-PotOne-v1", num_envs=3, vectorization_mode="vector_entry_point",
                             autoreset_mode=m) for m in ("next_step", "same_step")}
     for e in envs.values():
         e.reset(seed=11)
@@ -404,7 +404,7 @@ def test_nine_ball_breaks_leave_cue_and_nine_on_a_legal_table(monkeypatch):
     calls = []
     spot = nine_mod.free_spot
     monkeypatch.setattr(nine_mod, "free_spot", lambda *a: calls.append(1) or spot(*a))
-    v = make_vec("Billiards-NineBall-v0", 128).unwrapped
+    v = make_vec("Billiards-NineBall-v1", 128).unwrapped
     R, t = v.params.R, v.table
     for seed in (0, 1000):
         v.reset(seed=seed)

@@ -8,7 +8,7 @@ import pytest
 import billiards_env  # noqa: F401  (registers the ids)
 from billiards_env.rendering.game import render_game
 
-GAME_IDS = ["Billiards-NineBall2P-v0", "Billiards-EightBall-v0", "Billiards-TenBall-v0"]
+GAME_IDS = ["Billiards-NineBall2P-v1", "Billiards-EightBall-v1", "Billiards-TenBall-v1"]
 
 
 @pytest.mark.parametrize("env_id", GAME_IDS)
@@ -27,15 +27,15 @@ def test_make_vec_renders_each_table(env_id):
 
 
 def test_make_vec_against_an_opponent_renders():
-    env = gym.make_vec("Billiards-NineBall2P-v0", num_envs=2, render_mode="rgb_array", opponent="ghost")
+    env = gym.make_vec("Billiards-NineBall2P-v1", num_envs=2, render_mode="rgb_array", opponent="ghost")
     env.reset(seed=1)
     assert len(env.render()) == 2
 
 
 def test_make_vec_bad_render_mode():
     with pytest.raises(ValueError, match="render_mode must be one of"):
-        gym.make_vec("Billiards-NineBall2P-v0", num_envs=2, render_mode="human")
-    env = gym.make_vec("Billiards-NineBall2P-v0", num_envs=2)
+        gym.make_vec("Billiards-NineBall2P-v1", num_envs=2, render_mode="human")
+    env = gym.make_vec("Billiards-NineBall2P-v1", num_envs=2)
     env.reset(seed=0)
     with pytest.warns(UserWarning, match="without a render_mode"):
         assert env.render() is None

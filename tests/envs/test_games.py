@@ -15,7 +15,7 @@ from billiards_env.rules import records as R
 from billiards_env.testing.positions import game_table
 
 GAMES = ["nine_ball", "eight_ball", "ten_ball", "snooker"]
-IDS = ["Billiards-NineBall2P-v0", "Billiards-EightBall-v0", "Billiards-TenBall-v0", "Billiards-Snooker-v0"]
+IDS = ["Billiards-NineBall2P-v1", "Billiards-EightBall-v1", "Billiards-TenBall-v1", "Billiards-Snooker-v1"]
 ACTION_DIMS = {"nine_ball": 8, "eight_ball": 8, "ten_ball": 9, "snooker": 9}  # a8: the called / nominated ball
 
 
@@ -259,7 +259,7 @@ def test_noise_levels():
 
 def test_stable_baselines3_trains_on_the_single_agent_env():
     sb3 = pytest.importorskip("stable_baselines3")
-    env = gym.make("Billiards-NineBall2P-v0", max_shots=30)
+    env = gym.make("Billiards-NineBall2P-v1", max_shots=30)
     model = sb3.PPO("MlpPolicy", env, n_steps=32, batch_size=32, n_epochs=1, seed=0, device="cpu")
     model.learn(64)
     obs, _ = env.reset(seed=0)
@@ -286,7 +286,7 @@ def test_match_script_with_a_saved_model(tmp_path):
     import sys
     from pathlib import Path
     sb3 = pytest.importorskip("stable_baselines3")
-    env = gym.make("Billiards-NineBall2P-v0", max_shots=20)
+    env = gym.make("Billiards-NineBall2P-v1", max_shots=20)
     model = sb3.PPO("MlpPolicy", env, n_steps=16, batch_size=16, n_epochs=1, seed=0, device="cpu")
     model.learn(16)
     model.save(tmp_path / "model.zip")

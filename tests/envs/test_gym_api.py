@@ -15,7 +15,7 @@ import billiards_env  # noqa: F401 (registers the ids)
 from billiards_env.physics import forking
 
 ROOT = Path(__file__).resolve().parents[2]
-ID = "Billiards-PotOne-v0"
+ID = "Billiards-PotOne-v1"
 FRESH_PROCESS_TIMEOUT_S = 600  # imports, and the kernel's compile on a cold cache
 
 

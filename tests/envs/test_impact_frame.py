@@ -34,7 +34,7 @@ def test_impact_aim_sets_the_object_ball_departure_angle(line):
     """a0 = 0 is a full hit: the object ball moves along cue -> target. For
     any a0 it leaves at asin(a0) counter-clockwise from the cue ball's path,
     which turns asin(2R a0 / d) clockwise from cue -> target."""
-    env = gym.make("Billiards-PotOne-v0", aim="impact", table="pocketless",
+    env = gym.make("Billiards-PotOne-v1", aim="impact", table="pocketless",
                    effects=dict(ball_friction=False)).unwrapped
     env.reset(seed=0)
     R, dist = env.params.R, 0.3
@@ -49,7 +49,7 @@ def test_impact_aim_sets_the_object_ball_departure_angle(line):
 def test_impact_aim_misses_beyond_the_thinnest_touch():
     """|a0| = 1 grazes the object ball; the relative aim a little further
     out misses it (a foul), so the impact aim's range is every hitting aim."""
-    env = gym.make("Billiards-PotOne-v0", aim="impact", table="pocketless").unwrapped
+    env = gym.make("Billiards-PotOne-v1", aim="impact", table="pocketless").unwrapped
     env.reset(seed=0)
     cue = np.array([0.6, 1.0])
     env.set_state(np.array([cue, cue + [0.0, 0.4]]))
@@ -60,7 +60,7 @@ def test_impact_aim_misses_beyond_the_thinnest_touch():
 
 
 @pytest.mark.parametrize("speed_scale", ["linear", "log"])
-@pytest.mark.parametrize("env_id", ["Billiards-PotOne-v0", "Billiards-RunOut-v0", "Billiards-NineBall-v0"])
+@pytest.mark.parametrize("env_id", ["Billiards-PotOne-v1", "Billiards-RunOut-v1", "Billiards-NineBall-v1"])
 def test_impact_shot_round_trip(env_id, speed_scale):
     v = gym.make_vec(env_id, num_envs=6, vectorization_mode="vector_entry_point", aim="impact",
                      speed_scale=speed_scale).unwrapped
@@ -74,7 +74,7 @@ def test_log_speed_scale_spans_the_draw_geometrically():
     """a1 = -1, 0, 1 give min_draw, the geometric mean and max_draw; equal
     steps of a1 are equal speed ratios."""
     from billiards_env.physics.strike import draw_to_speed
-    v = gym.make_vec("Billiards-PotOne-v0", num_envs=5, vectorization_mode="vector_entry_point",
+    v = gym.make_vec("Billiards-PotOne-v1", num_envs=5, vectorization_mode="vector_entry_point",
                      speed_scale="log").unwrapped
     v.reset(seed=0)
     lo, hi, p = v.config.min_draw, v.params.max_draw, v.params
@@ -89,7 +89,7 @@ def test_log_speed_scale_spans_the_draw_geometrically():
 def test_impact_aim_keeps_the_ghost_ball_shot():
     """The ghost-ball baseline's shot maps to an impact action and back to the same aim."""
     from billiards_env.bots.geometry import ghost_ball_shot
-    v = gym.make_vec("Billiards-PotOne-v0", num_envs=50, vectorization_mode="vector_entry_point",
+    v = gym.make_vec("Billiards-PotOne-v1", num_envs=50, vectorization_mode="vector_entry_point",
                      aim="impact").unwrapped
     v.reset(seed=7)
     s = v.state
@@ -105,7 +105,7 @@ def _layouts(env, n):
     return v.state.pos.copy()
 
 
-@pytest.mark.parametrize("env_id", ["Billiards-PotOne-v0", "Billiards-RunOut-v0"])
+@pytest.mark.parametrize("env_id", ["Billiards-PotOne-v1", "Billiards-RunOut-v1"])
 def test_target_frame_observation_is_invariant_under_the_table_symmetries(env_id):
     """Rotating a layout by 180 degrees about the table's centre leaves the
     observation unchanged; mirroring it negates every y and uy entry."""
@@ -129,7 +129,7 @@ def test_target_frame_observation_is_invariant_under_the_table_symmetries(env_id
 
 
 def test_target_frame_pockets_are_ordered_straightest_first():
-    env = gym.make("Billiards-PotOne-v0", observation="target_frame").unwrapped
+    env = gym.make("Billiards-PotOne-v1", observation="target_frame").unwrapped
     env.reset(seed=0)
     W, L = env.table.width, env.table.length
     # target halfway between the centre and the far corner pocket, the cue ball straight behind it
@@ -153,7 +153,7 @@ def test_target_frame_lists_pockets_the_ball_cannot_enter_last():
     each group is ordered straightest first."""
     from billiards_env.envs.target_frame import SORT_LAST, pocket_accept_cos, pocket_axes
 
-    env = gym.make("Billiards-PotOne-v0", observation="target_frame").unwrapped
+    env = gym.make("Billiards-PotOne-v1", observation="target_frame").unwrapped
     env.reset(seed=0)
     W, L = env.table.width, env.table.length
     centres = env.table.pockets[:, :2]
@@ -177,7 +177,7 @@ def test_target_frame_lists_pockets_the_ball_cannot_enter_last():
 
 @pytest.mark.parametrize("kw", [dict(aim="impact"), dict(observation="target_frame"),
                                 dict(aim="impact", observation="target_frame")])
-@pytest.mark.parametrize("env_id", ["Billiards-PotOne-v0", "Billiards-NineBall-v0"])
+@pytest.mark.parametrize("env_id", ["Billiards-PotOne-v1", "Billiards-NineBall-v1"])
 def test_check_env_with_the_new_options(env_id, kw):
     env = gym.make(env_id, **kw).unwrapped
     check_env(env, skip_render_check=True)
@@ -197,4 +197,4 @@ def test_bad_option_values_name_the_choices():
     with pytest.raises(ValueError, match="speed_scale must be one of .*log"):
         TaskConfig.default("pot_one", speed_scale="exp")
     with pytest.raises(ValueError, match="observation must be one of"):
-        gym.make("Billiards-PotOne-v0", observation=3)
+        gym.make("Billiards-PotOne-v1", observation=3)

@@ -46,7 +46,7 @@ def test_scratch_earns_penalty_and_shaping_is_potential_based():
     assert r == pytest.approx(sum(t.values()), abs=1e-12)
 
 
-@pytest.mark.parametrize("env_id", ["Billiards-RunOut-v0", "Billiards-NineBall-v0"])
+@pytest.mark.parametrize("env_id", ["Billiards-RunOut-v1", "Billiards-NineBall-v1"])
 def test_reward_terms_add_up_in_vector_env(env_id):
     v = gym.make_vec(env_id, num_envs=6, vectorization_mode="vector_entry_point")
     v.reset(seed=1)

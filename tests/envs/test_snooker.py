@@ -3,7 +3,7 @@
 shot records), bot frames played to their end, rules that read contacts
 played through the simulator on constructed positions, the bot, the match
 script. PettingZoo's api_test, check_env and vector = singles for
-Billiards-Snooker-v0: tests/envs/test_games.py."""
+Billiards-Snooker-v1: tests/envs/test_games.py."""
 import math
 import subprocess
 import sys

@@ -24,13 +24,13 @@ from billiards_env.physics.strike import draw_to_speed, speed_to_draw
 
 # ------------------------------------------------------------- the toy task --
 class ToyPotAny(Task):
-    """Billiards-ToyPotAny-v0: the cue ball and two object balls at random
+    """Billiards-ToyPotAny-v1: the cue ball and two object balls at random
     positions; one shot per episode. Success: any object ball pocketed, the
     cue ball not. Foul: the cue ball hits no ball.
 """
 
     name = "toy_pot_any"
-    env_id = "Billiards-ToyPotAny-v0"
+    env_id = "Billiards-ToyPotAny-v1"
     class_prefix = "ToyPotAny"
     config_path = Path(__file__).parent / "tasks" / "toy_pot_any.yaml"
 
@@ -48,7 +48,7 @@ class ToyPotAny(Task):
 
 
 register_task(ToyPotAny())  # the one registry line
-TOY = "Billiards-ToyPotAny-v0"
+TOY = "Billiards-ToyPotAny-v1"
 
 
 def test_toy_task_registered_with_both_entry_points():
@@ -58,7 +58,7 @@ def test_toy_task_registered_with_both_entry_points():
     assert spec.vector_entry_point == "billiards_env.envs.billiards:ToyPotAnyVectorEnv"
     single, vector = env_classes("toy_pot_any")
     assert issubclass(single, BilliardsEnv) and issubclass(vector, BilliardsVectorEnv)
-    assert single.__doc__.startswith("Billiards-ToyPotAny-v0") and "Observation" in single.__doc__
+    assert single.__doc__.startswith("Billiards-ToyPotAny-v1") and "Observation" in single.__doc__
     from billiards_env.envs.billiards import ToyPotAnyEnv  # generated on demand
     assert ToyPotAnyEnv is single
     assert register_task(ToyPotAny()) is TASKS["toy_pot_any"]  # registering again: no-op
@@ -117,13 +117,13 @@ def test_task_validation_and_unknown_names():
 def test_missing_yaml_is_a_clear_error(tmp_path):
     class NoFile(ToyPotAny):
         name = "toy_no_file"
-        env_id = "Billiards-ToyNoFile-v0"
+        env_id = "Billiards-ToyNoFile-v1"
         class_prefix = "ToyNoFile"
         config_path = tmp_path / "absent.yaml"
 
     register_task(NoFile())
     with pytest.raises(FileNotFoundError, match="toy_no_file.*absent.yaml.*config_path"):
-        gym.make("Billiards-ToyNoFile-v0")
+        gym.make("Billiards-ToyNoFile-v1")
 
 
 def test_registry_refuses_clashes():
@@ -138,7 +138,7 @@ def test_registry_refuses_clashes():
 # -------------------------------------------------------------- shot space --
 @pytest.fixture(scope="module", params=["relative", "absolute"])
 def vec(request):
-    v = gym.make_vec("Billiards-RunOut-v0", num_envs=4, vectorization_mode="vector_entry_point",
+    v = gym.make_vec("Billiards-RunOut-v1", num_envs=4, vectorization_mode="vector_entry_point",
                      aim=request.param).unwrapped
     v.reset(seed=3)
     return v
@@ -182,7 +182,7 @@ def test_draw_speed_functions_are_inverse_and_match_max_speed():
 
 
 def test_shot_context_is_computed_once_per_state_change(monkeypatch):
-    v = gym.make_vec("Billiards-RunOut-v0", num_envs=4, vectorization_mode="vector_entry_point").unwrapped
+    v = gym.make_vec("Billiards-RunOut-v1", num_envs=4, vectorization_mode="vector_entry_point").unwrapped
     task = v._core.task
     calls = []
     inner = type(task).legal_target

@@ -1,4 +1,4 @@
-"""Billiards-TenBall-v0: the rack, the rules that read contacts played
+"""Billiards-TenBall-v1: the rack, the rules that read contacts played
 through the simulator, the spaces, properties of thousands of random games,
 and the 9-ball bots calling their shots in matches (PettingZoo's and
 Gymnasium's checks and the vector env against single games run for every
@@ -17,7 +17,7 @@ from billiards_env.rules import records as R
 from billiards_env.testing.positions import game_table
 from billiards_env.rules.placement import FOOT_SPOT
 
-ID = "Billiards-TenBall-v0"
+ID = "Billiards-TenBall-v1"
 
 
 # ------------------------------------------------------------------- the rack --

@@ -1,4 +1,4 @@
-"""Three-cushion environments: Billiards-ThreeCushion-v0 (gym.make and make_vec), the self-play vector env,
+"""Three-cushion environments: Billiards-ThreeCushion-v1 (gym.make and make_vec), the self-play vector env,
 the PettingZoo AEC env; thousands of random games; the opening, each player's own ball, frozen balls."""
 import gymnasium as gym
 import numpy as np
@@ -12,7 +12,7 @@ from billiards_env.physics.table import Table
 from billiards_env.rules import records as R
 from billiards_env.rules.three_cushion import OPENING_OFFSET
 
-ID = "Billiards-ThreeCushion-v0"
+ID = "Billiards-ThreeCushion-v1"
 SHORT = {"max_innings": 6}  # short games keep the tests fast
 
 
@@ -131,13 +131,13 @@ def test_random_games_end_and_scores_follow_the_shot_records():
 
 
 def test_point_task_success_and_shaped_reward():
-    """Billiards-ThreeCushionPoint-v0: success is the point read from the contact order, and the reward is
+    """Billiards-ThreeCushionPoint-v1: success is the point read from the contact order, and the reward is
     the sum of its spec's terms (success 1.0, both balls 0.2, 0.3 x cushions before the second / 3, foul -0.1)."""
     from gymnasium.utils.env_checker import check_env
     from billiards_env.rules.three_cushion import point_made
-    check_env(gym.make("Billiards-ThreeCushionPoint-v0").unwrapped, skip_render_check=True)
+    check_env(gym.make("Billiards-ThreeCushionPoint-v1").unwrapped, skip_render_check=True)
     n = 1024
-    v = gym.make_vec("Billiards-ThreeCushionPoint-v0", num_envs=n, vectorization_mode="vector_entry_point")
+    v = gym.make_vec("Billiards-ThreeCushionPoint-v1", num_envs=n, vectorization_mode="vector_entry_point")
     obs, _ = v.reset(seed=2)
     assert obs.shape == (n, 13) and v.unwrapped._core.table.style == "carom"
     rng = np.random.default_rng(4)

@@ -12,7 +12,7 @@ from billiards_env.envs.games.vector import GameVectorEnv
 from billiards_env.envs.games.versus import AGENT, GameVersusVectorEnv
 from billiards_env.rules import records as R
 
-IDS = ["Billiards-NineBall2P-v0", "Billiards-EightBall-v0"]
+IDS = ["Billiards-NineBall2P-v1", "Billiards-EightBall-v1"]
 
 
 def versus(env_id, n, **kw):
@@ -41,8 +41,8 @@ def test_every_observation_is_the_agents_and_rewards_end_games(env_id):
 
 def test_one_table_is_the_single_agent_env():
     """With one table and next-step autoreset the vector env plays exactly like ``GameEnv`` (same seed, actions)."""
-    vec = versus("Billiards-NineBall2P-v0", 1, opponent="random", noise="tournament")
-    single = gym.make("Billiards-NineBall2P-v0", opponent="random", noise="tournament").unwrapped
+    vec = versus("Billiards-NineBall2P-v1", 1, opponent="random", noise="tournament")
+    single = gym.make("Billiards-NineBall2P-v1", opponent="random", noise="tournament").unwrapped
     ov, _ = vec.reset(seed=7)
     os_, _ = single.reset(seed=7)
     rng = np.random.default_rng(1)
@@ -61,7 +61,7 @@ def test_one_table_is_the_single_agent_env():
 def test_same_seed_same_games():
     runs = []
     for _ in range(2):
-        env = versus("Billiards-EightBall-v0", 6, opponent="ghost-safety", noise="tournament")
+        env = versus("Billiards-EightBall-v1", 6, opponent="ghost-safety", noise="tournament")
         obs, _ = env.reset(seed=3)
         rng = np.random.default_rng(2)
         seq = [obs]
@@ -72,11 +72,11 @@ def test_same_seed_same_games():
 
 
 def test_entry_point_without_opponent_is_self_play():
-    assert isinstance(versus("Billiards-EightBall-v0", 2), GameVectorEnv)
+    assert isinstance(versus("Billiards-EightBall-v1", 2), GameVectorEnv)
     with pytest.raises(ValueError, match="opponent"):
-        versus("Billiards-EightBall-v0", 2, autoreset_mode="same_step")
+        versus("Billiards-EightBall-v1", 2, autoreset_mode="same_step")
     with pytest.raises(ValueError, match="autoreset_mode"):
-        versus("Billiards-EightBall-v0", 2, opponent="ghost", autoreset_mode="disabled")
+        versus("Billiards-EightBall-v1", 2, opponent="ghost", autoreset_mode="disabled")
 
 
 def _ball_in_hand(env, rng, steps=60):
@@ -93,7 +93,7 @@ def _ball_in_hand(env, rng, steps=60):
 
 def test_view_places_the_cue_ball_where_the_shot_is_played_from():
     from agents.interface.game_view import agent_native
-    env = versus("Billiards-NineBall2P-v0", 16, opponent="ghost")
+    env = versus("Billiards-NineBall2P-v1", 16, opponent="ghost")
     rng = np.random.default_rng(4)
     k = _ball_in_hand(env, rng)
     view = agent_native(env)
@@ -116,7 +116,7 @@ def test_view_shots_keep_their_aim_and_the_menu_calls_its_pocket():
     from agents.interface import choice
     from agents.interface.features import transform_actions
     from agents.interface.game_view import agent_native
-    env = versus("Billiards-EightBall-v0", 16, opponent="ghost")
+    env = versus("Billiards-EightBall-v1", 16, opponent="ghost")
     k = _ball_in_hand(env, np.random.default_rng(5))
     view = agent_native(env)
     items = np.tile([[2, choice.SPEED_LEVELS.index(1.0), choice.HEIGHT_LEVELS.index(0.0)]], (16, 1))
@@ -137,12 +137,12 @@ def test_view_shots_keep_their_aim_and_the_menu_calls_its_pocket():
 def test_game_baselines_and_names():
     from agents.evaluation.harness import evaluate
     from agents.evaluation.policies import make_policy
-    r = evaluate(lambda env: make_policy("ghost-safety", env), "Billiards-NineBall2P-v0", 24, 0, "none",
+    r = evaluate(lambda env: make_policy("ghost-safety", env), "Billiards-NineBall2P-v1", 24, 0, "none",
                  env_kwargs={"opponent": "ghost"})
     assert r.policy == "ghost-safety" and 0 <= r.success_rate <= 1 and r.shots_per_episode >= 1
     from agents.sb3.vec_env import make_sb3_vec_env
     with pytest.raises(ValueError, match="two-player"):
-        make_policy("ghost-safety", make_sb3_vec_env("Billiards-PotOne-v0", 2))
+        make_policy("ghost-safety", make_sb3_vec_env("Billiards-PotOne-v1", 2))
 
 
 @pytest.mark.parametrize("env_id", IDS)
@@ -177,14 +177,14 @@ def test_benchmark_rows_of_a_game(tmp_path):
     quick = ("n_envs=16", "policy.net_arch=[16]", "ppo.n_steps=8", "ppo.batch_size=64", "ppo.n_epochs=1",
              "sac.learning_starts=64", "sac.batch_size=64", "sac.gradient_steps=1", "sac.buffer_size=4096")
     kw = dict(budget=Budget(steps=256, episodes=16, curve_points=2, curve_episodes=16, extra=quick))
-    rows = run_benchmark(tmp_path, ["Billiards-EightBall-v0"], ["ppo", "sac"], **kw)
-    assert [(r["env_id"], r["algo"]) for r in rows] == [("Billiards-EightBall-v0", "sac")]  # no PPO block in ppo.yaml
+    rows = run_benchmark(tmp_path, ["Billiards-EightBall-v1"], ["ppo", "sac"], **kw)
+    assert [(r["env_id"], r["algo"]) for r in rows] == [("Billiards-EightBall-v1", "sac")]  # no PPO block in ppo.yaml
     r = rows[0]
     assert 0 <= r["ghost_success"] <= 1 and set(r["eval"]) == {"none", "tournament"}
-    rows = run_benchmark(tmp_path, ["Billiards-EightBall-v0"], ["ppo", "sac"], configs=table_configs(), **kw)
+    rows = run_benchmark(tmp_path, ["Billiards-EightBall-v1"], ["ppo", "sac"], configs=table_configs(), **kw)
     assert [(r["algo"], r["config"]) for r in rows] == [("ppo", "configs/ppo_games.yaml"), ("sac", "configs/sac.yaml")]
     md = markdown_table(rows, tmp_path)
-    assert "| EightBall-v0 | SAC | configs/sac.yaml" in md and "| EightBall-v0 | PPO | configs/ppo_games.yaml" in md
+    assert "| EightBall-v1 | SAC | configs/sac.yaml" in md and "| EightBall-v1 | PPO | configs/ppo_games.yaml" in md
 
 
 def test_game_run_checkpoints_and_resumes(tmp_path):
@@ -193,18 +193,18 @@ def test_game_run_checkpoints_and_resumes(tmp_path):
     over = ["n_envs=16", "policy.net_arch=[16]", "ppo.n_steps=8", "ppo.batch_size=64", "train.checkpoint_every=128",
             "train.tensorboard=false", "train.eval_every=0"]
     path = CONFIG_DIR / "ppo_games.yaml"
-    train(load_config(path, "Billiards-NineBall2P-v0", over + ["train.total_timesteps=384"]), tmp_path)
-    s = train(load_config(path, "Billiards-NineBall2P-v0", over + ["train.total_timesteps=512"]), tmp_path,
+    train(load_config(path, "Billiards-NineBall2P-v1", over + ["train.total_timesteps=384"]), tmp_path)
+    s = train(load_config(path, "Billiards-NineBall2P-v1", over + ["train.total_timesteps=512"]), tmp_path,
               resume=True)
     assert s["timesteps"] == 512 and s["resumed"]["from_step"] in (256, 384)
 
 
 def test_evaluation_names_the_opponent():
     from agents.evaluation.harness import evaluate_policies
-    r = evaluate_policies(["ghost"], "Billiards-EightBall-v0", 8, 0, opponent="ghost-safety")
+    r = evaluate_policies(["ghost"], "Billiards-EightBall-v1", 8, 0, opponent="ghost-safety")
     assert len(r) == 1 and r[0].n_episodes == 8
     with pytest.raises(ValueError, match="two-player"):
-        evaluate_policies(["ghost"], "Billiards-PotOne-v0", 8, 0, opponent="ghost")
+        evaluate_policies(["ghost"], "Billiards-PotOne-v1", 8, 0, opponent="ghost")
 
 
 def test_ball_in_hand_spot_keeps_clear_of_every_ball():

@@ -142,12 +142,12 @@ def test_game_env_renders(env_id):
 
 
 def test_two_player_ids_are_found_by_the_registry():
-    assert {"Billiards-NineBall2P-v0", "Billiards-EightBall-v0"} <= set(TWO_PLAYER_IDS)
-    assert game_of("Billiards-PotOne-v0") is None and game_of("No-Such-v0") is None
+    assert {"Billiards-NineBall2P-v1", "Billiards-EightBall-v1"} <= set(TWO_PLAYER_IDS)
+    assert game_of("Billiards-PotOne-v1") is None and game_of("No-Such-v0") is None
 
 
 def test_record_replay_records_whole_games_of_a_game_env(tmp_path):
-    env = RecordReplay(gym.make("Billiards-NineBall2P-v0", render_mode="rgb_array", opponent="ghost", max_shots=10),
+    env = RecordReplay(gym.make("Billiards-NineBall2P-v1", render_mode="rgb_array", opponent="ghost", max_shots=10),
                        tmp_path)
     env.reset(seed=1)
     core = env.unwrapped.core
@@ -169,7 +169,7 @@ def test_record_replay_records_whole_games_of_a_game_env(tmp_path):
     assert np.abs(pos[on] - core.state.pos[0][on]).max() < POS_TOL
     assert (tmp_path / reps[-1].with_suffix(".html").name).exists()
     with pytest.raises(ValueError, match="render_mode"):
-        RecordReplay(gym.make("Billiards-EightBall-v0"), tmp_path)
+        RecordReplay(gym.make("Billiards-EightBall-v1"), tmp_path)
 
 
 @pytest.mark.parametrize("env_id", TWO_PLAYER_IDS)

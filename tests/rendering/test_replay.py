@@ -218,7 +218,7 @@ def test_ball_paths_use_the_replay_motion(brk):
 
 # ----------------------------------------------------- envs and scripts --
 def test_record_replay_wrapper(tmp_path):
-    env = RecordReplay(gym.make("Billiards-RunOut-v0", render_mode="rgb_array", n_balls=2), tmp_path)
+    env = RecordReplay(gym.make("Billiards-RunOut-v1", render_mode="rgb_array", n_balls=2), tmp_path)
     obs, _ = env.reset(seed=4)
     u = env.unwrapped
     n_shots = 0
@@ -240,12 +240,12 @@ def test_record_replay_wrapper(tmp_path):
     page = (tmp_path / "episode-0000.html").read_text()
     assert "<script src" not in page and "http://" not in page and "https://" not in page  # self-contained
     with pytest.raises(ValueError, match="render_mode"):
-        RecordReplay(gym.make("Billiards-PotOne-v0"), tmp_path)
+        RecordReplay(gym.make("Billiards-PotOne-v1"), tmp_path)
 
 
 def test_script_episode_to_html_json_gif(tmp_path):
     outs = [tmp_path / "e.html", tmp_path / "e.json", tmp_path / "e.gif"]
-    cmd = [sys.executable, str(ROOT / "scripts" / "replay.py"), "--env", "Billiards-PotOne-v0", "--policy", "ghost",
+    cmd = [sys.executable, str(ROOT / "scripts" / "replay.py"), "--env", "Billiards-PotOne-v1", "--policy", "ghost",
            "--seed", "1", "--ppm", "60", "--fps", "5", "--speedup", "4"]
     for o in outs:
         cmd += ["--out", str(o)]
@@ -258,7 +258,7 @@ def test_script_episode_to_html_json_gif(tmp_path):
     frames = iio.imread(outs[2])
     assert frames.ndim == 4 and frames.shape[0] > 2
     # the same episode from the single env gives the same shot
-    env = gym.make("Billiards-PotOne-v0", render_mode="rgb_array")
+    env = gym.make("Billiards-PotOne-v1", render_mode="rgb_array")
     env.reset(seed=1)
     np.testing.assert_array_equal([rec[1:3] for rec in rep.shots[0]["start"]], env.unwrapped.state.pos[0])
 

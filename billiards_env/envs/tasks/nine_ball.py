@@ -1,4 +1,4 @@
-"""Billiards-NineBall-v0: simplified single-player 9-ball after a seeded break."""
+"""Billiards-NineBall-v1: simplified single-player 9-ball after a seeded break."""
 from __future__ import annotations
 
 import numpy as np
@@ -25,7 +25,7 @@ def nine_ball_rack(table, R: float, u: np.ndarray) -> np.ndarray:
 
 
 class NineBall(Task):
-    """Billiards-NineBall-v0: simplified single-player 9-ball.
+    """Billiards-NineBall-v1: simplified single-player 9-ball.
 
     Rules:
 
@@ -49,7 +49,7 @@ class NineBall(Task):
 """
 
     name = "nine_ball"
-    env_id = "Billiards-NineBall-v0"
+    env_id = "Billiards-NineBall-v1"
     class_prefix = "NineBall"
 
     def validate(self, cfg) -> None:

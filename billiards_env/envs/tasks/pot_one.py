@@ -1,4 +1,4 @@
-"""Billiards-PotOne-v0: pot one object ball in one shot."""
+"""Billiards-PotOne-v1: pot one object ball in one shot."""
 from __future__ import annotations
 
 import numpy as np
@@ -7,14 +7,14 @@ from .base import Judgement, ShotOutcome, Task, random_tables
 
 
 class PotOne(Task):
-    """Billiards-PotOne-v0: the cue ball and one object ball at random
+    """Billiards-PotOne-v1: the cue ball and one object ball at random
     positions; one shot per episode. Success (``info["success"]``): the object
     ball is pocketed and the cue ball is not. Every episode terminates after
     its shot. Foul: the cue ball misses the object ball.
 """
 
     name = "pot_one"
-    env_id = "Billiards-PotOne-v0"
+    env_id = "Billiards-PotOne-v1"
     class_prefix = "PotOne"
 
     def validate(self, cfg) -> None:

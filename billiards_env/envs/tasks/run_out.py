@@ -1,11 +1,11 @@
-"""Billiards-RunOut-v0: pot every object ball, one after another."""
+"""Billiards-RunOut-v1: pot every object ball, one after another."""
 from __future__ import annotations
 
 from .base import Judgement, ShotOutcome, Task, random_tables
 
 
 class RunOut(Task):
-    """Billiards-RunOut-v0: ``n_balls`` object balls (default 5) at random
+    """Billiards-RunOut-v1: ``n_balls`` object balls (default 5) at random
     positions. Any object ball may be hit first and pocketed; the legal
     *target* (for relative aim, contact reward and shaping) is the
     lowest-numbered ball on the table. The episode continues while every shot
@@ -16,7 +16,7 @@ class RunOut(Task):
 """
 
     name = "run_out"
-    env_id = "Billiards-RunOut-v0"
+    env_id = "Billiards-RunOut-v1"
     class_prefix = "RunOut"
 
     def reset(self, core, idx):

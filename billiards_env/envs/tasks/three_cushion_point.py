@@ -1,4 +1,4 @@
-"""Billiards-ThreeCushionPoint-v0: make a three-cushion point in one shot."""
+"""Billiards-ThreeCushionPoint-v1: make a three-cushion point in one shot."""
 from __future__ import annotations
 
 import numpy as np
@@ -18,7 +18,7 @@ def _reached(shot: ShotOutcome) -> np.ndarray:
 
 
 class ThreeCushionPoint(Task):
-    """Billiards-ThreeCushionPoint-v0: three balls at random positions on the
+    """Billiards-ThreeCushionPoint-v1: three balls at random positions on the
     carom match table with carom equipment (``Table.carom()``,
     ``PhysicsParams.carom()``): ball 0 the cue ball, 1 and 2 the object balls
     (the opponent's ball and the red); one shot per episode, and every
@@ -44,7 +44,7 @@ class ThreeCushionPoint(Task):
 """
 
     name = "three_cushion_point"
-    env_id = "Billiards-ThreeCushionPoint-v0"
+    env_id = "Billiards-ThreeCushionPoint-v1"
     class_prefix = "ThreeCushionPoint"
     contacts = CONTACTS_KEPT
 

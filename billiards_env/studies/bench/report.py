@@ -121,8 +121,8 @@ HEADLINES = (
     ("solver", "9-ball break (8 m/s)", "event", "1024", "", "shots_per_s_1t", "9-ball breaks/s, 1 thread"),
     ("solver", "two-ball cut (2 m/s, top+side)", "event", "1024", "", "shots_per_s_1t",
      "two-ball cut shots/s, 1 thread"),
-    ("env", "Billiards-PotOne-v0", "event", "1024", "same_step", "env_steps_per_s", "PotOne env steps/s, 1024 tables"),
-    ("env", "Billiards-NineBall-v0", "event", "1024", "same_step", "env_steps_per_s",
+    ("env", "Billiards-PotOne-v1", "event", "1024", "same_step", "env_steps_per_s", "PotOne env steps/s, 1024 tables"),
+    ("env", "Billiards-NineBall-v1", "event", "1024", "same_step", "env_steps_per_s",
      "NineBall env steps/s, 1024 tables"),
 )
 

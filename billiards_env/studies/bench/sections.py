@@ -158,7 +158,7 @@ def env_rows(opts: RunOptions) -> list[dict]:
     import billiards_env  # noqa: F401  (registers the tasks)
     rows = []
     cases = [(n, "same_step") for n in (1, 64, 1024)] + [(1024, "next_step")]
-    for env_id in [e for e in ("Billiards-PotOne-v0", "Billiards-NineBall-v0") if opts.keeps(e)]:
+    for env_id in [e for e in ("Billiards-PotOne-v1", "Billiards-NineBall-v1") if opts.keeps(e)]:
         for n, mode in cases:
             r = _env_case(env_id, n, mode, opts)
             rows.append(r)
