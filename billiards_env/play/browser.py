@@ -25,9 +25,10 @@ class PagePerson:
     ``push_out``: declare a push-out whenever the rules offer one (the shot
     then rolls the cue ball softly); ``pass_back``: pass when offered."""
 
-    def __init__(self, driver, tip=(0.0, -0.1), push_out: bool = True, pass_back: bool = False):
-        self.d, self.tip, self.push_out, self.pass_back = driver, tip, push_out, pass_back
+    def __init__(self, driver, tip=(0.0, -0.1), push_out: bool = True, pass_back: bool = False, touch: bool = False):
+        self.d, self.tip, self.push_out, self.pass_back, self.touch = driver, tip, push_out, pass_back, touch
         self.done = {"placement": 0, "aim": 0, "tip": 0, "push_out": 0, "pass": 0, "pocket": 0, "speed": 0}
+        self.scrolled = 0  # times the page had to be scrolled to reach what the person touched
 
     # --- looking at the page -------------------------------------------------------
     def js(self, script: str, *args):
@@ -51,9 +52,11 @@ class PagePerson:
 
     def px(self, x: float, y: float) -> tuple[int, int]:
         """Viewport CSS pixel of the table point (x, y) m (the page scrolled to show it)."""
-        self.js("const q = window.billiardsReplay.toPx(arguments[0], arguments[1]),"
-                "b = document.getElementById('table').getBoundingClientRect(), v = b.top + q[1];"
-                "if (v < 10 || v > innerHeight - 10) window.scrollBy(0, v - innerHeight / 2);", x, y)
+        if self.js("const q = window.billiardsReplay.toPx(arguments[0], arguments[1]),"
+                   "b = document.getElementById('table').getBoundingClientRect(), v = b.top + q[1];"
+                   "if (v < 10 || v > innerHeight - 10) { window.scrollBy(0, v - innerHeight / 2); return true; }"
+                   "return false;", x, y):
+            self.scrolled += 1
         u, v = self.js("const q = window.billiardsReplay.toPx(arguments[0], arguments[1]),"
                        "b = document.getElementById('table').getBoundingClientRect(); return [b.left + q[0], b.top + q[1]];",
                        x, y)
@@ -61,15 +64,21 @@ class PagePerson:
 
     def centre(self, element_id: str) -> tuple[float, float, float, float]:
         """The element's box in the viewport (scrolled into view first)."""
-        return tuple(self.js("const e = document.getElementById(arguments[0]), r = e.getBoundingClientRect();"
-                             "if (r.top < 0 || r.bottom > innerHeight) e.scrollIntoView({block: 'center'});"
-                             "const b = e.getBoundingClientRect();"
-                             "return [b.left, b.top, b.width, b.height];", element_id))
+        box = self.js("const e = document.getElementById(arguments[0]), r = e.getBoundingClientRect();"
+                      "const off = r.top < 0 || r.bottom > innerHeight; if (off) e.scrollIntoView({block: 'center'});"
+                      "const b = e.getBoundingClientRect();"
+                      "return [b.left, b.top, b.width, b.height, off];", element_id)
+        self.scrolled += bool(box[4])
+        return tuple(box[:4])
 
-    # --- the mouse ----------------------------------------------------------------------
+    # --- the mouse, or a finger ---------------------------------------------------------
     def _actions(self):
+        from selenium.webdriver.common.actions import interaction
         from selenium.webdriver.common.actions.action_builder import ActionBuilder
         from selenium.webdriver.common.actions.mouse_button import MouseButton
+        from selenium.webdriver.common.actions.pointer_input import PointerInput
+        if self.touch:  # touch events only: a finger's pointer (pointerType "touch"), no mouse
+            return ActionBuilder(self.d, mouse=PointerInput(interaction.POINTER_TOUCH, "finger"), duration=0), MouseButton.LEFT
         return ActionBuilder(self.d, duration=0), MouseButton.LEFT
 
     def drag(self, a, b, steps: int = 4) -> None:
@@ -83,7 +92,7 @@ class PagePerson:
 
     def click_at(self, p) -> None:
         ab, left = self._actions()
-        ab.pointer_action.move_to_location(*p).click()
+        ab.pointer_action.move_to_location(*p).pointer_down(left).pointer_up(left)
         ab.perform()
 
     def click(self, element_id: str) -> None:
@@ -96,13 +105,14 @@ class PagePerson:
         before = self.js("return window.billiardsPlay.choice.phi;")
         self.js("document.getElementById('pl-msg').textContent = '';")
         self.click("pl-hint")
-        end = time.monotonic() + 30
-        while time.monotonic() < end:
-            if "hint" in self.js("return document.getElementById('pl-msg').textContent;"):
+        end = time.monotonic() + 60
+        while time.monotonic() < end:  # the page shows the hint's wait, then its shot on the controls
+            if self.js("return !window.billiardsPlay.hinting() && "
+                       "document.getElementById('pl-msg').textContent.indexOf('hint') >= 0;"):
                 break
             time.sleep(POLL)
         c = self.js("const c = window.billiardsPlay.choice; return {phi: c.phi, placement: c.placement, pocket: c.pocket,"
-                    "speed: +document.getElementById('pl-speed').value};")
+                    "speed: c.speed};")
         c["changed"] = c["phi"] != before
         return c
 
@@ -133,15 +143,14 @@ class PagePerson:
 
     def set_tip(self, side: float, height: float) -> None:
         x, y, w, h = self.centre("pl-tip")
-        r = 48  # the diagram's ball radius in CSS px (panel.html TIP_R)
+        r = self.js("return window.billiardsPlay.tipRadius;") * w / 88  # the diagram's ball radius (panel.html TIP_R)
         self.click_at((round(x + w / 2 + side * r), round(y + h / 2 - height * r)))
         self.done["tip"] += 1
 
     def set_speed(self, speed: float, lim: dict) -> None:
-        x, y, w, h = self.centre("pl-speed")
-        f = (speed - lim["speed_min"]) / (lim["speed_max"] - lim["speed_min"])
-        thumb = 8  # px: the slider's thumb radius; its centre runs from x + thumb to x + w - thumb
-        self.click_at((round(x + thumb + min(max(f, 0.0), 1.0) * (w - 2 * thumb)), round(y + h / 2)))
+        x, y, w, h = self.centre("pl-power")
+        f = self.js("return window.billiardsPlay.frac(arguments[0]);", speed)  # the bar's place of that speed
+        self.click_at((round(x + min(max(f, 0.0), 1.0) * w), round(y + h / 2)))
         self.done["speed"] += 1
 
     def turn(self) -> dict:

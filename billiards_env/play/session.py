@@ -52,22 +52,21 @@ def placement_problem(core: GameCore, xy) -> str | None:
         return None
     t, Rb, s = core.table, core.params.R, core.state
     edge = Rb + SPOT_EDGE
-    where = f"({x:.4f}, {y:.4f}) m"
+    # in a player's words: where it is wrong, not coordinates in metres (the page shows the spot)
     if not (edge <= x <= t.width - edge and edge <= y <= t.length - edge):
-        return f"the cue ball at {where} is off the bed or touches a cushion (its centre must keep {edge:.4f} m inside)"
+        return "the cue ball there is off the bed or touches a cushion: place it a little further in"
     if core.constraints().ball_in_hand[0] == R.IN_HAND_KITCHEN and y > HEAD_STRING * t.length - KITCHEN_GAP:
-        return f"the cue ball at {where} is beyond the head string (y must be below {HEAD_STRING * t.length:.4f} m)"
+        return "the cue ball there is beyond the head string: place it behind the line (the kitchen)"
     d = d_of(t)
     if core.constraints().ball_in_hand[0] == R.IN_HAND_D and not (y <= d[1] - KITCHEN_GAP and
                                                                    math.hypot(x - d[0], y - d[1]) <= d[2]):
-        return (f"the cue ball at {where} is outside the D (within {d[2]:.4f} m of ({d[0]:.4f}, {d[1]:.4f}) m, "
-                "on the baulk side of the line)")
+        return "the cue ball there is outside the D: place it inside the half circle on the baulk line"
     d = np.hypot(s.pos[0, 1:, 0] - x, s.pos[0, 1:, 1] - y)
     on = s.pocket[0, 1:] < 0
     hit = np.nonzero(on & (d < 2 * Rb + SPOT_CLEAR))[0]
     if len(hit):
-        return f"the cue ball at {where} overlaps ball {int(hit[0]) + 1}"
-    return f"the cue ball at {where} lies over a pocket"
+        return f"the cue ball there overlaps ball {int(hit[0]) + 1}"
+    return "the cue ball there lies over a pocket"
 
 
 class Session:
@@ -282,7 +281,7 @@ class Session:
         self._check_turn(None)
         plan = make_bot(default_bot(self.core.config.game), seed=self.seed).act(self.core.view([0]))
         out = {"aim": float(plan.phi[0]) % (2 * math.pi), "speed": float(plan.speed[0]), "side": float(plan.a[0]),
-               "height": float(plan.b[0])}
+               "height": float(plan.b[0]), "turn": self.turn}  # turn: the position this hint is for
         if not np.isnan(plan.placement[0, 0]):
             out["placement"] = plan.placement[0].tolist()
         if plan.pocket[0] >= 0 and self.game not in NOMINATING:
