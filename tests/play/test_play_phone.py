@@ -1,0 +1,209 @@
+"""The play page on a phone, in headless Chromium: upright (390 x 844) the table and every control a shot
+needs fit one screen, sideways (844 x 390) the whole table is visible beside the controls; a person plays
+9-ball against ``ghost`` by touch events only; nothing is told before the animation reaches it (no
+spoilers); the fine-aim control moves the aim by 0.01 degree; the review's end-of-shot fixes."""
+from __future__ import annotations
+
+import math
+import time
+
+import pytest
+
+from billiards_env.play.browser import PagePerson
+
+PORTRAIT = {"width": 390, "height": 844, "deviceScaleFactor": 3, "mobile": True}
+LANDSCAPE = {"width": 844, "height": 390, "deviceScaleFactor": 3, "mobile": True}
+SHOT_CONTROLS = ("pl-status", "pl-tip", "pl-power", "pl-aim-m1", "pl-aim-p1", "pl-shoot", "pl-hint")
+TOUCH_TURNS = 40  # the whole game is played (it ends in 9 of the person's turns at seed 15); a bound, not a cut
+
+RECTS = ("return arguments[0].map(function (id) { const b = document.getElementById(id).getBoundingClientRect();"
+         "return [id, b.left, b.top, b.right, b.bottom, b.width, b.height]; });")
+
+
+@pytest.fixture
+def phone(browser):
+    """The shared browser emulating a phone (``phone(metrics)``); the override is cleared afterwards."""
+    def emulate(metrics):
+        browser.execute_cdp_cmd("Emulation.setDeviceMetricsOverride", metrics)
+        browser.execute_cdp_cmd("Emulation.setTouchEmulationEnabled", {"enabled": True, "maxTouchPoints": 5})
+        return browser
+    yield emulate
+    browser.execute_cdp_cmd("Emulation.setTouchEmulationEnabled", {"enabled": False})
+    browser.execute_cdp_cmd("Emulation.clearDeviceMetricsOverride", {})
+
+
+def _game(server, browser, seed=15, opponent="ghost", game="nine_ball"):
+    st, g = server("POST", "/api/games", {"game": game, "opponent": opponent, "seed": seed})
+    assert st == 201, g
+    browser.get(server.url + "/game/" + g["id"])
+    return g["id"]
+
+
+def _inside(rects, w, h):
+    for rid, left, top, right, bottom, _, _ in rects:
+        assert left >= -0.5 and top >= -0.5 and right <= w + 0.5 and bottom <= h + 0.5, (rid, left, top, right, bottom)
+
+
+@pytest.mark.parametrize("metrics", [PORTRAIT, LANDSCAPE], ids=["portrait", "landscape"])
+def test_the_table_and_shoot_fit_the_phone_screen(server, browser, phone, metrics):
+    phone(metrics)
+    _game(server, browser)
+    PagePerson(browser).wait_turn()
+    w, h = metrics["width"], metrics["height"]
+    assert browser.execute_script("return [innerWidth, innerHeight, scrollX, scrollY];") == [w, h, 0, 0]
+    rects = browser.execute_script(RECTS, ["table", *SHOT_CONTROLS])
+    _inside(rects, w, h)  # no scrolling: the whole table and every control of a shot on one screen
+    lay = browser.execute_script("return window.billiardsReplay.layout();")
+    assert lay["portrait"] == (h > w) and (lay["height"] > lay["width"]) == (h > w), lay
+    table = rects[0]
+    assert table[6] >= (0.6 * h if h > w else 0.7 * h), f"the table is small: {table}"
+    for rid, *_, bw, bh in rects[2:]:  # touch targets of at least 44 px
+        assert bw >= 44 and bh >= 44, (rid, bw, bh)
+    # a finger on the table aims (when a shot may be aimed); anywhere else it scrolls the page
+    touch = browser.execute_script(
+        "return ['table', 'pl-status', 'pl-info', 'playpanel', 'gamebox'].map(function (id) {"
+        "return getComputedStyle(document.getElementById(id)).touchAction; });")
+    assert touch[0] == "none" and all(t in ("auto", "manipulation", "pan-y") for t in touch[1:]), touch
+
+
+def _status(browser):
+    return browser.execute_script("return document.getElementById('pl-status').textContent;")
+
+
+def test_no_spoiler_while_a_shot_plays(server, browser, phone):
+    """While the break animates the status names the shot being played, never its ruling or who shoots next;
+    Shoot is disabled with its reason; the ruling, the shot menu's outcome and the next shooter come when the
+    balls stop; an earlier shot under review says so and offers the way back."""
+    phone(PORTRAIT)
+    gid = _game(server, browser, seed=15, opponent="human")  # two people at one screen: the state waits for the page
+    person = PagePerson(browser, touch=True)
+    person.wait_turn()
+    browser.execute_script("window.billiardsPlay.opts.speed = 1;")
+    person.turn()
+    end = time.monotonic() + 30
+    while browser.execute_script("return window.billiardsReplay.nShots;") < 2 and time.monotonic() < end:
+        time.sleep(0.01)
+    ruling = server("GET", f"/api/games/{gid}")[1]["shots"][0]["info"]["game"]["ruling"]
+    looks = 0
+    while time.monotonic() < end:
+        cur, text, why, disabled, menu, state = browser.execute_script(
+            "const V = window.billiardsReplay, P = window.billiardsPlay; return [V.current(),"
+            "document.getElementById('pl-status').textContent, document.getElementById('pl-why').textContent,"
+            "document.getElementById('pl-shoot').disabled, Array.from(document.getElementById('shot').options)"
+            ".map(function (o) { return o.text; }), P.state()];")
+        if not cur["playing"]:
+            break
+        if cur["shot"] == 1 and cur["t"] < browser.execute_script("return window.billiardsReplay.duration(1);"):
+            looks += 1
+            assert ruling not in text and "to shoot" not in text and "Shot 1: Player 1 (person 1) is shooting" in text, text
+            assert disabled and "a shot is playing" in why, why
+            assert len(menu) == 2 and "pots" not in menu[1] and "foul" not in menu[1], menu
+            assert state["turn"] == 1  # the server has answered: only the page's words wait for the animation
+        time.sleep(0.03)
+    assert looks >= 5, looks
+    st = person.wait_turn()
+    text = _status(browser)
+    assert ruling in text and "to shoot" in text, text
+    assert ruling in browser.execute_script("return document.getElementById('pl-log').textContent;")
+    # reviewing an earlier moment: Shoot says why it is disabled, and Back to live returns
+    browser.execute_script("window.billiardsReplay.seek(1, 0.2);")
+    assert browser.execute_script("return document.getElementById('pl-shoot').disabled;")
+    assert "reviewing an earlier shot" in browser.execute_script("return document.getElementById('pl-why').textContent;")
+    assert "Reviewing Shot 1" in _status(browser)
+    person.click("pl-live")
+    assert browser.execute_script("return window.billiardsPlay.ready();") and st["turn"] == 1
+
+
+def test_review_end_of_shot_and_links(server, browser, phone):
+    """The scrubber's end (a decimal string a hair short of the duration) and the step button both reach the
+    ruling; a moment's link names the same shot live and in the saved file (#shot=1 is the first shot)."""
+    phone(PORTRAIT)
+    gid = _game(server, browser, seed=15, opponent="human")
+    person = PagePerson(browser, touch=True)
+    person.wait_turn()
+    browser.execute_script("window.billiardsPlay.opts.cut = true; window.billiardsPlay.opts.speed = 16;")
+    person.turn()
+    person.wait_turn()
+    rec = server("GET", f"/api/games/{gid}")[1]["shots"][0]
+    T = rec["duration"]
+    shown = browser.execute_script(
+        "const V = window.billiardsReplay, s = document.getElementById('scrub'); V.seek(1, 0.1);"
+        "s.value = String(arguments[0]); s.dispatchEvent(new Event('input'));"
+        "return [V.current().t === V.duration(1), document.getElementById('ruling').textContent];", T - 3e-15)
+    assert shown[0] and shown[1] == rec["info"]["game"]["ruling"], shown
+    marks = [ev[0] for ev in rec["events"] if ev[1] in (1, 2, 3, 4)]
+    browser.execute_script("window.billiardsReplay.seek(1, arguments[0]);", marks[-1])
+    browser.execute_script("document.getElementById('next').click();")
+    assert browser.execute_script("return window.billiardsReplay.current().t === window.billiardsReplay.duration(1);")
+    assert rec["info"]["game"]["ruling"] in browser.execute_script("return document.getElementById('ruling').textContent;")
+    browser.execute_script("window.billiardsReplay.seek(1, 0.25);")
+    assert browser.execute_script("return window.billiardsReplay.moment();") == "#shot=1&t=0.25"
+    assert "Shot 1 of 1" in browser.execute_script("return document.getElementById('shottitle').textContent;")
+    assert "{" not in browser.execute_script("return document.getElementById('meta').textContent;")
+
+
+def test_fine_aim_moves_the_aim_by_a_hundredth_of_a_degree(server, browser, phone):
+    phone(PORTRAIT)
+    _game(server, browser)
+    person = PagePerson(browser, touch=True)
+    person.wait_turn()
+    phi = lambda: browser.execute_script("return window.billiardsPlay.choice.phi;")
+    deg = math.pi / 180
+    p0 = phi()
+    person.click("pl-aim-p2")  # a finger on the +0.01 degree button
+    assert abs(phi() - (p0 + 0.01 * deg)) < 1e-12, (phi() - p0) / deg
+    person.click("pl-aim-m1")
+    assert abs(phi() - (p0 - 0.09 * deg)) < 1e-12, (phi() - p0) / deg
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.keys import Keys
+    cur0 = browser.execute_script("return window.billiardsReplay.current();")
+    p1 = phi()
+    ActionChains(browser).key_down(Keys.SHIFT).send_keys(".").key_up(Keys.SHIFT).perform()
+    assert abs(phi() - (p1 + 0.01 * deg)) < 1e-12, (phi() - p1) / deg
+    ActionChains(browser).send_keys(",").perform()
+    assert abs(phi() - (p1 - 0.09 * deg)) < 1e-12, (phi() - p1) / deg
+    ActionChains(browser).send_keys(Keys.ARROW_RIGHT).perform()  # the arrows aim on the person's turn ...
+    assert abs(phi() - (p1 + 0.01 * deg)) < 1e-12, (phi() - p1) / deg
+    assert browser.execute_script("return window.billiardsReplay.current();") == cur0  # ... and do not scrub
+    # the power bar moves where it is touched
+    x, y, w, h = person.centre("pl-power")
+    person.click_at((round(x + 0.25 * w), round(y + h / 2)))
+    f = browser.execute_script("const P = window.billiardsPlay; return P.frac(P.choice.speed);")
+    assert abs(f - 0.25) < 2 / w, f
+
+
+def test_a_person_plays_9_ball_by_touch_on_a_phone(server, browser, phone):
+    """Touch events only (a finger's pointer: the cue ball dragged in hand, the aim dragged, the spin, the
+    power bar, the push-out, Shoot) on a 390 x 844 screen, without scrolling; the record equals the library's."""
+    from tests.play.test_play_browser import direct_record
+    phone(PORTRAIT)
+    st, g = server("POST", "/api/games", {"game": "nine_ball", "opponent": "ghost", "seed": 15})
+    browser.get(server.url + "/game/" + g["id"])
+    browser.execute_script("window.billiardsPlay.opts.speed = 16;"  # a viewing choice: 16x, shots not cut short
+                           "window.pointerKinds = {}; document.addEventListener('pointerdown', function (e) {"
+                           "window.pointerKinds[e.pointerType] = (window.pointerKinds[e.pointerType] || 0) + 1; }, true);")
+    person = PagePerson(browser, tip=(0.1, -0.15), touch=True)
+    turns = person.play_game(max_turns=TOUCH_TURNS)
+    final = person.state()
+    assert final["over"] and not final["truncated"], final
+    kinds = browser.execute_script("return window.pointerKinds;")
+    assert set(kinds) == {"touch"} and kinds["touch"] >= 4 * turns, kinds
+    assert person.scrolled == 0, "the person had to scroll to reach a control or the table"
+    assert person.done["placement"] >= 1 and person.done["tip"] == turns >= 3, person.done
+    sent = browser.execute_script("return window.billiardsPlay.sent;")
+    shots = server("GET", f"/api/games/{g['id']}")[1]["shots"]
+    assert direct_record(15, sent) == shots
+    # every shot's ruling was kept, the bot's runs of shots included, once the last one has played out
+    end = time.monotonic() + 30
+    while browser.execute_script("return window.billiardsReplay.current().playing;") and time.monotonic() < end:
+        time.sleep(0.05)
+    n_log = browser.execute_script("return document.getElementById('pl-log').children.length;")
+    assert n_log == min(len(shots), 30), (n_log, len(shots))
+    errors = [e for e in browser.get_log("browser") if e["level"] == "SEVERE" and "favicon" not in e["message"]]
+    assert not errors, errors
+
+
+def test_a_hint_names_its_turn(server):
+    st, g = server("POST", "/api/games", {"game": "nine_ball", "opponent": "ghost", "seed": 3})
+    h = server("GET", f"/api/games/{g['id']}/hint")[1]
+    assert h["turn"] == g["turn"] == 0, h
