@@ -207,3 +207,89 @@ def test_a_hint_names_its_turn(server):
     st, g = server("POST", "/api/games", {"game": "nine_ball", "opponent": "ghost", "seed": 3})
     h = server("GET", f"/api/games/{g['id']}/hint")[1]
     assert h["turn"] == g["turn"] == 0, h
+
+
+DELAY_JS = """window.delayed = arguments[0]; const real = window.fetch;
+window.fetch = function (url, o) { const d = Object.keys(window.delayed).find(function (k) { return url.endsWith(k); });
+  return d ? new Promise(function (ok) { setTimeout(ok, window.delayed[d]); }).then(function () { return real(url, o); })
+           : real(url, o); };"""
+
+
+def _text(browser, element_id):
+    return browser.execute_script("return document.getElementById(arguments[0]).textContent;", element_id)
+
+
+def test_a_hint_shows_its_wait_and_never_lands_on_a_changed_position(server, browser, phone):
+    """A slow hint (its request held 1.5 s in the page) counts its seconds on the button and says the bot is
+    working; the person shoots meanwhile, and the late hint is not put on the controls of the new position."""
+    phone(PORTRAIT)
+    _game(server, browser, seed=15, opponent="human")
+    person = PagePerson(browser, touch=True)
+    person.wait_turn()
+    browser.execute_script(DELAY_JS, {"/hint": 1500})
+    browser.execute_script("window.billiardsPlay.opts.cut = true; window.billiardsPlay.opts.speed = 16;")
+    person.click("pl-hint")
+    time.sleep(0.3)
+    assert browser.execute_script("return window.billiardsPlay.hinting();")
+    assert _text(browser, "pl-hint").startswith("Hint 0.") and "working out a hint" in _text(browser, "pl-msg")
+    person.click("pl-shoot")  # the break, before the hint is back
+    st = person.wait_turn()
+    assert st["turn"] == 1
+    end = time.monotonic() + 10
+    while browser.execute_script("return window.billiardsPlay.hinting();") and time.monotonic() < end:
+        time.sleep(0.05)
+    assert "earlier position: not used" in _text(browser, "pl-msg"), _text(browser, "pl-msg")
+    phi, placement = browser.execute_script("const c = window.billiardsPlay.choice; return [c.phi, c.placement];")
+    default = browser.execute_script("const s = window.billiardsPlay.state(), c = s.pos[0], t = s.pos[s.targets[0]];"
+                                     "return Math.atan2(t[1] - c[1], t[0] - c[0]);")
+    assert placement is None and abs(phi - default) < 1e-12, (phi, default)
+
+
+def test_the_bots_thinking_is_shown(server, browser, phone):
+    """The bot's reply held 1.2 s in the page: once the person's shot has played out, the status says the bot is
+    thinking and counts; its shot then says how long it thought, and so does its ruling in the list."""
+    phone(PORTRAIT)
+    _game(server, browser, seed=15, opponent="ghost")
+    person = PagePerson(browser, touch=True)
+    person.wait_turn()
+    browser.execute_script(DELAY_JS, {"/bot": 1200})
+    browser.execute_script("window.billiardsPlay.opts.speed = 16;")
+    person.turn()
+    end = time.monotonic() + 20
+    seen = ""
+    while time.monotonic() < end and "is thinking..." not in seen:
+        seen = _text(browser, "pl-status")
+        time.sleep(0.02)
+    assert "Player 2 (ghost) is thinking... " in seen and " s" in seen, seen
+    assert "is thinking" in _text(browser, "pl-why")
+    person.wait_turn()
+    assert "ghost thought " in _text(browser, "pl-log")
+
+
+def test_sounds_follow_the_replay_events(server, browser, phone):
+    phone(PORTRAIT)
+    _game(server, browser, seed=15, opponent="human")
+    person = PagePerson(browser, touch=True)
+    person.wait_turn()
+    person.click("pl-sound")
+    assert _text(browser, "pl-sound") == "Sound: on"
+    browser.execute_script("window.billiardsPlay.opts.speed = 4;")
+    person.turn()
+    person.wait_turn()
+    end = time.monotonic() + 20
+    while browser.execute_script("return window.billiardsReplay.current().playing;") and time.monotonic() < end:
+        time.sleep(0.05)
+    assert browser.execute_script("return window.billiardsPlay.sounds();") >= 5  # the break: many impacts
+    errors = [e for e in browser.get_log("browser") if e["level"] == "SEVERE" and "favicon" not in e["message"]]
+    assert not errors, errors
+
+
+def test_the_page_is_small_and_offline(server):
+    import urllib.request
+    st, g = server("POST", "/api/games", {"game": "nine_ball", "opponent": "ghost", "seed": 1})
+    with urllib.request.urlopen(server.url + "/game/" + g["id"]) as f:
+        page = f.read()
+    assert len(page) <= 300_000, len(page)
+    text = page.decode()
+    for needle in ("<script src", "<link ", "http://", "https://", "@import", "url("):
+        assert needle not in text, needle
