@@ -177,6 +177,7 @@ def test_a_person_plays_9_ball_by_touch_on_a_phone(server, browser, phone):
     power bar, the push-out, Shoot) on a 390 x 844 screen, without scrolling; the record equals the library's."""
     from tests.play.test_play_browser import direct_record
     phone(PORTRAIT)
+    browser.get_log("browser")  # the messages of earlier tests (another test's 410 on purpose) are not this one's
     st, g = server("POST", "/api/games", {"game": "nine_ball", "opponent": "ghost", "seed": 15})
     browser.get(server.url + "/game/" + g["id"])
     browser.execute_script("window.billiardsPlay.opts.speed = 16;"  # a viewing choice: 16x, shots not cut short
@@ -268,6 +269,7 @@ def test_the_bots_thinking_is_shown(server, browser, phone):
 
 def test_sounds_follow_the_replay_events(server, browser, phone):
     phone(PORTRAIT)
+    browser.get_log("browser")
     _game(server, browser, seed=15, opponent="human")
     person = PagePerson(browser, touch=True)
     person.wait_turn()
