@@ -295,3 +295,30 @@ def test_the_page_is_small_and_offline(server):
     text = page.decode()
     for needle in ("<script src", "<link ", "http://", "https://", "@import", "url("):
         assert needle not in text, needle
+
+
+def test_a_moments_link_names_the_same_shot_live_and_saved(server, browser, tmp_path):
+    """#shot=2&t=0.3 on the live page (whose entry 0 is the rack) and in the saved file (no rack) show the same
+    balls; the saved page's header tells its metadata in words and its panel no raw action vector."""
+    st, g = server("POST", "/api/games", {"game": "nine_ball", "opponent": "ghost", "seed": 15})
+    gid = g["id"]
+    browser.get(server.url + "/game/" + gid)
+    browser.execute_script("window.billiardsPlay.opts.cut = true; window.billiardsPlay.opts.speed = 16;")
+    person = PagePerson(browser)
+    person.wait_turn()
+    person.turn()
+    person.wait_turn()
+    browser.execute_script("window.billiardsReplay.seek(2, 0.3);")
+    live = browser.execute_script("return [window.billiardsReplay.moment(), window.billiardsReplay.positions()];")
+    assert live[0] == "#shot=2&t=0.3", live[0]
+    status, page = server.raw("GET", f"/api/games/{gid}/replay.html")
+    assert status == 200
+    path = tmp_path / "saved.html"
+    path.write_bytes(page)
+    browser.get(path.as_uri() + live[0])
+    saved = browser.execute_script("return [window.billiardsReplay.moment(), window.billiardsReplay.positions()];")
+    assert saved == live
+    meta = _text(browser, "meta")
+    assert '"' not in meta and "played on billiards_env play server" in meta, meta
+    info = browser.find_element("id", "info").text
+    assert "action" not in info and "aim" in info, info
