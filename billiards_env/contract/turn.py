@@ -175,7 +175,8 @@ def play_turn(rules, eq: Equipment, game: GameState, c: Constraints, pos: np.nda
         if K:
             contacts[shoot], n_contacts[shoot] = res.contacts, res.n_contacts
         events = res.events
-    shot = ShotInput(start.pocket, pocket_after, first, rails, object_rails, push, called, passed, ball,
+    # the shot as it ended (a copy: the balls the ruling puts back below stay pocketed in ``shot.pocketed``)
+    shot = ShotInput(start.pocket, pocket_after.copy(), first, rails, object_rails, push, called, passed, ball,
                      contacts, n_contacts, pos_before=start.pos if rules.reads_position else None)
     rec, after = rules.judge(game, shot)
     _put_back(rules, eq, pos_after, pocket_after, rec)

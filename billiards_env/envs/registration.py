@@ -19,26 +19,24 @@ from .tasks import TASKS, register_gym_ids
 ENV_IDS = {t.env_id: (f"{t.class_prefix}Env", f"{t.class_prefix}VectorEnv") for t in TASKS.values()}
 
 
-# The two-player games: id -> (single-agent class against a fixed opponent, self-play vector entry point).
-GAME_IDS = {
-    "Billiards-NineBall2P-v1": ("billiards_env.envs.games.single:NineBall2PEnv",
-                                "billiards_env.envs.games.vector:nine_ball_vector"),
-    "Billiards-EightBall-v1": ("billiards_env.envs.games.single:EightBallEnv",
-                               "billiards_env.envs.games.vector:eight_ball_vector"),
-    "Billiards-TenBall-v1": ("billiards_env.envs.games.single:TenBallEnv",
-                             "billiards_env.envs.games.vector:ten_ball_vector"),
-    "Billiards-ThreeCushion-v1": ("billiards_env.envs.games.single:ThreeCushionEnv",
-                                  "billiards_env.envs.games.vector:three_cushion_vector"),
-    "Billiards-Snooker-v1": ("billiards_env.envs.games.single:SnookerEnv",
-                             "billiards_env.envs.games.vector:snooker_vector"),
-}
+def game_ids() -> dict:
+    """Every registered two-player game's id -> (single-agent class against a fixed opponent, vector entry point),
+    from the games' registry (``rules.games``; ``envs.games.catalog`` generates the classes)."""
+    from ..rules import GAMES
+    from .games.catalog import entry_points
+    return {spec.env_id: entry_points(name) for name, spec in GAMES.items()}
+
+
+# The built-in games' ids, as registered at import.
+GAME_IDS = game_ids()
 
 
 def register_envs() -> None:
-    """Register every task's Gymnasium id and the two-player games' (idempotent)."""
+    """Register every task's Gymnasium id and every registered game's (idempotent: call it again after
+    ``register_game`` to register a game added later)."""
     from gymnasium.envs.registration import register, registry
 
     register_gym_ids()
-    for env_id, (entry, vector) in GAME_IDS.items():
+    for env_id, (entry, vector) in game_ids().items():
         if env_id not in registry:
             register(id=env_id, entry_point=entry, vector_entry_point=vector)

@@ -25,7 +25,7 @@ import numpy as np
 
 from ..rules import HEAD_STRING
 from .game_words import (ball_ids, call_words, end_words, foul_words, game_words, group_words, in_hand_words,
-                         player_labels, pocket_names, ruling_words)
+                         player_labels, pocket_names, ruling_words, words_of)
 from .replay import Replay
 
 DEFAULT_PLAYERS = ("", "")
@@ -125,7 +125,12 @@ class GameRecorder:
             if over and int(rec.winner[j]) >= 0:
                 self._score[k][int(rec.winner[j])] += 1
             called = int(info["called_pocket"][j])
-            game = {"shooter": s, "before": before,
+            words = words_of(core.config.game)
+            nominated = int(info["called_ball"][j]) if words.nominates else -1
+            if words.nominates:  # a nomination names a ball, not a pocket
+                called = -1
+            game = {"shooter": s, "before": before, "game_name": core.config.game,
+                    "nominated": nominated if nominated > 0 else None,
                     "passed": bool(info["passed"][j]), "push_out": bool(rec.push_out[j]),
                     "declared": "pass" if info["passed"][j] else ("push-out" if rec.push_out[j] else None),
                     "called_pocket": self._pocket_names[called] if called >= 0 else None,
@@ -138,14 +143,14 @@ class GameRecorder:
                     "pocketed": np.nonzero(info["pocketed"][j])[0].astype(int).tolist(),
                     "respotted": np.nonzero(rec.respot[j])[0].astype(int).tolist(),
                     "after": state_words(core, k, self._score[k])}
+            if core.rules.to_points:  # games to a score: the shot's points, the score after it
+                game["points"] = int(info["points"][j])
+                game["score"] = np.asarray(info["score"][j]).astype(int).tolist()
             game["ruling"] = ruling_words(game, self.labels)
             rep = self._games[k][-1]
             shot_info = {"action": action.tolist(), "game": game}
             if core.rules.own_cue_balls:  # the ball in each slot: slot 0 is the shooter's (the starter's is white)
                 shot_info["ball_ids"] = ball_ids(core, k, s)
-            if core.rules.to_points:  # games to a score: the shot's points, the score after it
-                game["points"] = int(info["points"][j])
-                game["score"] = np.asarray(info["score"][j]).astype(int).tolist()
             if info["passed"][j]:
                 rep.add_still(pos, pocket, info=shot_info)
             else:

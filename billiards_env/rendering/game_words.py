@@ -6,13 +6,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..rules import END_NAMES, FOUL_NAMES
+from ..rules import END_NAMES, FOUL_NAMES, GAMES, GameWords
 from ..rules import records as R
 
 IN_HAND_WORDS = {R.IN_HAND_NONE: "none", R.IN_HAND_ANYWHERE: "anywhere",
                  R.IN_HAND_KITCHEN: "behind the head string", R.IN_HAND_D: "in the D"}
 GROUP_WORDS = {R.GROUP_OPEN: "open", R.GROUP_SOLIDS: "solids", R.GROUP_STRIPES: "stripes"}
-GAME_WORDS = {"nine_ball": "9-ball", "eight_ball": "8-ball", "ten_ball": "10-ball", "three_cushion": "three-cushion"}
 
 
 def _word(table: dict, code, what: str) -> str:
@@ -38,16 +37,20 @@ def end_words(code) -> str:
 
 
 def game_words(name: str) -> str:
-    return GAME_WORDS.get(name, name.replace("_", "-"))
+    """The game's title ("9-ball", "snooker"): its registry entry's (``rules.games``)."""
+    spec = GAMES.get(name)
+    return spec.title if spec is not None else name.replace("_", "-")
 
 
-CALL_WORDS = {"eight_ball": "call a pocket for the 8", "ten_ball": "call the ball and its pocket",
-              "snooker": "nominate the colour"}
+def words_of(name: str) -> GameWords:
+    """The game's vocabulary (``rules.games.GameWords``); numbered pool balls for an unknown game."""
+    spec = GAMES.get(name)
+    return spec.words if spec is not None else GameWords()
 
 
 def call_words(name: str) -> str:
     """What a shooter must call when the game asks for a call."""
-    return CALL_WORDS.get(name, "call the shot")
+    return words_of(name).call or "call the shot"
 
 
 def pocket_names(pockets) -> list[str]:
@@ -71,12 +74,23 @@ def pocket_names(pockets) -> list[str]:
     return out
 
 
-def balls_words(balls) -> str:
-    """'the 3', 'the 3 and the 7', 'the 1, the 2 and the 9'."""
-    b = ["the cue ball" if int(x) == 0 else f"the {int(x)}" for x in balls]
-    if len(b) <= 1:
-        return "".join(b)
-    return ", ".join(b[:-1]) + " and " + b[-1]
+def balls_words(balls, words: GameWords | None = None) -> str:
+    """'the 3', 'the 3 and the 7', 'the 1, the 2 and the 9'; by colour where the game names its balls so
+    ('the red, the red and the blue' reads 'two reds and the blue')."""
+    words = words or GameWords()
+    names = [words.ball(x) for x in balls]
+    if words.colours:  # several balls of one colour (snooker's reds) counted
+        counted = {}
+        for n in names:
+            counted[n] = counted.get(n, 0) + 1
+        names = [n if k == 1 else f"{_number(k)} {n[4:]}s" for n, k in counted.items()]
+    if len(names) <= 1:
+        return "".join(names)
+    return ", ".join(names[:-1]) + " and " + names[-1]
+
+
+def _number(k: int) -> str:
+    return {2: "two", 3: "three", 4: "four", 5: "five"}.get(k, str(k))
 
 
 def ball_ids(core, k: int, shooter: int | None = None):
@@ -105,12 +119,22 @@ def ruling_words(shot: dict, names: list[str]) -> str:
     before, after = shot["before"], shot["after"]
     if shot.get("passed"):
         return f"{who} passes the shot back: {other} shoots."
+    words = words_of(shot.get("game_name", ""))
     lead = f"{who} breaks" if before.get("break") else (f"{who} pushes out" if shot.get("push_out") else
                                                         f"{who} shoots")
-    called = f" (called: {shot['called_pocket']})" if shot.get("called_pocket") else ""
-    pots = f", pots {balls_words(shot['pocketed'])}" if shot["pocketed"] else ", pots nothing"
+    if shot.get("nominated") is not None:
+        called = f" (nominated: {words.ball(shot['nominated'])})"
+    else:
+        called = f" (called: {shot['called_pocket']})" if shot.get("called_pocket") else ""
+    if not words.pockets:  # a carom game: a point made or not
+        pts = int(shot.get("points", 0))
+        pots = f": {'a point' if pts == 1 else f'{pts} points'}" if pts > 0 else ": no point"
+    else:
+        pots = f", pots {balls_words(shot['pocketed'], words)}" if shot["pocketed"] else ", pots nothing"
     text = lead + called + pots
-    if shot.get("game_over"):
+    if not words.pockets and not shot.get("game_over"):
+        text += f". {who} stays at the table." if not shot["turn_over"] else f". {other} to shoot."
+    elif shot.get("game_over"):
         w = int(shot["winner"])
         text += f": {shot['end']}. {names[w]} wins." if w >= 0 else f": {shot['end']}."
     elif not shot["legal"]:
@@ -126,7 +150,8 @@ def ruling_words(shot: dict, names: list[str]) -> str:
     else:
         text += f": legal. {other} to shoot."
     if shot.get("respotted"):
-        text += f" {balls_words(shot['respotted']).capitalize()} {'is' if len(shot['respotted']) == 1 else 'are'} respotted."
+        again = balls_words(shot["respotted"], words)
+        text += f" {again[:1].upper()}{again[1:]} {'is' if len(shot['respotted']) == 1 else 'are'} respotted."
     groups_before, groups_after = before.get("groups"), after.get("groups")
     if groups_after and groups_before != groups_after and groups_after[s] != "open":
         text += f" {who} takes {groups_after[s]}, {other} {groups_after[1 - s]}."

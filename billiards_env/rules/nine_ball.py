@@ -29,6 +29,7 @@ NINE = 9
 class NineBallRules(Rules):
     name = "nine_ball"
     n_balls = 9
+    game_ball = NINE  # the ball whose legal pot wins (a rotation game on fewer balls sets its own)
 
     def __init__(self, spot_break_nine: bool = False):
         self.spot_break_nine = bool(spot_break_nine)
@@ -37,14 +38,14 @@ class NineBallRules(Rules):
         self.check(game, shot)
         r = RotationShot.of(game, shot)
         f, legal, pushed, played, three = r.facts, r.legal, r.pushed, r.played, r.three
-        nine = f.pocketed[:, NINE] & played
+        nine = f.pocketed[:, self.game_ball] & played
         win = legal & nine & ~pushed & ~(r.is_break & self.spot_break_nine)
         over = win | three
         winner = np.where(win, game.shooter, np.where(three, 1 - game.shooter, -1))
         end = np.where(win, END_NINE, np.where(three, END_THREE_FOULS, END_NONE))
         keeps = played & legal & ~pushed & f.object_pocketed
         respot = np.zeros_like(f.pocketed)
-        respot[:, NINE] = nine & ~over
+        respot[:, self.game_ball] = nine & ~over
         rec = ShotRecord(legal=legal, foul=r.foul, turn_over=~keeps & ~over, game_over=over, winner=winner, end=end,
                          push_out=pushed, passed=r.passed, respot=respot, shooter=game.shooter.copy())
         g = next_state(game, rec, r.foul, played)

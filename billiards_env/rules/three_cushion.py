@@ -86,6 +86,27 @@ class ThreeCushionRules(Rules):
     own_cue_balls = True
     extra_obs = 4
     to_points = True
+    env_doc = """
+    **Three-cushion** (UMB rules, docs/rules.md) on the carom match table
+    with carom balls: B = 3 balls in the shooter's frame, ball 0 the cue
+    ball of the player to move (the starting player plays white, the other
+    yellow), ball 1 the opponent's cue ball, ball 2 the red. The action is
+    the 8-component one above; only a0 (aim, relative to ball 1; to the red
+    on the opening shot), a1 (draw), a2 (side) and a3 (height) are used.
+    A point (the cue ball meets both object balls and >= 3 cushions before
+    the second) keeps the player at the table; the game is to ``target``
+    points (``rule_options``), ends after ``max_innings`` innings each, the
+    equal-innings rule optional. The observation is the one above (B = 3)
+    and four more entries:
+
+    ==============  ===========================================================
+    4*B + 14, 15    the shooter's score / target, the opponent's
+    4*B + 16        the shooter's innings / max_innings
+    4*B + 17        1 in the equal-innings last inning
+    ==============  ===========================================================
+
+    **Info** adds ``points`` (the shot's points) and ``score`` [2].
+"""
 
     def __init__(self, target: int = TARGET, max_innings: int = MAX_INNINGS, equal_innings: bool = False):
         for name, v in (("target", target), ("max_innings", max_innings)):

@@ -7,8 +7,9 @@ from typing import Any
 import numpy as np
 from pettingzoo import AECEnv
 
+from ...rules import GAMES, get_game
 from .core import GameCore
-from .spaces import OBSERVATION_DOC, THREE_CUSHION_DOC, action_space, info_row, make_config, observation_space
+from .spaces import OBSERVATION_DOC, action_space, game_doc, info_row, make_config, observation_space
 
 AGENTS = ("player_0", "player_1")
 
@@ -108,32 +109,26 @@ class GameAECEnv(AECEnv):
         pass
 
 
-class NineBallAECEnv(GameAECEnv):
-    __doc__ = "9-ball for two agents.\n\n    " + GameAECEnv.__doc__
-    metadata = {**GameAECEnv.metadata, "name": "billiards_nine_ball_v0"}
-    game = "nine_ball"
+_CLASSES: dict = {}  # game -> (its spec, its generated AEC class)
 
 
-class EightBallAECEnv(GameAECEnv):
-    __doc__ = "8-ball for two agents.\n\n    " + GameAECEnv.__doc__
-    metadata = {**GameAECEnv.metadata, "name": "billiards_eight_ball_v0"}
-    game = "eight_ball"
+def aec_class(name: str) -> type:
+    """The PettingZoo AEC class of a registered game, ``<class_prefix>AECEnv``, generated from its registry
+    entry on first use."""
+    spec = get_game(name)
+    made = _CLASSES.get(name)
+    if made is None or made[0] is not spec:
+        cls = type(f"{spec.class_prefix}AECEnv", (GameAECEnv,), {
+            "game": spec.name, "__module__": __name__,
+            "metadata": {**GameAECEnv.metadata, "name": f"billiards_{spec.name}_v0"},
+            "__doc__": game_doc(spec, "for two agents", GameAECEnv.__doc__)})
+        made = _CLASSES[name] = (spec, cls)
+    return made[1]
 
 
-class TenBallAECEnv(GameAECEnv):
-    __doc__ = "10-ball for two agents (a 9-component action: a8 the called ball).\n\n    " + GameAECEnv.__doc__
-    metadata = {**GameAECEnv.metadata, "name": "billiards_ten_ball_v0"}
-    game = "ten_ball"
-
-
-class ThreeCushionAECEnv(GameAECEnv):
-    __doc__ = "Three-cushion for two agents.\n\n    " + GameAECEnv.__doc__ + THREE_CUSHION_DOC
-    metadata = {**GameAECEnv.metadata, "name": "billiards_three_cushion_v0"}
-    game = "three_cushion"
-
-
-class SnookerAECEnv(GameAECEnv):
-    __doc__ = ("A frame of snooker for two agents (a 9-component action: a8 the nominated ball; rewards +1 / -1 "
-               "by the frame's result).\n\n    " + GameAECEnv.__doc__)
-    metadata = {**GameAECEnv.metadata, "name": "billiards_snooker_v0"}
-    game = "snooker"
+def __getattr__(attr: str):
+    """``NineBallAECEnv``, ``SnookerAECEnv``, ...: a registered game's AEC class (``aec_class``)."""
+    for name, spec in GAMES.items():
+        if attr == f"{spec.class_prefix}AECEnv":
+            return aec_class(name)
+    raise AttributeError(f"module {__name__!r} has no attribute {attr!r}")

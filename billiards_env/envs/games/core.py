@@ -50,16 +50,15 @@ from ...contract.codec import ACTION_DIM, N_POCKETS, ActionCodec, ShotContext, _
 from ...contract.turn import Equipment, play_turn
 from ...contract.view import GameView
 from ...physics import BallState, Effects, Models, PhysicsParams, Table
-from ...rules import GameState, get_rules
+from ...rules import GAMES, GameState, get_game, get_rules
 from ...rules import records as R
 from ..config import NoiseConfig, _number
 from ..core import BilliardsCore, _observe
 from ..streams import TableStreams
 from ...rules.placement import FOOT_SPOT, HEAD_STRING, d_of, legal_spots
-from .setup import RACKS, loosen, rack
+from .setup import RACKS, loosen
 
 EXTRA_OBS = 13  # observation entries after the one-player layout (see ``observation_doc``)
-GAMES = ("nine_ball", "eight_ball", "ten_ball", "three_cushion", "snooker")
 NOISE_LEVELS = ("none", "tournament", "high", "variable")
 BREAK_NINE = ("wins", "spotted")  # 9-ball: the 9 pocketed on a legal break wins, or is spotted (some pro events)
 VARIABLE_NOISE_MAX = 5.0  # "variable" noise: the tournament deviations times a factor uniform in [0, 5] per game
@@ -102,7 +101,8 @@ class GameConfig:
 
     def __post_init__(self):
         if self.game not in GAMES:
-            raise ValueError(f"game must be one of {GAMES}, got {self.game!r}")
+            raise ValueError(f"game must be one of {tuple(GAMES)} (the games' registry, rules.games), "
+                             f"got {self.game!r}")
         if not isinstance(self.rule_options, dict):
             raise TypeError(f"rule_options must be a dict, got {type(self.rule_options).__name__}")
         if self.rule_options:
@@ -246,7 +246,8 @@ class GameCore(BilliardsCore):
         idx = np.asarray(idx, dtype=np.int64)
         n, B, t = len(idx), self.n_balls, self.table
         u = self.streams.uniform(idx, 16)  # 14 rack, breaker, noise factor
-        pos = rack(self.config.game, t, self.params.R, u)
+        spec = get_game(self.config.game)
+        pos = spec.rack(t, self.params.R, u[:, :spec.rack_draws])
         if not self.rules.own_cue_balls and t.marks is None:  # the pool racks (three-cushion's places each
             # player's ball itself, snooker's puts the cue ball in the D)
             pos[:, 0] = (t.width / 2, HEAD_STRING * t.length)

@@ -7,8 +7,9 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
+from ...rules import GAMES, get_game
 from .core import GameCore
-from .spaces import OBSERVATION_DOC, THREE_CUSHION_DOC, action_space, info_row, make_config, observation_space
+from .spaces import OBSERVATION_DOC, action_space, game_doc, info_row, make_config, observation_space
 from .versus import AGENT, check_opponent, make_opponent, new_games, opponent_turns
 
 
@@ -99,38 +100,32 @@ class GameEnv(gym.Env):
         return render_game(self.core, 0)
 
 
-class NineBall2PEnv(GameEnv):
-    __doc__ = "Billiards-NineBall2P-v0: 9-ball against a fixed opponent.\n\n    " + GameEnv.__doc__
-    game = "nine_ball"
+_CLASSES: dict = {}  # game -> (its spec, its generated single-agent class)
 
 
-class EightBallEnv(GameEnv):
-    __doc__ = "Billiards-EightBall-v0: 8-ball against a fixed opponent.\n\n    " + GameEnv.__doc__
-    game = "eight_ball"
+def single_class(name: str) -> type:
+    """The single-agent env class of a registered game, ``<id_stem>Env`` (a ``GameEnv`` whose default opponent
+    is the game's ``default_bot``), generated from its registry entry on first use."""
+    spec = get_game(name)
+    made = _CLASSES.get(name)
+    if made is None or made[0] is not spec:
+        default = spec.default_bot
+
+        def __init__(self, opponent=default, config=None, opponent_seed: int = 0, render_mode: str | None = None,
+                     **overrides: Any):
+            GameEnv.__init__(self, opponent, config, opponent_seed, render_mode, **overrides)
+
+        cls = type(f"{spec.id_stem}Env", (GameEnv,), {
+            "__init__": __init__, "game": spec.name, "__module__": __name__,
+            "__doc__": game_doc(spec, f"against a fixed opponent (default ``{default}``)", GameEnv.__doc__)})
+        cls.__init__.__qualname__ = f"{cls.__name__}.__init__"
+        made = _CLASSES[name] = (spec, cls)
+    return made[1]
 
 
-class TenBallEnv(GameEnv):
-    __doc__ = ("Billiards-TenBall-v0: 10-ball against a fixed opponent (a 9-component action: a8 the called "
-               "ball).\n\n    " + GameEnv.__doc__)
-    game = "ten_ball"
-
-
-class ThreeCushionEnv(GameEnv):
-    __doc__ = ("Billiards-ThreeCushion-v0: three-cushion against a fixed opponent (default the ``carom`` bot).\n\n    "
-               + GameEnv.__doc__ + THREE_CUSHION_DOC)
-    game = "three_cushion"
-
-    def __init__(self, opponent="carom", config=None, opponent_seed: int = 0, render_mode: str | None = None,
-                 **overrides: Any):
-        super().__init__(opponent, config, opponent_seed, render_mode, **overrides)
-
-
-class SnookerEnv(GameEnv):
-    __doc__ = ("Billiards-Snooker-v0: a frame of snooker (WPBSA rules, docs/rules.md) on the 12 ft table against a "
-               "fixed opponent (default the ``snooker`` bot; a 9-component action: a8 the nominated ball). The reward "
-               "is the frame's result: +1 won, -1 lost.\n\n    " + GameEnv.__doc__)
-    game = "snooker"
-
-    def __init__(self, opponent="snooker", config=None, opponent_seed: int = 0, render_mode: str | None = None,
-                 **overrides: Any):
-        super().__init__(opponent, config, opponent_seed, render_mode, **overrides)
+def __getattr__(attr: str):
+    """``NineBall2PEnv``, ``SnookerEnv``, ...: a registered game's single-agent class (``single_class``)."""
+    for name, spec in GAMES.items():
+        if attr == f"{spec.id_stem}Env":
+            return single_class(name)
+    raise AttributeError(f"module {__name__!r} has no attribute {attr!r}")

@@ -36,29 +36,6 @@ OBSERVATION_DOC = """
 """
 
 
-THREE_CUSHION_DOC = """
-    **Three-cushion** (UMB rules, docs/rules.md) on the carom match table
-    with carom balls: B = 3 balls in the shooter's frame, ball 0 the cue
-    ball of the player to move (the starting player plays white, the other
-    yellow), ball 1 the opponent's cue ball, ball 2 the red. The action is
-    the 8-component one above; only a0 (aim, relative to ball 1; to the red
-    on the opening shot), a1 (draw), a2 (side) and a3 (height) are used.
-    A point (the cue ball meets both object balls and >= 3 cushions before
-    the second) keeps the player at the table; the game is to ``target``
-    points (``rule_options``), ends after ``max_innings`` innings each, the
-    equal-innings rule optional. The observation is the one above (B = 3)
-    and four more entries:
-
-    ==============  ===========================================================
-    4*B + 14, 15    the shooter's score / target, the opponent's
-    4*B + 16        the shooter's innings / max_innings
-    4*B + 17        1 in the equal-innings last inning
-    ==============  ===========================================================
-
-    **Info** adds ``points`` (the shot's points) and ``score`` [2].
-"""
-
-
 def make_config(config, overrides: dict, game: str | None = None) -> GameConfig:
     if config is None:
         return GameConfig(**({"game": game} if game else {}), **overrides)
@@ -84,3 +61,10 @@ def action_space(core) -> spaces.Box:
 def info_row(info: dict, k: int) -> dict:
     """Table ``k``'s entries of a batched step info, as Python scalars or small arrays."""
     return {key: (v[k].item() if np.ndim(v) == 1 else np.array(v[k])) for key, v in info.items()}
+
+
+def game_doc(spec, what: str, base: str) -> str:
+    """A generated env class's docstring: the game's summary and ``what`` it is, the shared ``base`` docstring and
+    what the game's ruleset adds (``Rules.env_doc``)."""
+    from ...rules import get_rules
+    return f"{spec.summary[:1].upper()}{spec.summary[1:]} {what}.\n\n    " + base + get_rules(spec.name).env_doc

@@ -7,6 +7,7 @@ from typing import Any
 import numpy as np
 from gymnasium.vector import AutoresetMode
 
+from ...rules import GAMES, get_game
 from ..streams import seed_vector_env
 from .batched import GameTables
 from .spaces import OBSERVATION_DOC
@@ -105,19 +106,29 @@ def game_vector(num_envs: int = 1, game: str = "nine_ball", opponent=None, **kwa
     return GameVectorEnv(num_envs, game=game, **kwargs)
 
 
-def nine_ball_vector(num_envs: int = 1, **kwargs):
-    return game_vector(num_envs, "nine_ball", **kwargs)
+_FUNCTIONS: dict = {}  # game -> (its spec, its vector entry point)
 
 
-def eight_ball_vector(num_envs: int = 1, **kwargs):
-    return game_vector(num_envs, "eight_ball", **kwargs)
+def vector_entry(name: str):
+    """The vector entry point of a registered game, ``<name>_vector(num_envs, **kwargs)`` (``game_vector`` for
+    it), made from its registry entry on first use."""
+    spec = get_game(name)
+    made = _FUNCTIONS.get(name)
+    if made is None or made[0] is not spec:
+        def vector(num_envs: int = 1, **kwargs):
+            return game_vector(num_envs, spec.name, **kwargs)
+
+        vector.__name__ = vector.__qualname__ = f"{spec.name}_vector"
+        vector.__module__ = __name__
+        vector.__doc__ = (f"The vector entry point of {spec.title}: self-play, or the agent against ``opponent=`` "
+                          "(``game_vector``).")
+        made = _FUNCTIONS[name] = (spec, vector)
+    return made[1]
 
 
-def ten_ball_vector(num_envs: int = 1, **kwargs):
-    return game_vector(num_envs, "ten_ball", **kwargs)
-
-
-def three_cushion_vector(num_envs: int = 1, **kwargs):
-    return game_vector(num_envs, "three_cushion", **kwargs)
-def snooker_vector(num_envs: int = 1, **kwargs):
-    return game_vector(num_envs, "snooker", **kwargs)
+def __getattr__(attr: str):
+    """``nine_ball_vector``, ``snooker_vector``, ...: a registered game's vector entry point (``vector_entry``)."""
+    for name in GAMES:
+        if attr == f"{name}_vector":
+            return vector_entry(name)
+    raise AttributeError(f"module {__name__!r} has no attribute {attr!r}")

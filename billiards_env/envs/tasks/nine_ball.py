@@ -5,23 +5,9 @@ import numpy as np
 
 from ...bots.geometry.breaks import break_shots
 from ...physics import BallState, strike_velocity
-from ...physics.state import diamond_slots, free_spot
+from ...physics.state import free_spot
+from ...rules.racks import nine_ball_rack
 from .base import Judgement, ShotOutcome, Task
-
-
-def nine_ball_rack(table, R: float, u: np.ndarray) -> np.ndarray:
-    """Positions [n, 10, 2] of 9-ball racks from uniforms ``u`` [n, 7]: the
-    1 on the foot spot (apex), the 9 in the centre, balls 2..8 shuffled by
-    the ranks of ``u``, frozen (``diamond_slots``); the cue ball (row 0) is
-    left at the origin for the caller."""
-    n = len(u)
-    diamond = diamond_slots(table, R)  # slot 0 apex, 4 centre
-    pos = np.zeros((n, 10, 2))
-    pos[:, 1] = diamond[0]
-    pos[:, 9] = diamond[4]
-    others = diamond[[1, 2, 3, 5, 6, 7, 8]]
-    pos[np.arange(n)[:, None], 2 + np.argsort(u, axis=1)] = others
-    return pos
 
 
 class NineBall(Task):
