@@ -1,14 +1,17 @@
-"""A person at the play page, by mouse events only (selenium's pointer
-actions in a headless Chromium): what the browser test and
+"""A person at the play page, by mouse events or by touch events only
+(selenium's pointer actions in a headless Chromium: a mouse, or a finger's
+touch pointer with ``touch=True``): what the browser tests and
 ``scripts/play_latency.py`` play with.
 
 The person looks at the page as a player would: the state panel, the aim
 line and the ``Hint`` button's suggestion (the ghost bot's shot, shown as
-the aim line and the speed on the slider), then drags the cue ball when it
-is in hand, drags from the cue ball to aim, clicks the tip diagram and the
-speed slider, clicks a pocket to call it, the push-out or pass buttons, and
+the aim line and the power on the bar), then drags the cue ball when it
+is in hand, drags from the cue ball to aim, taps the spin diagram and the
+power bar, taps a pocket to call it, the push-out or pass buttons, and
 Shoot. The page's own hooks (``window.billiardsPlay``,
-``window.billiardsReplay``) are read only to see where things are drawn.
+``window.billiardsReplay``) are read only to see where things are drawn
+(and where on the bar a speed lies). ``scrolled`` counts the times the page
+had to be scrolled to reach what the person touched.
 """
 from __future__ import annotations
 
