@@ -24,6 +24,8 @@ HEAD_STRING = 0.25   # the head string's distance from the head rail, as a fract
 FOOT_SPOT = 0.75     # the foot spot's, likewise
 KITCHEN_GAP = 1e-6   # m: a cue ball placed behind the head string keeps its centre this far behind the line
 PLACE_RINGS = 400    # rings of the nearest-legal-spot search (radius step R/4: covers any table)
+D_ARC_TOL = 1e-9     # m: a spot this little outside the D's arc counts as in the D, so a placed spot placed again stays
+                     # put (a point projected onto the arc, then kept behind the line, lands within 1e-11 m of it)
 
 _jit = numba.njit(cache=True, nogil=True)
 
@@ -118,8 +120,9 @@ def place_cue_in_d(want, pos, pocket, d, width, length, R, pockets, out, moved):
         on[0] = False
         x, y = want[e, 0], min(want[e, 1], cy - KITCHEN_GAP)
         dist = math.hypot(x - cx, y - cy)
-        if dist > r:
-            x, y = cx + (x - cx) * r / dist, cy + (y - cy) * r / dist
+        if dist > r + D_ARC_TOL:  # onto the arc, then behind the line again (the projection moves a point near the
+            # line towards the centre's y, past the KITCHEN_GAP margin)
+            x, y = cx + (x - cx) * r / dist, min(cy + (y - cy) * r / dist, cy - KITCHEN_GAP)
         found = spot_free(x, y, pos[e], on, width, length, edge, pockets, md)
         if not found:
             for k in range(1, PLACE_RINGS):
