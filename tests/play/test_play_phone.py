@@ -99,6 +99,8 @@ def test_no_spoiler_while_a_shot_plays(server, browser, phone):
             assert disabled and "a shot is playing" in why, why
             assert len(menu) == 2 and "pots" not in menu[1] and "foul" not in menu[1], menu
             assert state["turn"] == 1  # the server has answered: only the page's words wait for the animation
+            info = _text(browser, "info")
+            assert "at the end of the shot" in info and "pocketed" not in info and "legal" not in info, info
         time.sleep(0.03)
     assert looks >= 5, looks
     st = person.wait_turn()
