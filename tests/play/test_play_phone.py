@@ -324,3 +324,33 @@ def test_a_moments_link_names_the_same_shot_live_and_saved(server, browser, tmp_
     assert '"' not in meta and "played on billiards_env play server" in meta, meta
     info = browser.find_element("id", "info").text
     assert "action" not in info and "aim" in info, info
+
+
+def test_three_cushion_score_changes_when_the_point_is_seen(server, browser, phone):
+    """Seed 1's hint scores a point on the first shot: the status and the players' table show 0 - 0 while the shot
+    plays and 1 - 0 once the balls stop (the server's state already had the point)."""
+    phone(PORTRAIT)
+    gid = _game(server, browser, seed=1, opponent="human", game="three_cushion")
+    person = PagePerson(browser, touch=True)
+    person.wait_turn()
+    person.hint()
+    browser.execute_script("window.billiardsPlay.opts.speed = 2;")
+    person.click("pl-shoot")
+    end = time.monotonic() + 30
+    while browser.execute_script("return window.billiardsReplay.nShots;") < 2 and time.monotonic() < end:
+        time.sleep(0.01)
+    zero, one = "Player 1 (person 1) 0, Player 2 (person 2) 0", "Player 1 (person 1) 1, Player 2 (person 2) 0"
+    looks = 0
+    while browser.execute_script("return window.billiardsReplay.current().playing;") and time.monotonic() < end:
+        text, cur, points = browser.execute_script(
+            "return [document.getElementById('pl-status').textContent + ' / ' + document.getElementById('players')"
+            ".textContent, window.billiardsReplay.current(), window.billiardsPlay.state().points];")
+        if cur["shot"] == 1 and cur["t"] < browser.execute_script("return window.billiardsReplay.duration(1);"):
+            looks += 1
+            assert zero in text and one not in text and "points 1" not in text, text
+            assert points == [1, 0]
+        time.sleep(0.03)
+    assert looks >= 5, looks
+    person.wait_turn()
+    assert one in _text(browser, "pl-status"), _text(browser, "pl-status")
+    assert server("GET", f"/api/games/{gid}")[1]["state"]["points"] == [1, 0]
