@@ -27,8 +27,11 @@ class GameEnv(gym.Env):
 
     **Reward**: +1 when the agent wins, -1 when it loses, 0 otherwise (a
     game cut at ``max_shots`` shots is a draw, truncated). **Info**: the
-    agent's shot record (see ``GameVectorEnv``), ``opponent_shots`` (how
-    many the opponent played since) and ``winner``.
+    agent's shot record (see ``GameVectorEnv``; ``foul`` is a code,
+    ``rules.FOUL_*``, 0 none), ``opponent_shots`` (how many the opponent
+    played since), ``winner`` and, on the step the game ends,
+    ``final_score`` (the game's score, agent first: points in games to a
+    score; ``score`` is the agent's own shot's, before the opponent replied).
 
     **Rendering**: ``render_mode="rgb_array"`` keeps each shot's event log
     (``rendering.RecordReplay`` records whole games from it) and
@@ -88,6 +91,8 @@ class GameEnv(gym.Env):
         info["opponent_shots"] = n
         info["winner"] = int(self.core.game.winner[0])
         self._done = terminated or truncated
+        if self._done:  # the game's final score, agent first (``score`` is the agent's shot's, before the replies)
+            info["final_score"] = self.core.game.score[0].astype(int).tolist()
         return self.core.observe()[0], reward, terminated, truncated, info
 
     def render(self):

@@ -105,7 +105,9 @@ class GameVersusVectorEnv(GameTables):
     ``success`` (the agent won the game that just ended), ``scratch`` (the
     agent's shot pocketed the cue ball), ``balls_pocketed`` (object balls
     its shot pocketed), ``opponent_shots`` (the opponent's shots since),
-    ``winner``, and the agent's next constraints (``to_move``, always 0,
+    ``winner``, ``final_score`` [N, 2] (the game's score, agent first, on
+    the step it ended; zeros otherwise: ``score`` is the agent's own shot's,
+    before the opponent replied), and the agent's next constraints (``to_move``, always 0,
     ``ball_in_hand``, ``targets``, ``push_out_allowed``, ``may_pass``,
     ``call_needed``).
     """ + OBSERVATION_DOC
@@ -172,6 +174,9 @@ class GameVersusVectorEnv(GameTables):
         info["winner"] = np.where(terminated, self.core.game.winner, -1)
         info["success"] = terminated & (self.core.game.winner == AGENT)
         done = terminated | truncated
+        # the game's final score [agent, opponent] where it ended (``score`` is the agent's shot's, before the
+        # opponent's replies): points in games to a score (zeros in the pool games, where ``winner`` is the result)
+        info["final_score"] = np.where(done[:, None], self.core.game.score, 0)
         info["skipped_games"] = np.zeros(N, dtype=np.int64)
         if mode == AutoresetMode.NEXT_STEP:
             rst = np.nonzero(done_prev)[0]
