@@ -20,8 +20,13 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # the sibling script record_rollouts
 
 import numpy as np
+
+from record_rollouts import compare  # noqa: E402  (the same comparison of two recordings)
 
 SEED = 4321
 OPPONENTS = {"NineBall2P": (None, "ghost", "lookahead"), "EightBall": (None, "ghost", "lookahead"),
@@ -74,24 +79,6 @@ def record(path: str, steps: int, tables: int, quick: bool = False) -> None:
                     arrays[tag + k] = np.stack(v)
             print(f"recorded {tag} {steps} steps", flush=True)
     np.savez_compressed(path, **arrays)
-
-
-def compare(a: str, b: str) -> int:
-    A, B = np.load(a), np.load(b)
-    ka, kb = set(A.files), set(B.files)
-    bad = 0
-    for k in sorted(ka ^ kb):
-        print(f"only in {'first' if k in ka else 'second'}: {k}")
-        bad += 1
-    n = 0
-    for k in sorted(ka & kb):
-        x, y = A[k], B[k]
-        n += x.size
-        if x.shape != y.shape or x.dtype != y.dtype or not np.array_equal(x, y):
-            print(f"DIFFERENT: {k} {x.shape} {x.dtype} vs {y.shape} {y.dtype}")
-            bad += 1
-    print(f"{len(ka & kb)} arrays, {n} values compared; {bad} differences")
-    return 1 if bad else 0
 
 
 def main(argv=None) -> int:
