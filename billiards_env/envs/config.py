@@ -15,8 +15,8 @@ from pathlib import Path
 import yaml
 
 from ..physics import Effects, Models, PhysicsParams, Table
-from ..physics.noise import NoiseConfig, check_keys  # noqa: F401 (NoiseConfig re-exported)
-from ..physics.validation import finite_number as _number
+from ..physics.noise import NoiseConfig  # noqa: F401 (NoiseConfig re-exported)
+from ..physics.validation import check_keys, finite_number as _number  # noqa: F401 (check_keys re-exported)
 from .tasks.base import CONFIG_DIR
 from .tasks.registry import get_task
 

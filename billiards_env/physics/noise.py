@@ -25,7 +25,7 @@ import numba
 import numpy as np
 
 from .strike import Shots
-from .validation import finite_number
+from .validation import check_keys, finite_number
 
 # radial clip just inside the miscue limit: strike's own check is strict (|(a, b)| < limit)
 OFFSET_SAFETY = 1.0 - 1e-9
@@ -37,17 +37,6 @@ NOISE_PRESETS = {
     # five times the tournament standard deviations (the high-noise level of computer pool tournaments)
     "high": dict(aim_deg=0.625, speed=0.375, side_mm=2.5, height_mm=2.5),
 }
-
-
-def check_keys(cls, d: dict, where: str) -> None:
-    """Raise a ValueError naming any key of ``d`` that is not a field of the
-    dataclass ``cls`` (configs reject typos instead of ignoring them)."""
-    if not isinstance(d, dict):
-        raise ValueError(f"{where} must be a mapping, got {type(d).__name__}")
-    names = {f.name for f in dataclasses.fields(cls)}
-    unknown = set(d) - names
-    if unknown:
-        raise ValueError(f"unknown key(s) {sorted(unknown)} in {where}; known keys: {sorted(names)}")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -125,3 +114,45 @@ def perturb(shots: Shots, z: np.ndarray, noise: NoiseConfig, params) -> Shots:
     b = shots.b + z[:, 3] * noise.height_mm * 1e-3 / R
     _clip_offsets(a, b, params.miscue_limit)  # a, b are new arrays here
     return Shots.of_arrays(phi, speed, a, b)
+
+
+VARIABLE_NOISE_MAX = 5.0  # the ``variable`` level: the tournament deviations times a factor uniform in [0, 5] per game
+
+
+@dataclasses.dataclass(frozen=True)
+class NoiseLevel:
+    """A named level of execution noise, the games' and the bots' one
+    vocabulary: the deviations ``config`` (a ``NoiseConfig``) times a factor
+    drawn per game uniform in ``spread`` ((1, 1): the deviations as they
+    are). ``NOISE_LEVELS`` names the built-in levels: ``none``,
+    ``tournament``, ``high`` (5x tournament) and ``variable`` (tournament
+    times a factor in [0, 5] per game, the 2011 computer pool championship's
+    varying level); any other ``NoiseConfig`` is the level ``custom``."""
+
+    name: str
+    config: NoiseConfig
+    spread: tuple = (1.0, 1.0)
+
+    @property
+    def variable(self) -> bool:
+        """The factor is drawn per game (the spread is not (1, 1))."""
+        return tuple(self.spread) != (1.0, 1.0)
+
+    @classmethod
+    def of(cls, v) -> "NoiseLevel":
+        """A level from a ``NoiseLevel``, a level's name (``NOISE_LEVELS``), a ``NoiseConfig`` or a mapping of
+        its fields (optionally with ``preset``), or None (no noise)."""
+        if isinstance(v, NoiseLevel):
+            return v
+        if isinstance(v, str):
+            if v not in NOISE_LEVELS:
+                raise ValueError(f"unknown noise level {v!r}; choose one of {list(NOISE_LEVELS)} "
+                                 "(or give the deviations: a NoiseConfig or a mapping of its fields)")
+            return NOISE_LEVELS[v]
+        return cls("custom", NoiseConfig.from_any(v))
+
+
+NOISE_LEVELS: dict[str, NoiseLevel] = {
+    **{name: NoiseLevel(name, NoiseConfig.preset(name)) for name in NOISE_PRESETS},
+    "variable": NoiseLevel("variable", NoiseConfig.preset("tournament"), (0.0, VARIABLE_NOISE_MAX)),
+}

@@ -2,6 +2,7 @@
 that names the problem, before anything is modified."""
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -78,3 +79,14 @@ def check_placement(state, table, params, pockets: bool) -> None:
         e, i, j = np.argwhere(over)[0]
         raise ValueError(f"balls {i} and {j} in env {e} overlap: centres {dist[e, i, j]:.9f} m apart, "
                          f"less than 2R = {2 * R:.9f} m")
+
+
+def check_keys(cls, d: dict, where: str) -> None:
+    """Raise a ValueError naming any key of ``d`` that is not a field of the
+    dataclass ``cls`` (configs reject typos instead of ignoring them)."""
+    if not isinstance(d, dict):
+        raise ValueError(f"{where} must be a mapping, got {type(d).__name__}")
+    names = {f.name for f in dataclasses.fields(cls)}
+    unknown = set(d) - names
+    if unknown:
+        raise ValueError(f"unknown key(s) {sorted(unknown)} in {where}; known keys: {sorted(names)}")

@@ -6,7 +6,9 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-NOISES = ("none", "tournament", "high", "variable")
+from ..physics.noise import NOISE_LEVELS
+
+NOISES = tuple(NOISE_LEVELS)  # the games' noise levels, in order (physics.noise.NOISE_LEVELS)
 
 
 def markdown(title: str, command: str, results: list, table: list, seconds: float) -> str:

@@ -46,22 +46,21 @@ import time
 
 import numpy as np
 
-from ...contract.codec import ACTION_DIM, N_POCKETS, ActionCodec, ShotContext, _context, placement_to_actions
+from ...contract.codec import ACTION_DIM, ActionCodec, ShotContext, _context, placement_to_actions
 from ...contract.turn import Equipment, play_turn
 from ...contract.view import GameView
 from ...physics import BallState, Effects, Models, PhysicsParams, Table
 from ...rules import GAMES, GameState, get_game, get_rules
 from ...rules import records as R
-from ..config import NoiseConfig, _number
+from ...physics.noise import NOISE_LEVELS, NoiseConfig, NoiseLevel  # noqa: F401 (NOISE_LEVELS: the level names)
+from ..config import _number
 from ..core import BilliardsCore, _observe
 from ..streams import TableStreams
 from ...rules.placement import FOOT_SPOT, HEAD_STRING, d_of, legal_spots
 from .setup import RACKS, loosen
 
 EXTRA_OBS = 13  # observation entries after the one-player layout (see ``observation_doc``)
-NOISE_LEVELS = ("none", "tournament", "high", "variable")
 BREAK_NINE = ("wins", "spotted")  # 9-ball: the 9 pocketed on a legal break wins, or is spotted (some pro events)
-VARIABLE_NOISE_MAX = 5.0  # "variable" noise: the tournament deviations times a factor uniform in [0, 5] per game
 
 
 @dataclasses.dataclass(frozen=True)
@@ -76,9 +75,10 @@ class GameConfig:
     ``equal_innings``),
     ``solver`` (and ``dt``), ``min_draw`` (m, the draw at a1 = -1),
     ``max_shots`` (a game not over after this many shots is truncated, a
-    draw), ``noise`` (``none``, ``tournament``, ``high`` = 5x tournament,
-    ``variable`` = tournament times a factor uniform in [0, 5] drawn per
-    game, or a ``NoiseConfig`` / mapping), ``effects`` and ``models``;
+    draw), ``noise`` (a ``physics.noise.NoiseLevel`` or its name:
+    ``none``, ``tournament``, ``high`` = 5x tournament, ``variable`` =
+    tournament times a factor uniform in [0, 5] drawn per game; or a
+    ``NoiseConfig`` / mapping, the level ``custom``), ``effects`` and ``models``;
     ``rack`` (the pool games): ``realistic`` (seeded gaps and offsets between
     the balls, ``setup.loosen``) or ``perfect`` (every ball frozen, as before;
     snooker's reds are always racked frozen);
@@ -92,7 +92,7 @@ class GameConfig:
     dt: float | None = None
     min_draw: float = 0.01
     max_shots: int = 200
-    noise: object = "none"
+    noise: NoiseLevel = "none"  # a NoiseLevel, a level's name, a NoiseConfig or a mapping: NoiseLevel.of
     effects: Effects = dataclasses.field(default_factory=Effects)
     models: Models = dataclasses.field(default_factory=Models)
     rule_options: dict = dataclasses.field(default_factory=dict)
@@ -124,21 +124,7 @@ class GameConfig:
             object.__setattr__(self, "effects", Effects.from_dict(self.effects))
         if isinstance(self.models, dict):
             object.__setattr__(self, "models", Models.from_dict(self.models))
-        if not (isinstance(self.noise, str) and self.noise == "variable"):
-            object.__setattr__(self, "noise", NoiseConfig.from_any(self.noise))
-
-    @property
-    def noise_range(self) -> tuple[float, float]:
-        """The per-game factor on the noise deviations: drawn uniform in this range."""
-        return (0.0, VARIABLE_NOISE_MAX) if self.variable_noise else (1.0, 1.0)
-
-    @property
-    def variable_noise(self) -> bool:
-        return isinstance(self.noise, str)
-
-    @property
-    def shot_noise(self) -> NoiseConfig:
-        return NoiseConfig.preset("tournament") if self.variable_noise else self.noise
+        object.__setattr__(self, "noise", NoiseLevel.of(self.noise))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -160,7 +146,7 @@ class GameCore(BilliardsCore):
         if not isinstance(n_envs, (int, np.integer)) or n_envs < 1:
             raise ValueError(f"num_envs must be a positive integer, got {n_envs!r}")
         self.config = cfg
-        self.cfg = _CoreConfig(cfg.shot_noise, cfg.min_draw, cfg.solver, cfg.dt)
+        self.cfg = _CoreConfig(cfg.noise.config, cfg.min_draw, cfg.solver, cfg.dt)
         rules_options = {"spot_break_nine": True} if cfg.break_nine == "spotted" else {}
         self.rules = get_rules(cfg.game, **rules_options, **cfg.rule_options)
         self.n_envs = int(n_envs)
@@ -254,7 +240,7 @@ class GameCore(BilliardsCore):
             if self.config.rack == "realistic":  # drawn after the 16 above: breaker and noise factor as with "perfect"
                 loosen(pos, t, self.params.R, self.streams.uniform(idx, 2 * (B - 1)))
         brk = (u[:, 14] < 0.5).astype(np.int64) if breaker is None else np.broadcast_to(breaker, (n,))
-        lo, hi = self.config.noise_range
+        lo, hi = self.config.noise.spread
         if self.state is None:
             E = self.n_envs
             self.state = BallState(np.zeros((E, B, 2)), np.zeros((E, B, 2)), np.zeros((E, B, 3)),
