@@ -84,22 +84,22 @@ def test_no_spoiler_while_a_shot_plays(server, browser, phone):
     while browser.execute_script("return window.billiardsReplay.nShots;") < 2 and time.monotonic() < end:
         time.sleep(0.01)
     ruling = server("GET", f"/api/games/{gid}")[1]["shots"][0]["info"]["game"]["ruling"]
+    duration = browser.execute_script("return window.billiardsReplay.duration(1);")
     looks = 0
     while time.monotonic() < end:
-        cur, text, why, disabled, menu, state = browser.execute_script(
+        cur, text, why, disabled, menu, state, info = browser.execute_script(  # one look: all at the same moment
             "const V = window.billiardsReplay, P = window.billiardsPlay; return [V.current(),"
             "document.getElementById('pl-status').textContent, document.getElementById('pl-why').textContent,"
             "document.getElementById('pl-shoot').disabled, Array.from(document.getElementById('shot').options)"
-            ".map(function (o) { return o.text; }), P.state()];")
+            ".map(function (o) { return o.text; }), P.state(), document.getElementById('info').textContent];")
         if not cur["playing"]:
             break
-        if cur["shot"] == 1 and cur["t"] < browser.execute_script("return window.billiardsReplay.duration(1);"):
+        if cur["shot"] == 1 and cur["t"] < duration:
             looks += 1
             assert ruling not in text and "to shoot" not in text and "Shot 1: Player 1 (person 1) is shooting" in text, text
             assert disabled and "a shot is playing" in why, why
             assert len(menu) == 2 and "pots" not in menu[1] and "foul" not in menu[1], menu
             assert state["turn"] == 1  # the server has answered: only the page's words wait for the animation
-            info = _text(browser, "info")
             assert "at the end of the shot" in info and "pocketed" not in info and "legal" not in info, info
         time.sleep(0.03)
     assert looks >= 5, looks
@@ -346,7 +346,7 @@ def test_three_cushion_score_changes_when_the_point_is_seen(server, browser, pho
             "return [document.getElementById('pl-status').textContent + ' / ' + document.getElementById('players')"
             ".textContent, window.billiardsReplay.current(), window.billiardsPlay.state().points];")
         if cur["shot"] == 1 and cur["t"] < browser.execute_script("return window.billiardsReplay.duration(1);"):
-            looks += 1
+            looks += 1  # (the texts and the moment were read in one script: the same frame)
             assert zero in text and one not in text and "points 1" not in text, text
             assert points == [1, 0]
         time.sleep(0.03)
