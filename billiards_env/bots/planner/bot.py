@@ -2,9 +2,10 @@
 
 Per table to move: the candidates (``candidates``: window-aimed, throw-corrected pots from the cue ball or from
 searched ball-in-hand spots; safeties, kicks and a 360-degree kick fan) are previewed once without noise and
-valued with the one-ply leave (``GameLookahead.values``: a win 1, a loss 0, the next shooter's best pot's ease
-otherwise); the best few per table go through successive halving under the env's noise (``halving``) and the best
-mean among the last survivors is played. 9-ball and 10-ball push-outs and passes as lookahead decides them (a push
+valued with the one-ply leave (``leave.values``: a win 1, a loss 0, else ``position_value`` of the next
+shooter's best pot's ease, in the planner's window model; ``own_leave=False``: lookahead's); the best few per table go through successive halving under the env's noise (``halving``); the best
+sampled ones (``REPLY``) get lookahead's reply search on the leaves where the turn passes (``two_plies``), which
+moves their means, and the best is played. 9-ball and 10-ball push-outs and passes as lookahead decides them (a push
 that beats the shot; a pass when the shot is worth less than 1/2); 10-ball pots call their ball and pocket. The
 break is searched once per game and table (``breaks``).
 """
@@ -18,27 +19,37 @@ from ...contract.plan import ShotPlan
 from ...physics.strike import Shots
 from ..game_lookahead import Budget, GameLookahead
 from . import candidates as CAND
+from . import leave as LEAVE
 from .breaks import BreakSearch
 from .halving import ROUNDS, halve
 
 CHUNK = 128                # tables decided per batch of previews (memory stays bounded)
-FIRST_POTS = 20            # pots per table entering the noisy rounds (by noise-free value)
+FIRST_POTS = 20            # pots per table entering the noisy rounds (by the prior: value times success estimate)
+MISS_VALUE = 0.25          # the mover's value after a missed pot (the opponent usually has a shot)
 FIRST_SAFE = 8             # safeties and kicks per table entering them
 MIN_AIM_SIGMA = math.radians(0.125)  # rad: aim noise the pot ranking assumes at least (tournament level)
 # the lookahead whose parts are reused: its starts, safeties, leave valuation, pushes and break strikes
 HELPER = dict(reply_eval=0, n_safe=16, n_kick=8, n_bank=16, n_push=24, hand_pots=3)
+# with ``replies``: lookahead's two plies on the best survivors (the opponent's reply searched from the leaves
+# where the turn passes, ``GameLookahead.replies``): that many per table, of them kept for safeties, samples
+REPLY = dict(reply_eval=6, reply_safe=3, reply_samples=8)
 
 
 class Champion:
     name = "champion"
 
     def __init__(self, seed: int = 0, throw: bool = True, windows: bool = True, rounds=ROUNDS,
-                 first_pots: int = FIRST_POTS, first_safe: int = FIRST_SAFE, searched_break: bool = True):
+                 first_pots: int = FIRST_POTS, first_safe: int = FIRST_SAFE, searched_break: bool = True,
+                 own_leave: bool = True, replies: bool = True, variants: dict | None = None):
         self.rng = np.random.default_rng(seed)
-        self.la = GameLookahead(seed=int(self.rng.integers(2 ** 31)), budget=Budget(**HELPER))
+        helper = dict(HELPER, **(REPLY if replies else {}))
+        self.la = GameLookahead(seed=int(self.rng.integers(2 ** 31)), budget=Budget(**helper))
+        self.replies = replies
         self.throw, self.windows, self.rounds = throw, windows, tuple(rounds)
         self.first_pots, self.first_safe = first_pots, first_safe
         self.breaks = BreakSearch() if searched_break else None
+        self.own_leave = own_leave
+        self.variants = dict(variants or {})   # the pots' speed factors, tip heights and sides (candidates.pots)
         self.sims = 0
         self.last_value = self.last_kind = None
 
@@ -90,7 +101,7 @@ class Champion:
         srow, cue, placed = self.la.starts(view, rows)
         aim_sigma = max(math.radians(view.noise.aim_deg), MIN_AIM_SIGMA)
         if self.windows:
-            pots = CAND.pots(self, view, srow, cue, placed, aim_sigma, throw=self.throw)
+            pots = CAND.pots(self, view, srow, cue, placed, aim_sigma, throw=self.throw, **self.variants)
         else:
             pots = self.lookahead_pots(view, rows)
         first = np.searchsorted(srow, rows)
@@ -110,6 +121,10 @@ class Champion:
         out["prob"] = np.zeros(pot.sum())
         return out
 
+    def values(self, view, pv):
+        """The mover's one-ply value of previewed shots: the planner's leave (``leave``), or lookahead's."""
+        return LEAVE.values(view, pv) if self.own_leave else self.la.values(view, pv)
+
     def plan(self, c, idx):
         return ShotPlan.of(Shots(c["phi"][idx], c["speed"][idx], c["a"][idx], c["b"][idx]),
                            placement=c["placement"][idx], pocket=c["pocket"][idx], ball=c["ball"][idx])
@@ -122,24 +137,53 @@ class Champion:
         allidx = np.arange(len(local))
         pv = view.preview(self.plan(c, allidx), c["row"])
         self.sims += len(local)
-        v0 = self.la.values(view, pv)
-        # the first noisy round: the best pots and the best safeties of each table by noise-free value
-        first = (_rank(-v0, local, n, ~c["safe"]) < self.first_pots) | (_rank(-v0, local, n, c["safe"])
-                                                                          < self.first_safe)
+        v0 = self.values(view, pv)
+        # a pot's noise-free value says where the cue ball goes, not how likely the ball drops: weigh it by the
+        # pot's success estimate (``candidates.pot_options``) before choosing the first round's entrants
+        prior = np.where(c["safe"], v0, c["prob"] * v0 + (1 - c["prob"]) * MISS_VALUE)
+        # the first noisy round: the best pots and the best safeties of each table by that prior
+        first = (_rank(-prior, local, n, ~c["safe"]) < self.first_pots) | (_rank(-prior, local, n, c["safe"])
+                                                                             < self.first_safe)
         noise = self.la.noise(view)
 
         def judge(idx, draws):
             p = view.preview(self.plan(c, idx), c["row"][idx], noise=noise, draws=draws)
             self.sims += len(idx)
-            return self.la.values(view, p)
+            return self.values(view, p)
 
-        mean, count = halve(judge, local, n, v0, first, self.rng, self.rounds)
+        mean, count = halve(judge, local, n, prior, first, self.rng, self.rounds)
         top = count == np.maximum.reduceat(count, np.searchsorted(local, np.arange(n)))[local]
         score = np.where(top & (count > 0), mean + 1e-3 * v0, -np.inf)
+        if self.replies:
+            score = self.two_plies(view, c, local, n, mean, count, noise)
         o = np.lexsort((-score, local))
         best = o[np.searchsorted(local[o], np.arange(n))]
         val = np.where(np.isfinite(score[best]), mean[best], v0[best])
         return c, best, val
+
+
+    def two_plies(self, view, c, local, n, mean, count, noise):
+        """Scores [k] after lookahead's reply search on the best sampled candidates of each row (``REPLY``):
+        the halving mean moved by the change the searched replies make on ``reply_samples`` fresh outcomes;
+        -inf for those not judged so."""
+        k_eval, k_safe, S = REPLY["reply_eval"], REPLY["reply_safe"], REPLY["reply_samples"]
+        m = np.where(count > 0, mean, -np.inf)
+        pick = np.flatnonzero(((_rank(-m, local, n, count > 0) < k_eval - k_safe)
+                               | (_rank(-m, local, n, c["safe"] & (count > 0)) < k_safe)) & (count > 0))
+        rep = np.repeat(pick, S)
+        z = self.rng.normal(size=(n, S, 4))
+        prow = c["row"][rep]
+        pvn = view.preview(self.plan(c, rep), prow, noise=noise,
+                           draws=z[local[rep], np.tile(np.arange(S), len(pick))])
+        self.sims += len(rep)
+        vs = self.values(view, pvn).reshape(len(pick), S)
+        vn = vs.mean(axis=1)
+        before = self.la.sims
+        sel, v2 = self.la.replies(view, pvn, (vs, vn, c["safe"][pick], local[pick], n), prow)
+        self.sims += self.la.sims - before
+        score = np.full(len(local), -np.inf)
+        score[pick] = np.where(sel, mean[pick] + (v2 - vn), -np.inf)
+        return score
 
 
 def _rank(key, row, n, mask):

@@ -81,7 +81,7 @@ def top_per_start(start, prob, n_start, k_of_start):
     return np.sort(sel)
 
 
-def pots(bot, view, srow, cue, placed, aim_sigma, throw=True):
+def pots(bot, view, srow, cue, placed, aim_sigma, throw=True, speeds=SPEEDS, heights=HEIGHTS, sides=SIDES):
     """The pot candidates of starts (view rows ``srow`` [S], cue balls ``cue`` [S, 2], ``placed`` [S])."""
     pos = view.pos[srow].copy()
     pos[:, 0] = cue
@@ -91,7 +91,7 @@ def pots(bot, view, srow, cue, placed, aim_sigma, throw=True):
     k = np.where(placed, N_POTS_HAND, N_POTS)
     sel = top_per_start(o["start"], o["prob"], len(srow), k)
     o = {key: val[sel] for key, val in o.items()}
-    sp, hb, sd = (np.asarray(x, dtype=np.float64).ravel() for x in np.meshgrid(SPEEDS, HEIGHTS, SIDES, indexing="ij"))
+    sp, hb, sd = (np.asarray(x, dtype=np.float64).ravel() for x in np.meshgrid(speeds, heights, sides, indexing="ij"))
     V = len(sp)
     rep = np.repeat(np.arange(len(sel)), V)
     var = np.tile(np.arange(V), len(sel))
