@@ -54,10 +54,11 @@ class PagePerson:
                                        "document.getElementById('pl-msg').textContent;")))
 
     def px(self, x: float, y: float) -> tuple[int, int]:
-        """Viewport CSS pixel of the table point (x, y) m (the page scrolled to show it)."""
+        """Viewport CSS pixel of the table point (x, y) m (the page scrolled to show it, when it is off the screen: a
+        corner pocket at the screen's top edge is touched where it is)."""
         if self.js("const q = window.billiardsReplay.toPx(arguments[0], arguments[1]),"
                    "b = document.getElementById('table').getBoundingClientRect(), v = b.top + q[1];"
-                   "if (v < 10 || v > innerHeight - 10) { window.scrollBy(0, v - innerHeight / 2); return true; }"
+                   "if (v < 1 || v > innerHeight - 1) { window.scrollBy(0, v - innerHeight / 2); return true; }"
                    "return false;", x, y):
             self.scrolled += 1
         u, v = self.js("const q = window.billiardsReplay.toPx(arguments[0], arguments[1]),"
