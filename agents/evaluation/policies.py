@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from billiards_env.bots import make_bot
+from billiards_env.bots.registry import parse_bot_name
 from billiards_env.bots.lookahead import LookaheadPolicy
 from billiards_env.envs.games.play import bot_actions
 
@@ -20,8 +21,10 @@ GAME_ONLY_NAMES = ("ghost-safety",)                 # game policies without a on
 
 
 def is_policy_name(name: str) -> bool:
-    """Whether ``name`` names a built-in policy (else it is a saved model's path)."""
-    return name in BASELINE_NAMES + GAME_ONLY_NAMES or name.startswith("search")
+    """Whether ``name`` names a built-in policy (else it is a saved model's path): the bots' grammar
+    (``bots.registry.parse_bot_name``), restricted to the baselines."""
+    parsed = parse_bot_name(name)
+    return parsed is not None and parsed.family in BASELINE_NAMES + GAME_ONLY_NAMES + ("search",)
 
 
 def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
@@ -40,9 +43,9 @@ def make_policy(name: str, env, seed: int = 0, k: int = 256) -> Policy:
         return BotPolicy(GhostBallPolicy(), native_env(env))
     if name == "lookahead":
         return BotPolicy(LookaheadPolicy(seed=seed), native_env(env))
-    if name.startswith("search"):
-        kk = int(name[6:]) if name[6:] else k
-        return BotPolicy(SearchPolicy(k=kk, seed=seed), native_env(env))
+    parsed = parse_bot_name(name)
+    if parsed is not None and parsed.family == "search":
+        return BotPolicy(SearchPolicy(k=parsed.k or k, seed=seed), native_env(env))
     return SB3Policy.load(name, env=env)
 
 

@@ -28,7 +28,9 @@ games benchmark accept.
 """
 from __future__ import annotations
 
+import dataclasses
 import importlib
+import re
 
 from ..rules import GAMES, get_game
 
@@ -72,13 +74,44 @@ def default_bot(game: str) -> str:
     return get_game(game).default_bot
 
 
+FIXED_NAMES = ("random", "ghost", "ghost-safety", "lookahead", "lookahead-2026.12", "champion", "snooker",
+               "value-lookahead")
+COUNTED = ("search", "carom")  # name<K>: K candidates per table (no K: the bot's default)
+_NAME = re.compile(r"(?P<counted>search|carom)(?P<k>[0-9]*)|ladder-(?P<rung>[0-9]+)|(?P<module>[\w.]+):(?P<attr>\w+)")
+
+
+@dataclasses.dataclass(frozen=True)
+class BotName:
+    """A bot name read by the one grammar every name-taking place uses (``parse_bot_name``): ``family`` (a fixed
+    name, ``search``, ``carom``, ``ladder`` or ``module``), ``k`` (``search<K>``'s and ``carom<K>``'s K, None for
+    the default; ``ladder-<k>``'s rung) and ``target`` (``module:factory``)."""
+
+    family: str
+    k: int | None = None
+    target: str | None = None
+
+
+def parse_bot_name(name) -> BotName | None:
+    """The ``BotName`` of ``name``, or None if it names no bot: a fixed name (``FIXED_NAMES``), ``search<K>`` or
+    ``carom<K>`` (K in ASCII digits, at least 1), ``ladder-<k>`` or ``module:factory``."""
+    if not isinstance(name, str):
+        return None
+    if name in FIXED_NAMES:
+        return BotName(name)
+    m = _NAME.fullmatch(name)
+    if m is None:
+        return None
+    if m["counted"]:
+        k = int(m["k"]) if m["k"] else None
+        return None if k == 0 else BotName(m["counted"], k)
+    if m["rung"]:
+        return BotName("ladder", int(m["rung"]))
+    return BotName("module", target=name)
+
+
 def is_bot_name(name) -> bool:
-    """Whether ``name`` names a built-in bot or a ``module:factory``."""
-    return isinstance(name, str) and (name in ("random", "ghost", "ghost-safety", "lookahead", "snooker",
-                                                   "value-lookahead", "lookahead-2026.12", "champion") or ":" in name
-                                      or (name.startswith("search") and (name[6:].isdigit() or name == "search"))
-                                      or (name.startswith("carom") and (name[5:].isdigit() or name == "carom"))
-                                      or (name.startswith("ladder-") and name[7:].isdigit()))
+    """Whether ``name`` names a built-in bot or a ``module:factory`` (``parse_bot_name``)."""
+    return parse_bot_name(name) is not None
 
 
 def make_bot(spec, seed: int = 0):
@@ -87,41 +120,43 @@ def make_bot(spec, seed: int = 0):
         return spec
     if not isinstance(spec, str):
         raise TypeError(f"a bot is a name, a 'module:factory' string or an object with act(view); got {spec!r}")
-    if spec == "random":
+    name = parse_bot_name(spec)
+    if name is None:
+        raise ValueError(f"unknown bot {spec!r}; choose one of {BOT_NAMES}")
+    family = name.family
+    if family == "random":
         from .random_bot import RandomBot
         return RandomBot(seed=seed)
-    if spec in ("ghost", "ghost-safety"):
+    if family in ("ghost", "ghost-safety"):
         from .ghost import GhostBot
-        return GhostBot(seed=seed, safety=spec == "ghost-safety")
-    if spec == "snooker":
+        return GhostBot(seed=seed, safety=family == "ghost-safety")
+    if family == "snooker":
         from .snooker import SnookerBot
         return SnookerBot(seed=seed)
-    if spec == "lookahead":
+    if family == "lookahead":
         from .game_lookahead import GameLookahead
         return GameLookahead(seed=seed)
-    if spec == "lookahead-2026.12":
+    if family == "lookahead-2026.12":
         from .game_lookahead import GameLookahead
         bot = GameLookahead(seed=seed, budget=frozen_budget())
         bot.name = "lookahead-2026.12"
         return bot
-    if spec == "champion":
+    if family == "champion":
         from .planner import Champion
         return Champion(seed=seed)
-    if spec == "value-lookahead":
+    if family == "value-lookahead":
         from .learned.value import value_lookahead
         return value_lookahead(seed=seed)
-    if spec.startswith("search") and (spec[6:].isdigit() or spec == "search"):
+    if family == "search":
         from .search import SearchBot
-        return SearchBot(seed=seed, k=int(spec[6:]) if spec[6:] else DEFAULT_SEARCH_K)
-    if spec.startswith("carom") and (spec[5:].isdigit() or spec == "carom"):
+        return SearchBot(seed=seed, k=name.k or DEFAULT_SEARCH_K)
+    if family == "carom":
         from .carom import DEFAULT_K, CaromBot
-        return CaromBot(seed=seed, k=int(spec[5:]) if spec[5:] else DEFAULT_K)
-    if spec.startswith("ladder-") and spec[7:].isdigit():
+        return CaromBot(seed=seed, k=name.k or DEFAULT_K)
+    if family == "ladder":
         from .learned.ladder import LadderBot
         return LadderBot(spec, seed=seed)
-    if ":" in spec:
-        return _user_bot(spec, seed)
-    raise ValueError(f"unknown bot {spec!r}; choose one of {BOT_NAMES}")
+    return _user_bot(spec, seed)
 
 
 def _user_bot(spec: str, seed: int):
