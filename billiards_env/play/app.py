@@ -189,7 +189,14 @@ def new_request(req, extra_bots=()) -> dict:
 def _bot_family(name) -> str | None:
     """``search``, ``carom``, ``ladder`` or the bot's own name for a built-in bot's name in plain ASCII
     (None: not a built-in bot's name; ``module:factory`` is never taken by request)."""
-    if not isinstance(name, str) or not is_bot_name(name) or ":" in name:
+    if not isinstance(name, str) or ":" in name:
+        return None
+    if re.fullmatch(r"(search|carom)[0-9]+", name):  # a budget's family, whatever K: budget_problem judges K
+        return name.rstrip("0123456789")           # (before the registry, which turns an int of 4,300+ digits away
+    try:                                           # with a ValueError, and search0 away as no name at all)
+        if not is_bot_name(name):
+            return None
+    except ValueError:
         return None
     m = re.fullmatch(r"(search|carom)[0-9]*|(ladder)-[0-9]+|[a-z-]+", name)
     return None if m is None else (m.group(1) or m.group(2) or name)
