@@ -61,6 +61,12 @@ def test_the_table_and_shoot_fit_the_phone_screen(server, browser, phone, metric
     assert table[6] >= (0.6 * h if h > w else 0.7 * h), f"the table is small: {table}"
     for rid, *_, bw, bh in rects[2:]:  # touch targets of at least 44 px
         assert bw >= 44 and bh >= 44, (rid, bw, bh)
+    small = browser.execute_script(  # and every other button, menu and the scrubber on the page
+        "return Array.from(document.querySelectorAll('button, select, #scrub')).filter(function (e) {"
+        "return e.offsetParent !== null; }).map(function (e) { const b = e.getBoundingClientRect();"
+        "return [e.id || e.textContent, b.width, b.height]; }).filter(function (r) {"
+        "return r[2] < 44 || r[1] < 44; });")
+    assert not small, small
     # a finger on the table aims (when a shot may be aimed); anywhere else it scrolls the page
     touch = browser.execute_script(
         "return ['table', 'pl-status', 'pl-info', 'playpanel', 'gamebox'].map(function (id) {"
