@@ -189,6 +189,19 @@ class ActionCodec:
         k = self.n_balls  # calls: 0 (safety) and the object balls 1 .. n_balls - 1
         return np.minimum(np.floor((a[:, 8] + 1.0) / 2.0 * k), k - 1).astype(np.int64)
 
+    def shots_of(self, actions: np.ndarray, origin: np.ndarray | None = None) -> Shots:
+        """a0..a3 of actions [n, >= 4] (clipped to [-1, 1]) -> ``Shots``, the aim relative to ``origin`` [n]
+        (default the codec's: the cue ball where it lies)."""
+        a = np.ascontiguousarray(np.asarray(actions, dtype=np.float64)[:, :4])
+        out = np.empty((4, len(a)))
+        _action_to_shot(a, self.origin if origin is None else origin, self.min_draw, self.params.max_draw,
+                        self.params.miscue_limit, out)
+        return Shots.of_arrays(out[0], draw_to_speed(out[1], self.params), out[2], out[3])
+
+    def actions_of_shots(self, shots: Shots) -> np.ndarray:
+        """``shots_of``'s inverse on the unclipped range: ``Shots`` -> a0..a3 [n, 4] (float64, clipped)."""
+        return np.clip(shot_actions(shots, self.origin, self.min_draw, self.params), -1.0, 1.0)
+
     def decode(self, actions: np.ndarray) -> tuple[ShotPlan, np.ndarray]:
         """The ``ShotPlan`` the env plays for actions [n, action_dim] (clipped
         to [-1, 1] first): placements made legal (NaN without ball in hand),
@@ -204,10 +217,7 @@ class ActionCodec:
         if len(h):
             placement[h], moved[h] = self.place(self.placement_of(a[h]), h)
             origin[h] = self.origin_from(placement[h], h)
-        out = np.empty((4, n))
-        _action_to_shot(np.ascontiguousarray(a[:, :4]), origin, self.min_draw, self.params.max_draw,
-                        self.params.miscue_limit, out)
-        shots = Shots.of_arrays(out[0], draw_to_speed(out[1], self.params), out[2], out[3])
+        shots = self.shots_of(a, origin)
         ball = self.called_ball(a) if self.ball_dim else None
         return ShotPlan.of(shots, placement, a[:, 6] > 0, self.called_pocket(a), ball), moved
 

@@ -163,7 +163,7 @@ class Session:
             "n_shots": self.n_shots(), "points": g.score[k].astype(int).tolist() if c.rules.to_points else None,
             "target": getattr(c.rules, "target", None), "turn": self.turn,
             "pos": c.state.pos[k].tolist(), "on_table": (c.state.pocket[k] < 0).tolist(),
-            "limits": {"speed_min": float(draw_to_speed(c.cfg.min_draw, p)), "speed_max": float(p.max_speed),
+            "limits": {"speed_min": float(draw_to_speed(c.config.min_draw, p)), "speed_max": float(p.max_speed),
                        "tip_max": float(p.miscue_limit), "R": float(p.R), "width": float(t.width),
                        "length": float(t.length), "head_string": HEAD_STRING * t.length,
                        "foot_spot": [t.width / 2, FOOT_SPOT * t.length],

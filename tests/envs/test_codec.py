@@ -36,7 +36,7 @@ def test_encoded_plans_decode_to_the_same_shots(game, rounds):
     view = core.view(idx)
     rng = np.random.default_rng(5)
     p = core.params
-    lo = draw_to_speed(core.cfg.min_draw, p)
+    lo = draw_to_speed(core.config.min_draw, p)
     shots = Shots(rng.uniform(-math.pi, math.pi, N), rng.uniform(lo, p.max_speed, N),
                   rng.uniform(-0.3, 0.3, N), rng.uniform(-0.3, 0.3, N))
     want = np.column_stack([rng.uniform(0, core.table.width, N), rng.uniform(0, core.table.length, N)])

@@ -253,8 +253,8 @@ def test_noise_levels():
     f = core.noise_scale
     assert (f >= 0).all() and (f <= 5).all() and f.max() > 4 and f.min() < 1
     np.testing.assert_array_equal(f[:200], f[200:])
-    assert core.cfg.noise == t
-    assert (GameCore(GameConfig(noise="high"), 2).cfg.noise == h)
+    assert core.config.noise.config == t and core.config.noise.spread == (0.0, 5.0)
+    assert GameCore(GameConfig(noise="high"), 2).config.noise.config == h
 
 
 def test_stable_baselines3_trains_on_the_single_agent_env():

@@ -2,10 +2,11 @@
 its game state, and plays one shot (or one pass) per table per step through
 the rules layer (``billiards_env.rules``).
 
-It reuses ``BilliardsCore``'s shot mapping (``actions_to_shots``,
-``shots_to_actions``), shot noise and simulation; what it adds is the
-two-player part: the rack, ball in hand, the declarations, the rulings and
-the respots.
+It plays every turn through ``contract.turn.play_turn`` (the function a
+bot's preview plays too), with the games' action convention
+(``contract.codec.ActionCodec``); what it holds is the two-player part:
+the racks, the game states, the noise factor of each game and the
+observation.
 
 **Action** (``Box(-1, 1, (8,), float32)``; 10-ball ``(9,)``):
 
@@ -50,11 +51,12 @@ from ...contract.codec import ACTION_DIM, ActionCodec, ShotContext, _context, pl
 from ...contract.turn import Equipment, play_turn
 from ...contract.view import GameView
 from ...physics import BallState, Effects, Models, PhysicsParams, Table
+from ...physics.strike import Shots
 from ...rules import GAMES, GameState, get_game, get_rules
 from ...rules import records as R
-from ...physics.noise import NOISE_LEVELS, NoiseConfig, NoiseLevel  # noqa: F401 (NOISE_LEVELS: the level names)
+from ...physics.noise import NOISE_LEVELS, NoiseLevel  # noqa: F401 (NOISE_LEVELS: the level names, play.app reads them here)
 from ..config import _number
-from ..core import BilliardsCore, _observe
+from ..core import _observe
 from ..streams import TableStreams
 from ...rules.placement import FOOT_SPOT, HEAD_STRING, d_of, legal_spots
 from .setup import RACKS, loosen
@@ -127,26 +129,13 @@ class GameConfig:
         object.__setattr__(self, "noise", NoiseLevel.of(self.noise))
 
 
-@dataclasses.dataclass(frozen=True)
-class _CoreConfig:
-    """The fields ``BilliardsCore``'s shot mapping, noise and simulation read."""
-
-    noise: NoiseConfig
-    min_draw: float
-    solver: str
-    dt: float | None
-    aim: str = "relative"
-    speed_scale: str = "linear"
-
-
-class GameCore(BilliardsCore):
+class GameCore:
     """``n_envs`` tables of one game; see the module docstring for the action."""
 
     def __init__(self, cfg: GameConfig, n_envs: int, record: bool = False):
         if not isinstance(n_envs, (int, np.integer)) or n_envs < 1:
             raise ValueError(f"num_envs must be a positive integer, got {n_envs!r}")
         self.config = cfg
-        self.cfg = _CoreConfig(cfg.noise.config, cfg.min_draw, cfg.solver, cfg.dt)
         rules_options = {"spot_break_nine": True} if cfg.break_nine == "spotted" else {}
         self.rules = get_rules(cfg.game, **rules_options, **cfg.rule_options)
         self.n_envs = int(n_envs)
@@ -251,7 +240,9 @@ class GameCore(BilliardsCore):
         self.game.put(idx, self.rules.new_game(brk))
         self.noise_scale[idx] = lo + (hi - lo) * u[:, 15]
         self._changed()
-        self._forget_last_shot(idx)
+        if self.record:
+            for k in idx:
+                self.last_start[k] = self.last_events[k] = None
 
     # --- actions ------------------------------------------------------------------
     def validate_actions(self, actions, n: int) -> np.ndarray:
@@ -295,7 +286,7 @@ class GameCore(BilliardsCore):
         draw = lambda rows: self.streams.normal(idx[rows], 4) * scale[idx[rows]][:, None]  # noqa: E731
         t0 = time.perf_counter()
         turn = play_turn(self.rules, self.equipment, self.game.take(idx), c, self.state.pos[idx],
-                         self.state.pocket[idx], plan, self.cfg.noise, draw, self.record)
+                         self.state.pocket[idx], plan, self.config.noise.config, draw, self.record)
         self.timers["simulate"] += turn.sim_wall
         self.timers["rules"] += time.perf_counter() - t0 - turn.sim_wall
         if turn.events is not None:
@@ -324,7 +315,7 @@ class GameCore(BilliardsCore):
     @property
     def equipment(self) -> Equipment:
         """The table, physics, effects, models and solver every shot of these tables is played with."""
-        c = self.cfg
+        c = self.config
         return Equipment(self.table, self.params, self.effects, self.models, c.solver, c.dt)
 
     # --- bots ------------------------------------------------------------------------
@@ -341,9 +332,9 @@ class GameCore(BilliardsCore):
             ball_in_hand=in_hand, targets=c.targets[idx], push_out_allowed=c.push_out_allowed[idx],
             may_pass=c.may_pass[idx], call_needed=c.call_needed[idx], is_break=c.is_break[idx],
             groups=g.group[idx], fouls=g.fouls[idx], shots=g.shots[idx], table=self.table, params=self.params,
-            effects=self.effects, models=self.models, noise=self.cfg.noise, noise_scale=self.noise_scale[idx],
-            min_draw=self.cfg.min_draw, rules=self.rules, state=g.take(idx), codec=codec,
-            solver=self.cfg.solver, dt=self.cfg.dt, _observe=lambda: self.observe()[idx])
+            effects=self.effects, models=self.models, noise=self.config.noise.config,
+            noise_scale=self.noise_scale[idx], min_draw=self.config.min_draw, rules=self.rules, state=g.take(idx),
+            codec=codec, solver=self.config.solver, dt=self.config.dt, _observe=lambda: self.observe()[idx])
 
     def codec(self, idx) -> ActionCodec:
         """The ``ActionCodec`` (the action convention) of tables ``idx``."""
@@ -358,8 +349,17 @@ class GameCore(BilliardsCore):
         t, ctx = self.table, self.shot_context()
         tgt = np.maximum(ctx.target[idx], 0)
         aim = np.where(is_break[:, None], np.array([t.width / 2, FOOT_SPOT * t.length]), pos[np.arange(len(idx)), tgt])
-        return ActionCodec(ctx.aim_origin[idx], aim, in_hand, place, t, self.params, self.cfg.min_draw,
+        return ActionCodec(ctx.aim_origin[idx], aim, in_hand, place, t, self.params, self.config.min_draw,
                            tgt, self.action_dim if self.rules.calls_ball else 0, self.n_balls, pos[:, 0], is_break)
+
+    def actions_to_shots(self, actions: np.ndarray, idx) -> Shots:
+        """Actions [n, >= 4] of tables ``idx`` -> ``Shots`` (aim relative to the origin with the cue ball where it
+        lies; ``ActionCodec.shots_of``)."""
+        return self.codec(idx).shots_of(actions)
+
+    def shots_to_actions(self, shots: Shots, idx) -> np.ndarray:
+        """``Shots`` of tables ``idx`` -> a0..a3 [n, 4] (``ActionCodec.actions_of_shots``)."""
+        return self.codec(idx).actions_of_shots(shots)
 
     def actions_of(self, plan, idx, codec: ActionCodec | None = None) -> np.ndarray:
         """The actions [n, action_dim] (float64, validated) that play a bot's
