@@ -18,17 +18,17 @@ the policies.
 """
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numba
 import numpy as np
 
 from ..physics import BallState, SimOptions, simulate
-from ..physics.noise import OFFSET_SAFETY, clip_offset as _clip_offset, perturb  # noqa: F401 (OFFSET_SAFETY re-exported)
-from ..physics.strike import Shots, apply_strike, draw_to_speed, speed_to_draw
+from ..physics.noise import perturb
+from ..physics.strike import Shots, apply_strike, draw_to_speed
 from ..contract.codec import ShotContext, _action_to_shot, _context, shot_actions
 from ..contract.outcome import ShotOutcome
+from ..contract.pockets import pocket_accept_cos, pocket_axes
 from ..contract.view import TaskView
 from . import target_frame
 from .config import TaskConfig
@@ -80,8 +80,8 @@ class BilliardsCore:
         # observation: size and lower bound (the upper bound is 1); see billiards._COMMON_DOC, envs/target_frame.py
         if cfg.observation == "target_frame":
             self.obs_dim, self.obs_low = target_frame.obs_size(self.n_balls, len(self.pockets)), -1.0
-            self.pocket_axes = target_frame.pocket_axes(self.pockets, self.table.width, self.table.length)
-            self.pocket_accept = target_frame.pocket_accept_cos(self.pockets, self.table.length)
+            self.pocket_axes = pocket_axes(self.pockets, self.table.width, self.table.length)
+            self.pocket_accept = pocket_accept_cos(self.pockets, self.table.length)
         else:
             self.obs_dim, self.obs_low = 4 * self.n_balls + 1, 0.0
         self._context: ShotContext | None = None  # of the current state; None: to be computed
@@ -194,7 +194,7 @@ class BilliardsCore:
         """Simulate struck tables to rest with this env's table, physics, solver, effects and models.
         ``state``: a struck state the caller has just made; the kernel works in its arrays."""
         c = self.cfg
-        k = getattr(getattr(self, "task", None), "contacts", 0)  # the contact order, where the task reads it
+        k = self.task.contacts  # the cue ball's contacts in order, where the task reads them (0: none)
         return simulate(state, self.table, self.params, solver=c.solver, dt=c.dt,
                         record=self.record, effects=self.effects, models=self.models,
                         options=SimOptions(validate=False, contacts=k, inplace=True))  # states are ours, checked

@@ -45,8 +45,6 @@ import math
 import numba
 import numpy as np
 
-from ..contract.pockets import (CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG, pocket_accept_cos,  # noqa: F401
-                               pocket_axes, side_pockets)
 
 _jit = numba.njit(cache=True, nogil=True)
 

@@ -21,7 +21,7 @@ from ..bots.registry import default_bot, make_bot
 from ..envs.games import GameConfig, GameCore
 from ..envs.games.play import bot_actions
 from ..rendering.game_replay import GameRecorder, state_words
-from ..rendering.game_words import game_words, pocket_names
+from ..rendering.game_words import game_words, pocket_names, words_of
 from ..rendering.replay import Replay
 from ..rules import records as R
 from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP, d_of
@@ -31,7 +31,6 @@ from ..physics.state import SPOT_CLEAR, SPOT_EDGE
 
 HUMAN = "human"          # a player's name for a person at the screen
 MAX_SHOTS = 200          # shot cap of a played game (GameConfig.max_shots): a draw after this many shots
-NOMINATING = ("snooker",)  # games whose call is a ball alone (snooker's nominated colour or free ball), no pocket
 
 
 class PlayError(Exception):
@@ -159,7 +158,7 @@ class Session:
             "id": self.id, "game": self.game, "title": game_words(self.game), "seed": self.seed,
             "players": self.players, "names": self.names, "over": over, "truncated": over and not bool(g.over[k]),
             "human_to_move": not over and self.bots[to_move] is None, "in_hand_code": int(cons.ball_in_hand[k]),
-            "calls_ball": bool(c.rules.calls_ball), "calls_pocket": self.game not in NOMINATING,
+            "calls_ball": bool(c.rules.calls_ball), "calls_pocket": not words_of(self.game).nominates,
             "n_shots": self.n_shots(), "points": g.score[k].astype(int).tolist() if c.rules.to_points else None,
             "target": getattr(c.rules, "target", None), "turn": self.turn,
             "pos": c.state.pos[k].tolist(), "on_table": (c.state.pocket[k] < 0).tolist(),
@@ -206,7 +205,7 @@ class Session:
         declare = req.get("declare")
         if declare == "pass" and not cons.may_pass[0]:
             raise PlayError(400, "putting the opponent back in is not allowed now (only right after the opponent's "
-                                 "foul)" if self.game in NOMINATING else
+                                 "foul)" if words_of(self.game).nominates else
                             "passing the shot back is not allowed now (only right after the opponent's "
                             "push-out, or in 10-ball after an illegal pot)")
         if declare == "push_out" and not cons.push_out_allowed[0]:
@@ -223,7 +222,7 @@ class Session:
         elif req.get("placement") is not None and declare != "pass":
             raise PlayError(400, "the cue ball is not in hand: it is played from where it lies (leave out placement)")
         pocket = req.get("pocket")
-        nominating = self.game in NOMINATING
+        nominating = words_of(self.game).nominates  # the call is a ball alone (snooker's nomination), no pocket
         if pocket is not None and nominating:
             raise PlayError(400, f"{game_words(self.game)} has no called pockets (leave out pocket; nominate a ball)")
         if cons.call_needed[0] and declare != "pass" and pocket is None and not nominating:
@@ -284,9 +283,9 @@ class Session:
                "height": float(plan.b[0]), "turn": self.turn}  # turn: the position this hint is for
         if not np.isnan(plan.placement[0, 0]):
             out["placement"] = plan.placement[0].tolist()
-        if plan.pocket[0] >= 0 and self.game not in NOMINATING:
+        if plan.pocket[0] >= 0 and not words_of(self.game).nominates:
             out["pocket"] = int(plan.pocket[0])
-        if self.game in NOMINATING:  # snooker: the bot's nomination, and its choice to put the offender back in
+        if words_of(self.game).nominates:  # snooker: the bot's nomination, and its choice to put the offender back in
             cons = self.core.constraints()
             if plan.ball[0] > 0 and cons.call_needed[0]:
                 out["ball"] = int(plan.ball[0])

@@ -151,7 +151,8 @@ def test_target_frame_lists_pockets_the_ball_cannot_enter_last():
     """A side pocket dead ahead but approached about 60 degrees off its axis (more
     than SIDE_ACCEPT_DEG) comes after every pocket the target can enter;
     each group is ordered straightest first."""
-    from billiards_env.envs.target_frame import SORT_LAST, pocket_accept_cos, pocket_axes
+    from billiards_env.contract.pockets import pocket_accept_cos, pocket_axes
+    from billiards_env.envs.target_frame import SORT_LAST
 
     env = gym.make("Billiards-PotOne-v1", observation="target_frame").unwrapped
     env.reset(seed=0)

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 import billiards_env  # noqa: F401  (registers the built-in tasks)
 from billiards_env.envs import (TASKS, BilliardsEnv, BilliardsVectorEnv, Shots, Task, TaskConfig, env_classes,
                                 get_task, register_task)
-from billiards_env.envs.core import OFFSET_SAFETY
+from billiards_env.physics.noise import OFFSET_SAFETY
 from billiards_env.envs.tasks import Judgement, ShotOutcome
 from billiards_env.physics.strike import draw_to_speed, speed_to_draw
 
