@@ -6,6 +6,9 @@
   saved models) for the harness;
 - ``entrants``: saved models as entrants of the two-player games beside the
   library's bots (``scripts/match.py``).
+- ``benchmark``: the benchmark's scoring command (``python -m
+  agents.evaluation.benchmark score``: a policy under ``billiards_env.benchmark``'s
+  protocol, through the harness; docs/benchmark.md).
 
 Imports nothing here (``entrants`` stays free of stable-baselines3 and torch
 until a model is loaded)."""
