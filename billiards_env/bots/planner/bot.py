@@ -40,9 +40,10 @@ class Champion:
 
     def __init__(self, seed: int = 0, throw: bool = True, windows: bool = True, rounds=ROUNDS,
                  first_pots: int = FIRST_POTS, first_safe: int = FIRST_SAFE, searched_break: bool = True,
-                 own_leave: bool = True, replies: bool = True, variants: dict | None = None):
+                 own_leave: bool = True, replies: bool = True, variants: dict | None = None, reply: dict = REPLY):
         self.rng = np.random.default_rng(seed)
-        helper = dict(HELPER, **(REPLY if replies else {}))
+        self.reply = dict(reply)
+        helper = dict(HELPER, **(self.reply if replies else {}))
         self.la = GameLookahead(seed=int(self.rng.integers(2 ** 31)), budget=Budget(**helper))
         self.replies = replies
         self.throw, self.windows, self.rounds = throw, windows, tuple(rounds)
@@ -166,7 +167,7 @@ class Champion:
         """Scores [k] after lookahead's reply search on the best sampled candidates of each row (``REPLY``):
         the halving mean moved by the change the searched replies make on ``reply_samples`` fresh outcomes;
         -inf for those not judged so."""
-        k_eval, k_safe, S = REPLY["reply_eval"], REPLY["reply_safe"], REPLY["reply_samples"]
+        k_eval, k_safe, S = self.reply["reply_eval"], self.reply["reply_safe"], self.reply["reply_samples"]
         m = np.where(count > 0, mean, -np.inf)
         pick = np.flatnonzero(((_rank(-m, local, n, count > 0) < k_eval - k_safe)
                                | (_rank(-m, local, n, c["safe"] & (count > 0)) < k_safe)) & (count > 0))

@@ -1,0 +1,31 @@
+"""``champion`` with one part taken out, as ``module:factory`` entrants of ``scripts/match.py`` (docs/games.md,
+"champion"): ``--policies billiards_env.bots.planner.ablations:no_throw lookahead-2026.12``."""
+from __future__ import annotations
+
+from .bot import Champion
+
+
+def _named(bot: Champion, name: str) -> Champion:
+    bot.name = name
+    return bot
+
+
+def no_windows(seed: int = 0) -> Champion:
+    """Lookahead's own pots (aimed at pocket centres, its 2-degree overcut variant) instead of the window-aimed,
+    throw-corrected ones."""
+    return _named(Champion(seed=seed, windows=False), "champion-no-windows")
+
+
+def no_throw(seed: int = 0) -> Champion:
+    """Window-aimed pots at the ghost-ball aim, not corrected for throw."""
+    return _named(Champion(seed=seed, throw=False), "champion-no-throw")
+
+
+def no_halving(seed: int = 0) -> Champion:
+    """The first round's entrants all sampled 16 times (no halving; about the same number of noisy previews)."""
+    return _named(Champion(seed=seed, rounds=(16,)), "champion-no-halving")
+
+
+def one_ply(seed: int = 0) -> Champion:
+    """Without lookahead's reply search on the best survivors."""
+    return _named(Champion(seed=seed, replies=False), "champion-one-ply")
