@@ -1,5 +1,5 @@
 """The reference integration of tests/physics/test_mathavan_convergence.py:
-billiards_env/physics/cushion/mathavan2010.py as it was before issue 28's
+billiards_env/physics/cushion/mathavan2010.py as it was at df93ffd, before its
 Dormand-Prince integration (commit d229a82), kept unchanged but for its
 imports. It integrates the same equations with independent numerics
 (midpoint steps of a fixed impulse, its own stick landing), and converges

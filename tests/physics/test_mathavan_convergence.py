@@ -21,7 +21,7 @@ N = mathavan_midpoint.IMPULSE_STEPS
 TOL = mathavan2010.STEP_TOL
 # The reference itself: 64 x against 128 x the steps agree within this (V).
 REF_TOL = 1e-6
-# The targets (issue 28): every impact within 1e-5 V of the reference, and
+# The targets (the Dormand-Prince rework): every impact within 1e-5 V of the reference, and
 # half the step (32 x tighter a tolerance for a fifth-order pair) changing
 # it by less than 1e-6 V.
 TARGET, HALF = 1e-5, 1e-6

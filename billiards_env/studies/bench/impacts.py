@@ -24,7 +24,7 @@ from billiards_env.physics import cushion
 from .options import ROOT, RunOptions
 
 # (label, revision, module) timed beside the registered models, if git has it
-BASELINE = ("mathavan2010 at df93ffd (before issue 28)", "df93ffd", "mathavan2010")
+BASELINE = ("mathavan2010 at df93ffd (its midpoint scheme)", "df93ffd", "mathavan2010")
 
 
 def impact_set(n: int, seed: int = 1) -> np.ndarray:
