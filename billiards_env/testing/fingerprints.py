@@ -13,7 +13,7 @@ players' turns). It hashes what a user sees, every observation, reward,
 termination, truncation and numeric info entry (episode outcomes:
 ``success``, ``winner``, fouls, pocketed balls ...), each float rounded to
 ``PRECISION``. ``tests/envs/test_fingerprints.py`` compares the hashes with
-``FINGERPRINTS`` (``tests/regressions/env_fingerprints.json``); a mismatch
+``FINGERPRINTS`` (``tests/envs/env_fingerprints.json``); a mismatch
 means the id's behaviour changed: bump its version (Gymnasium's convention,
 docs/versions.md) and regenerate.
 """
@@ -38,7 +38,7 @@ SINGLE_STEPS = 24      # steps of gym.make(id): a game's step is a shot plus the
 VEC_ENVS = 3           # tables of gym.make_vec(id)
 VEC_STEPS = 12         # steps of the vector env (its tables autoreset as the env's mode does)
 ROOT = Path(__file__).resolve().parents[2]
-FINGERPRINTS = ROOT / "tests" / "regressions" / "env_fingerprints.json"
+FINGERPRINTS = ROOT / "tests" / "envs" / "env_fingerprints.json"  # beside its test (tests/regressions holds fuzz-found cases)
 CHANGED = ("behaviour changed: bump the id's version (-v{n} -> -v{n+1}: register the new id, keep the old "
            "one raising), record what changed in docs/versions.md, and regenerate the fingerprints with "
            "python -m billiards_env.testing.fingerprints --write")

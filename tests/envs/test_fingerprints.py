@@ -1,7 +1,7 @@
 """Every registered id plays as its recorded fingerprint says (billiards_env/testing/fingerprints.py).
 
 A failure here means an id's behaviour changed under the same version: bump the id's version, record what
-changed in docs/versions.md, and regenerate tests/regressions/env_fingerprints.json with
+changed in docs/versions.md, and regenerate tests/envs/env_fingerprints.json with
 ``python -m billiards_env.testing.fingerprints --write``."""
 from __future__ import annotations
 
