@@ -2,7 +2,7 @@
 "champion"): ``--policies billiards_env.bots.planner.ablations:no_throw lookahead-2026.12``."""
 from __future__ import annotations
 
-from .bot import Champion
+from .bot import Champion, Parts
 
 
 def _named(bot: Champion, name: str) -> Champion:
@@ -13,12 +13,12 @@ def _named(bot: Champion, name: str) -> Champion:
 def no_windows(seed: int = 0) -> Champion:
     """Lookahead's own pots (aimed at pocket centres, its 2-degree overcut variant) instead of the window-aimed,
     throw-corrected ones."""
-    return _named(Champion(seed=seed, windows=False), "champion-no-windows")
+    return _named(Champion(seed=seed, parts=Parts(windows=False)), "champion-no-windows")
 
 
 def no_throw(seed: int = 0) -> Champion:
     """Window-aimed pots at the ghost-ball aim, not corrected for throw."""
-    return _named(Champion(seed=seed, throw=False), "champion-no-throw")
+    return _named(Champion(seed=seed, parts=Parts(throw=False)), "champion-no-throw")
 
 
 def no_halving(seed: int = 0) -> Champion:
@@ -28,4 +28,4 @@ def no_halving(seed: int = 0) -> Champion:
 
 def one_ply(seed: int = 0) -> Champion:
     """Without lookahead's reply search on the best survivors."""
-    return _named(Champion(seed=seed, replies=False), "champion-one-ply")
+    return _named(Champion(seed=seed, parts=Parts(replies=False)), "champion-one-ply")

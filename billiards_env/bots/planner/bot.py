@@ -3,7 +3,7 @@
 Per table to move: the candidates (``candidates``: window-aimed, throw-corrected pots from the cue ball or from
 searched ball-in-hand spots; safeties, kicks and a 360-degree kick fan) are previewed once without noise and
 valued with the one-ply leave (``leave.values``: a win 1, a loss 0, else ``position_value`` of the next
-shooter's best pot's ease, in the planner's window model; ``own_leave=False``: lookahead's); the best few per table go through successive halving under the env's noise (``halving``); the best
+shooter's best pot's ease, in the planner's window model; ``Parts(own_leave=False)``: lookahead's); the best few per table go through successive halving under the env's noise (``halving``); the best
 sampled ones (``REPLY``) get lookahead's reply search on the leaves where the turn passes (``two_plies``), which
 moves their means, and the best is played. 9-ball and 10-ball push-outs and passes as lookahead decides them (a push
 that beats the shot; a pass when the shot is worth less than 1/2); 10-ball pots call their ball and pocket. The
@@ -11,6 +11,7 @@ break is searched once per game and table (``breaks``).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -35,21 +36,34 @@ HELPER = dict(reply_eval=0, n_safe=16, n_kick=8, n_bank=16, n_push=24, hand_pots
 REPLY = dict(reply_eval=6, reply_safe=3, reply_samples=8)
 
 
+@dataclasses.dataclass(frozen=True)
+class Parts:
+    """The parts of the search, each on by default (``ablations`` takes one out): ``throw`` (pots aimed
+    corrected for throw), ``windows`` (pots aimed into the measured pocket windows; off: lookahead's pots),
+    ``searched_break``, ``own_leave`` (the window model's leave; off: lookahead's) and ``replies`` (lookahead's
+    reply search on the best survivors)."""
+
+    throw: bool = True
+    windows: bool = True
+    searched_break: bool = True
+    own_leave: bool = True
+    replies: bool = True
+
+
 class Champion:
     name = "champion"
 
-    def __init__(self, seed: int = 0, throw: bool = True, windows: bool = True, rounds=ROUNDS,
-                 first_pots: int = FIRST_POTS, first_safe: int = FIRST_SAFE, searched_break: bool = True,
-                 own_leave: bool = True, replies: bool = True, variants: dict | None = None, reply: dict = REPLY):
+    def __init__(self, seed: int = 0, parts: Parts = Parts(), rounds=ROUNDS, first_pots: int = FIRST_POTS,
+                 first_safe: int = FIRST_SAFE, variants: dict | None = None, reply: dict = REPLY):
         self.rng = np.random.default_rng(seed)
         self.reply = dict(reply)
-        helper = dict(HELPER, **(self.reply if replies else {}))
+        helper = dict(HELPER, **(self.reply if parts.replies else {}))
         self.la = GameLookahead(seed=int(self.rng.integers(2 ** 31)), budget=Budget(**helper))
-        self.replies = replies
-        self.throw, self.windows, self.rounds = throw, windows, tuple(rounds)
+        self.replies = parts.replies
+        self.throw, self.windows, self.rounds = parts.throw, parts.windows, tuple(rounds)
         self.first_pots, self.first_safe = first_pots, first_safe
-        self.breaks = BreakSearch() if searched_break else None
-        self.own_leave = own_leave
+        self.breaks = BreakSearch() if parts.searched_break else None
+        self.own_leave = parts.own_leave
         self.variants = dict(variants or {})   # the pots' speed factors, tip heights and sides (candidates.pots)
         self.sims = 0
         self.last_value = self.last_kind = None
@@ -197,6 +211,6 @@ def _rank(key, row, n, mask):
 
 
 def champion(seed: int = 0, **kw) -> Champion:
-    """The ``champion`` bot (``bots.make_bot("champion")``); ``kw``: ablations (``throw``, ``windows``,
-    ``rounds``, ``searched_break``)."""
+    """The ``champion`` bot (``bots.make_bot("champion")``); ``kw``: ``Champion``'s settings (``parts``,
+    ``rounds``, ...)."""
     return Champion(seed=seed, **kw)

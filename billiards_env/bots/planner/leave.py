@@ -24,7 +24,10 @@ V_FULL = 0.9        # a sure pot: the run may still end (lookahead's V_FULL)
 
 
 @numba.njit(cache=True, nogil=True)
-def _window(centre, half, base, a0, da, p, th):
+def _window(win, p, th):
+    """Pocket ``p``'s measured window at approach angle ``th``: (centre offset, half-width), interpolated in
+    ``win`` = (centre [P, A], half [P, A], base [P], ref [P, 2], first angle, angle step); (0, 0) outside."""
+    centre, half, base, _, a0, da = win
     rel = (th - base[p] + math.pi) % (2 * math.pi) - math.pi
     x = (rel - a0) / da
     A = centre.shape[1]
@@ -36,8 +39,10 @@ def _window(centre, half, base, a0, da, p, th):
 
 
 @numba.njit(cache=True, nogil=True)
-def _ease(pos, on, targets, hand, centre, half, base, ref, a0, da, lim, out):
-    """out[e]: the best success estimate over table e's legal pots (0: none, or no cue ball)."""
+def _ease(pos, on, targets, hand, win, lim, out):
+    """out[e]: the best success estimate over table e's legal pots (0: none, or no cue ball); ``win``: the
+    windows as ``_window`` takes them."""
+    ref = win[3]
     R, clear, max_cut, sig_aim, sig_model, hand_dcg, min_cos = lim
     d2 = (2 * R + clear) ** 2
     for e in range(pos.shape[0]):
@@ -53,10 +58,10 @@ def _ease(pos, on, targets, hand, centre, half, base, ref, a0, da, lim, out):
                     c, h = 0.0, 0.0
                     tx, ty = ref[p, 0], ref[p, 1]
                     for _ in range(2):
-                        c, h = _window(centre, half, base, a0, da, p, th)
+                        c, h = _window(win, p, th)
                         tx, ty = ref[p, 0] - c * math.sin(th), ref[p, 1] + c * math.cos(th)
                         th = math.atan2(ty - oy, tx - ox)
-                    c, h = _window(centre, half, base, a0, da, p, th)
+                    c, h = _window(win, p, th)
                     if h <= 0.0:
                         continue
                     dop = math.hypot(tx - ox, ty - oy)
@@ -92,8 +97,8 @@ def leave_ease(view, pos, on, targets, hand) -> np.ndarray:
            HAND_DCG, MIN_COS)
     _ease(np.ascontiguousarray(pos), np.ascontiguousarray(on, dtype=np.bool_),
           np.ascontiguousarray(targets, dtype=np.bool_), np.ascontiguousarray(hand, dtype=np.bool_),
-          np.ascontiguousarray(w.centre), np.ascontiguousarray(w.half), np.ascontiguousarray(w.base),
-          np.ascontiguousarray(w.ref), float(ANGLES[0]), float(ANGLES[1] - ANGLES[0]), lim, out)
+          (np.ascontiguousarray(w.centre), np.ascontiguousarray(w.half), np.ascontiguousarray(w.base),
+           np.ascontiguousarray(w.ref), float(ANGLES[0]), float(ANGLES[1] - ANGLES[0])), lim, out)
     return out
 
 
