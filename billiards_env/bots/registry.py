@@ -34,8 +34,8 @@ import re
 
 from ..rules import GAMES, get_game
 
-BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "lookahead-2026.12", "champion", "carom<K>", "snooker", "ladder-<k>",
-             "value-lookahead", "<module>:<factory>")
+BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "lookahead-2026.12", "champion", "carom<K>",
+             "snooker", "ladder-<k>", "value-lookahead", "<module>:<factory>")
 DEFAULT_SEARCH_K = 64
 # ``lookahead-2026.12``: the Budget of ``lookahead`` on 2026-12-07, spelled out so later changes to the defaults
 # do not move the yardstick (bots.game_lookahead.Budget's fields; REPLY_BUDGET as it was that day)

@@ -3,11 +3,13 @@
 Per table to move: the candidates (``candidates``: window-aimed, throw-corrected pots from the cue ball or from
 searched ball-in-hand spots; safeties, kicks and a 360-degree kick fan) are previewed once without noise and
 valued with the one-ply leave (``leave.values``: a win 1, a loss 0, else ``position_value`` of the next
-shooter's best pot's ease, in the planner's window model; ``Parts(own_leave=False)``: lookahead's); the best few per table go through successive halving under the env's noise (``halving``); the best
-sampled ones (``REPLY``) get lookahead's reply search on the leaves where the turn passes (``two_plies``), which
-moves their means, and the best is played. 9-ball and 10-ball push-outs and passes as lookahead decides them (a push
-that beats the shot; a pass when the shot is worth less than 1/2); 10-ball pots call their ball and pocket. The
-break is searched once per game and table (``breaks``).
+shooter's best pot's ease, in the planner's window model; ``Parts(own_leave=False)``: lookahead's); the best few
+per table go through successive halving under the env's noise (``halving``); the best sampled ones (``REPLY``)
+get lookahead's reply search on the leaves where the turn passes (``two_plies``), which moves their means, and the
+best is played. Where the env adds no noise the noise-free preview is the outcome itself, and the best noise-free
+value is played. 9-ball and 10-ball push-outs and passes as lookahead decides them (a push that beats the shot; a
+pass when the shot is worth less than 1/2); 10-ball pots call their ball and pocket. The break is searched once
+per game and table (``breaks``).
 """
 from __future__ import annotations
 
@@ -166,6 +168,12 @@ class Champion:
             self.sims += len(idx)
             return self.values(view, p)
 
+        if not view.noise.enabled:
+            # the env strikes every shot exactly as planned: the noise-free preview is the outcome itself
+            score = v0 + 1e-6 * prior
+            o = np.lexsort((-score, local))
+            best = o[np.searchsorted(local[o], np.arange(n))]
+            return c, best, v0[best]
         mean, count = halve(judge, local, n, prior, first, self.rng, self.rounds)
         top = count == np.maximum.reduceat(count, np.searchsorted(local, np.arange(n)))[local]
         score = np.where(top & (count > 0), mean + 1e-3 * v0, -np.inf)

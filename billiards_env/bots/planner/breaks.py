@@ -47,7 +47,6 @@ class BreakSearch:
         cand[0] = NOMINAL
         total, count = np.zeros(n), np.zeros(n)
         alive = np.arange(n)
-        used = 0
         for frac, S in rounds:
             m = max(2, int(round(frac * n)))
             if len(alive) > m:
@@ -57,8 +56,8 @@ class BreakSearch:
             r = np.tile(np.repeat(racks, S), len(alive))
             # common random numbers: every candidate struck with the same draws on a rack, fresh ones each round
             z = rng.normal(size=(len(racks), S, 4))
-            zi = np.tile(np.repeat(np.arange(len(racks)), S), len(alive)), np.tile(np.arange(S), len(alive) * len(racks))
-            used += S
+            zi = (np.tile(np.repeat(np.arange(len(racks)), S), len(alive)),
+                  np.tile(np.arange(S), len(alive) * len(racks)))
             pv = view.preview(bot.la.break_plan(view, r, cand[rep]), r, noise=bot.la.noise(view), draws=z[zi])
             bot.sims += len(r)
             v = bot.values(view, pv)

@@ -26,7 +26,7 @@ N_POTS_HAND = 2                   # and per ball-in-hand spot
 SPEEDS = (1.15, 1.6, 2.3, 3.3)    # factors of the speed that just drops the ball (soft to firm, for position)
 HEIGHTS = (-0.4, 0.0, 0.4)        # tip heights (units of R): draw, stun, follow
 SIDES = (0.0,)                    # tip side offsets (units of R): centre ball (side spin measured no gain here)
-MISCUE_MARGIN = 0.98              # tip offsets stay within this fraction of the miscue limit (the strike's check is strict)
+MISCUE_MARGIN = 0.98              # tip offsets kept within this fraction of the miscue limit (the check is strict)
 FAN_DIRS = 48                     # the kick scan: this many cue directions around the full circle
 FAN_SPEEDS = (1.2, 2.6, 4.5)      # m/s: at these speeds
 
