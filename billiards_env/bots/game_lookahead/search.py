@@ -77,21 +77,7 @@ class GameLookahead(Valuation, Candidates, Breaks):
             placement[rows], pocket[rows], value[rows] = pl, pk, val
             kind[rows] = np.where(safe, "safety", "pot")
         if len(play):
-            # 9-ball declarations: a push-out that beats the shot; a pass where the shot is worth less than 1/2
-            push = play[view.push_out_allowed[play]]
-            if len(push) and self.n_push:
-                (pph, psp), pval = self.push_values(view, push)
-                use = pval > value[push]
-                r = push[use]
-                declare[r] = True
-                phi[r], speed[r], a[r], b[r] = pph[use], psp[use], 0.0, 0.0
-                placement[r] = np.nan
-                value[r] = pval[use]
-                kind[r] = "push"
-            pas = play[view.may_pass[play] & (value[play] < 0.5)]
-            declare[pas] = True
-            value[pas] = 1.0 - value[pas]
-            kind[pas] = "pass"
+            declarations(self, view, play, (phi, speed, a, b), placement, declare, value, kind)
         self.last_value, self.last_kind = value, kind
         speed = np.clip(speed, 0.05, view.params.max_speed)
         return ShotPlan.of(Shots(phi, speed, a, b), placement, declare, pocket)
@@ -168,6 +154,28 @@ class GameLookahead(Valuation, Candidates, Breaks):
         opp = self.reply.decide(leaves, np.arange(leaves.n))[3]
         self.sims += self.reply.sims - before
         return 1.0 - opp
+
+
+def declarations(la, view, play, shots, placement, declare, value, kind) -> None:
+    """The declarations of rows ``play`` after their best shots are chosen, in place (``shots``: the phi, speed,
+    a, b arrays; ``value`` the chosen shots' values): where a push-out is allowed, ``la``'s best push
+    (``push_values``) is declared when it beats the shot; after the opponent's push-out, the shot is passed back
+    where it is worth less than 1/2 (the opponent would then shoot the same table)."""
+    phi, speed, a, b = shots
+    push = play[view.push_out_allowed[play]]
+    if len(push) and la.n_push:
+        (pph, psp), pval = la.push_values(view, push)
+        use = pval > value[push]
+        r = push[use]
+        declare[r] = True
+        phi[r], speed[r], a[r], b[r] = pph[use], psp[use], 0.0, 0.0
+        placement[r] = np.nan
+        value[r] = pval[use]
+        kind[r] = "push"
+    pas = play[view.may_pass[play] & (value[play] < 0.5)]
+    declare[pas] = True
+    value[pas] = 1.0 - value[pas]
+    kind[pas] = "pass"
 
 
 def _rank_in_row(keys, row, n):

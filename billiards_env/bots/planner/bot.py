@@ -21,6 +21,7 @@ import numpy as np
 from ...contract.plan import ShotPlan
 from ...physics.strike import Shots
 from ..game_lookahead import Budget, GameLookahead
+from ..game_lookahead.search import declarations
 from . import candidates as CAND
 from . import leave as LEAVE
 from .breaks import BreakSearch
@@ -96,19 +97,8 @@ class Champion:
             placement[rows], pocket[rows], ball[rows] = c["placement"][best], c["pocket"][best], c["ball"][best]
             value[rows] = val
             kind[rows] = np.where(c["safe"][best], "safety", "pot")
-        if len(play):
-            push = play[view.push_out_allowed[play]]
-            if len(push) and self.la.n_push:
-                (pph, psp), pval = self.la.push_values(view, push)
-                use = pval > value[push]
-                r = push[use]
-                declare[r] = True
-                phi[r], speed[r], a[r], b[r] = pph[use], psp[use], 0.0, 0.0
-                placement[r], value[r], kind[r] = np.nan, pval[use], "push"
-            pas = play[view.may_pass[play] & (value[play] < 0.5)]
-            declare[pas] = True
-            value[pas] = 1.0 - value[pas]
-            kind[pas] = "pass"
+        if len(play):  # push-outs and passes as lookahead declares them
+            declarations(self.la, view, play, (phi, speed, a, b), placement, declare, value, kind)
         self.last_value, self.last_kind = value, kind
         speed = np.clip(speed, 0.05, view.params.max_speed)
         return ShotPlan.of(Shots(phi, speed, a, b), placement, declare, pocket, ball)
