@@ -5,7 +5,9 @@ A game action is 8 numbers in [-1, 1] (see ``envs.games.spaces``): the aim
 relative to the table's aim origin (a0, in units of pi), the cue's draw
 (a1, over the env's draw range), the tip's side and height offsets (a2, a3,
 over the miscue limit), the cue ball's placement with ball in hand (a4, a5,
-over the free span of the bed), a declaration (a6 > 0), the called
+over the free span of the bed), a declaration (a6 > 0; in snooker a6 >
+``PASS_LEVEL`` puts the offender back in and 0 < a6 <= ``PASS_LEVEL`` has
+the balls replaced after a miss), the called
 pocket (a7, six equal bins) and, in 10-ball only, the called ball (a8,
 ``n_balls`` equal bins; 0 a safety). The aim origin is the direction from the cue
 ball to the table's nominal target (the lowest legal ball; on the break, the
@@ -31,6 +33,11 @@ from .plan import ShotPlan
 
 ACTION_DIM = 8
 N_POCKETS = 6
+# Snooker's a6 carries two declarations: above this a pass (the offender put back in, as a6 > 0 means in
+# the other games, so a bot's encoded pass, a6 = 1, keeps its meaning), in (0, this] the balls replaced after
+# a miss; the midpoint of (0, 1] leaves each an equal share of the positive half.
+PASS_LEVEL = 0.5
+REPLACE_ACTION = 0.25  # the a6 a snooker replace declaration is encoded as (the middle of its share; float32-exact)
 
 # The shot mapping's per-table passes, fused (numpy would take one pass, and a temporary, per operation).
 _jit = numba.njit(cache=True, nogil=True)
@@ -166,6 +173,7 @@ class ActionCodec:
     n_balls: int
     cue: np.ndarray
     is_break: np.ndarray
+    replaces: bool = False  # snooker: a6 carries a replace declaration below PASS_LEVEL
 
     @property
     def n(self) -> int:
@@ -219,7 +227,10 @@ class ActionCodec:
             origin[h] = self.origin_from(placement[h], h)
         shots = self.shots_of(a, origin)
         ball = self.called_ball(a) if self.ball_dim else None
-        return ShotPlan.of(shots, placement, a[:, 6] > 0, self.called_pocket(a), ball), moved
+        if not self.replaces:
+            return ShotPlan.of(shots, placement, a[:, 6] > 0, self.called_pocket(a), ball), moved
+        declare, replace = a[:, 6] > PASS_LEVEL, (a[:, 6] > 0) & (a[:, 6] <= PASS_LEVEL)
+        return ShotPlan.of(shots, placement, declare, self.called_pocket(a), ball, replace), moved
 
     def placement_to_actions(self, xy: np.ndarray) -> np.ndarray:
         """Cue-ball positions [k, 2] (m) -> action components a4, a5 [k, 2]."""
@@ -229,13 +240,15 @@ class ActionCodec:
     def action_dim(self) -> int:
         return self.ball_dim or ACTION_DIM
 
-    def encode(self, shots, placement=None, declare=None, pocket=None, ball=None) -> np.ndarray:
+    def encode(self, shots, placement=None, declare=None, pocket=None, ball=None, replace=None) -> np.ndarray:
         """Actions [n, action_dim] (float64) that play ``shots`` (absolute aim) with the
         cue ball at ``placement`` [n, 2] (rows without ball in hand are
         ignored; NaN rows: where it lies; an illegal spot is moved to the
         nearest legal one first, so the aim stays absolute), ``declare`` [n]
         (push-out or pass), the called ``pocket`` [n] and, in 10-ball, the
-        called ``ball`` [n] (0 a safety; -1 or None: the lowest legal ball)."""
+        called ``ball`` [n] (0 a safety; -1 or None: the lowest legal ball)
+        and, in snooker, ``replace`` [n] (the balls replaced after a miss;
+        it wins over ``declare``, as ``play_turn`` plays them)."""
         n = self.n
         out = np.zeros((n, self.action_dim))
         out[:, 4:6] = self.placement_to_actions(self.cue)
@@ -251,6 +264,8 @@ class ActionCodec:
                 origin[has] = self.origin_from(placement[has], rows)
         out[:, :4] = shot_actions(shots, origin, self.min_draw, self.params)
         out[:, 6] = -1.0 if declare is None else np.where(declare, 1.0, -1.0)
+        if self.replaces and replace is not None:
+            out[:, 6] = np.where(replace, REPLACE_ACTION, out[:, 6])
         if pocket is not None:
             out[:, 7] = -1.0 + (2.0 * np.asarray(pocket) + 1.0) / N_POCKETS
         if self.ball_dim:
@@ -262,7 +277,7 @@ class ActionCodec:
         """The actions [n, 8] of a bot's ``ShotPlan`` (checked first), rounded
         through float32, the action space's dtype, as a policy's actions are."""
         plan.check(self.n, self.params, self.n_balls)
-        a = self.encode(plan.shots, plan.placement, plan.declare, plan.pocket, plan.ball)
+        a = self.encode(plan.shots, plan.placement, plan.declare, plan.pocket, plan.ball, plan.replace)
         return a.astype(np.float32).astype(np.float64)
 
     def take(self, rows) -> "ActionCodec":

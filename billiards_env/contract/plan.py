@@ -20,6 +20,10 @@ Every field is an array over the view's rows (n):
 ``ball``       10-ball: the called ball (1..10; 0 calls a safety; -1, the
                default: the nominal target, the lowest legal one), used
                where the view says a call is needed; ignored elsewhere
+``replace``    bool, snooker: after the opponent's foul and a miss
+               (``may_replace``), have the balls replaced where they were
+               before the foul and the offender play again (no shot is
+               played; it takes precedence over ``declare``); ignored elsewhere
 =============  ===========================================================
 """
 from __future__ import annotations
@@ -41,23 +45,28 @@ class ShotPlan:
     declare: np.ndarray
     pocket: np.ndarray
     ball: np.ndarray | None = None  # filled with -1 (none) when not given
+    replace: np.ndarray | None = None  # filled with False when not given
 
     def __post_init__(self):
         if self.ball is None:
             self.ball = np.full(np.shape(self.phi)[:1] or (1,), -1, dtype=np.int64)
+        if self.replace is None:
+            self.replace = np.zeros(np.shape(self.phi)[:1] or (1,), dtype=bool)
 
     @classmethod
-    def of(cls, shots: Shots, placement=None, declare=None, pocket=None, ball=None) -> "ShotPlan":
+    def of(cls, shots: Shots, placement=None, declare=None, pocket=None, ball=None, replace=None) -> "ShotPlan":
         """A plan from ``Shots`` (arrays or scalars broadcast to the batch)
-        and optional placements, declarations, called pockets and called balls."""
-        given = [len(np.atleast_1d(v)) for v in (placement, declare, pocket, ball) if v is not None]
+        and optional placements, declarations, called pockets, called balls
+        and (snooker) replace declarations."""
+        given = [len(np.atleast_1d(v)) for v in (placement, declare, pocket, ball, replace) if v is not None]
         n = max([np.size(v) for v in (shots.phi, shots.speed, shots.a, shots.b)] + given)
         vec = [np.broadcast_to(np.asarray(v, dtype=np.float64), (n,)).copy() for v in shots]
         place = np.full((n, 2), np.nan) if placement is None else np.asarray(placement, dtype=np.float64)
         decl = np.zeros(n, dtype=bool) if declare is None else np.asarray(declare, dtype=bool)
         pk = np.full(n, -1, dtype=np.int64) if pocket is None else np.asarray(pocket, dtype=np.int64)
         bl = np.full(n, -1, dtype=np.int64) if ball is None else np.asarray(ball, dtype=np.int64)
-        return cls(*vec, place, decl, pk, bl)
+        rp = np.zeros(n, dtype=bool) if replace is None else np.asarray(replace, dtype=bool)
+        return cls(*vec, place, decl, pk, bl, rp)
 
     @property
     def n(self) -> int:
@@ -75,7 +84,7 @@ class ShotPlan:
         shape, a NaN or infinite shot, a speed out of range, offsets outside
         the miscue disc, a bad pocket index, a called ball outside -1 ..
         ``n_balls - 1`` (when given)."""
-        for f in ("phi", "speed", "a", "b", "declare", "pocket", "ball"):
+        for f in ("phi", "speed", "a", "b", "declare", "pocket", "ball", "replace"):
             if np.shape(getattr(self, f)) != (n,):
                 raise ValueError(f"ShotPlan.{f} must have shape ({n},), got {np.shape(getattr(self, f))}")
         if np.shape(self.placement) != (n, 2):

@@ -10,7 +10,9 @@ game).
 A turn, for each of ``n`` tables (a ``ShotPlan`` row, absolute aim):
 
 1. a pass (``declare`` where the constraints allow a pass, ``may_pass``)
-   plays no shot;
+   plays no shot; nor does snooker's replace (``replace`` where the
+   constraints allow it, ``may_replace``): the balls go back where the
+   miss was played from (``GameState.miss_pos``) after the ruling;
 2. with ball in hand the cue ball goes to the plan's placement made legal
    (the nearest legal spot under the constraint: anywhere, behind the head
    string, in the D); a placement is ignored without ball in hand (the cue
@@ -129,7 +131,8 @@ def play_turn(rules, eq: Equipment, game: GameState, c: Constraints, pos: np.nda
     standard normal draws (times each table's noise factor) of the shooting
     rows ``rows``. ``record``: keep each shot's event log (``Turn.events``)."""
     n, B = plan.n, pos.shape[1]
-    passed = c.may_pass & plan.declare
+    replaced = c.may_replace & plan.replace
+    passed = c.may_pass & plan.declare & ~replaced
     push = c.push_out_allowed & plan.declare
     called = np.where(c.call_needed, plan.pocket, -1)
     if rules.calls_ball:  # 10-ball: the called ball, -1 meaning the nominal target (the lowest legal ball)
@@ -140,13 +143,13 @@ def play_turn(rules, eq: Equipment, game: GameState, c: Constraints, pos: np.nda
     start = BallState(np.array(pos, dtype=np.float64), np.zeros((n, B, 2)), np.zeros((n, B, 3)),
                       np.array(pocket, dtype=np.int64))
     moved = np.zeros(n, dtype=bool)
-    h = np.nonzero((c.ball_in_hand != R.IN_HAND_NONE) & ~passed)[0]
+    h = np.nonzero((c.ball_in_hand != R.IN_HAND_NONE) & ~passed & ~replaced)[0]
     if len(h):
         want = np.where(np.isnan(plan.placement[h]), start.pos[h, 0], plan.placement[h])
         kitchen = c.ball_in_hand[h] == R.IN_HAND_KITCHEN
         start.pos[h, 0], moved[h] = eq.place(want, start.pos[h], start.pocket[h], kitchen)
         start.pocket[h, 0] = -1
-    shoot = np.nonzero(~passed)[0]
+    shoot = np.nonzero(~passed & ~replaced)[0]
     if (start.pocket[shoot, 0] >= 0).any():
         raise RuntimeError("the cue ball is pocketed without ball in hand: the game has ended, reset it")
     pocket_after, pos_after = start.pocket.copy(), start.pos.copy()
@@ -177,9 +180,12 @@ def play_turn(rules, eq: Equipment, game: GameState, c: Constraints, pos: np.nda
         events = res.events
     # the shot as it ended (a copy: the balls the ruling puts back below stay pocketed in ``shot.pocketed``)
     shot = ShotInput(start.pocket, pocket_after.copy(), first, rails, object_rails, push, called, passed, ball,
-                     contacts, n_contacts, pos_before=start.pos if rules.reads_position else None)
+                     contacts, n_contacts, pos_before=start.pos if rules.reads_position else None,
+                     replaced=replaced)
     rec, after = rules.judge(game, shot)
     _put_back(rules, eq, pos_after, pocket_after, rec)
+    if rec.replaced.any():  # snooker: the balls where the miss was played from
+        pos_after[rec.replaced], pocket_after[rec.replaced] = game.miss_pos[rec.replaced], game.miss_pocket[rec.replaced]
     return Turn(rec, after, pos_after, pocket_after, shot, start.pos[:, 0].copy(), moved, n_events, sim_time,
                 start, shoot, events, sim_wall, rules)
 

@@ -101,6 +101,8 @@ class GameView:
     codec: object = None          # the env's action convention (``contract.codec.ActionCodec``), for learned bots
     solver: str = "event"         # the env's solver (``"event"``, or ``"step"`` with time step ``dt``)
     dt: float | None = None
+    may_replace: np.ndarray | None = None  # [n] snooker, after a foul and a miss: the balls may be replaced
+    touching: np.ndarray | None = None     # [n, B] snooker: the balls the cue ball touches (play away from them)
     _observe: object = None       # () -> float32 observation rows, or None
 
     @classmethod
@@ -136,7 +138,8 @@ class GameView:
     def constraints(self) -> R.Constraints:
         """The rows' shooter constraints as the rules' ``Constraints``."""
         return R.Constraints(self.to_move, self.ball_in_hand, self.targets, self.push_out_allowed, self.may_pass,
-                             self.call_needed, self.is_break, np.zeros(self.n, dtype=bool))
+                             self.call_needed, self.is_break, np.zeros(self.n, dtype=bool), self.may_replace,
+                             self.touching)
 
     @property
     def on_table(self) -> np.ndarray:
@@ -186,7 +189,8 @@ class GameView:
             may_pass=nx.may_pass[idx], call_needed=nx.call_needed[idx], is_break=nx.is_break[idx],
             groups=st.group[idx], fouls=st.fouls[idx], shots=st.shots[idx], table=self.table, params=self.params,
             effects=self.effects, models=self.models, noise=self.noise, noise_scale=self.noise_scale[rows],
-            min_draw=self.min_draw, rules=self.rules, state=st.take(idx), solver=self.solver, dt=self.dt)
+            min_draw=self.min_draw, rules=self.rules, state=st.take(idx), solver=self.solver, dt=self.dt,
+            may_replace=nx.may_replace[idx], touching=nx.touching[idx])
 
     def take(self, rows) -> "GameView":
         """A view of some of this view's rows."""

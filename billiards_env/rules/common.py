@@ -130,6 +130,7 @@ class Rules:
     foul_points: bool = False  # a foul scores points for the opponent (``ShotRecord.penalty``; snooker)
     to_points: bool = False   # won on points (``GameState.score``: snooker, three-cushion), not by a last ball
     reads_position: bool = False  # ``constraints`` and ``judge`` read where the balls lie (snooker's free ball)
+    replaces: bool = False  # a declaration may have the balls replaced after a foul and a miss (snooker; a6 in (0, 0.5])
     env_doc: str = ""  # what the game's envs add to the shared env docstring (its observation entries, its info)
 
     def new_game(self, breaker) -> GameState:

@@ -28,9 +28,10 @@ FOUL_NO_RAIL = 3         # nothing pocketed and no ball touched a rail after the
 FOUL_SCRATCH = 4         # the cue ball was pocketed
 FOUL_BAD_BREAK = 5       # break: no ball pocketed and fewer than four object balls reached a rail
 FOUL_WRONG_POT = 6       # snooker: a ball not on was pocketed
+FOUL_PUSH = 7            # snooker: a push stroke, the cue ball's first contact the ball it was touching
 FOUL_NAMES = {FOUL_NONE: "none", FOUL_NO_CONTACT: "no contact", FOUL_WRONG_BALL: "wrong ball first",
               FOUL_NO_RAIL: "no rail after contact", FOUL_SCRATCH: "scratch", FOUL_BAD_BREAK: "illegal break",
-              FOUL_WRONG_POT: "a ball not on pocketed"}
+              FOUL_WRONG_POT: "a ball not on pocketed", FOUL_PUSH: "push stroke (the touching ball moved)"}
 
 # --- how a game ended (ShotRecord.end) ----------------------------------------
 END_NONE = 0
@@ -101,6 +102,13 @@ class GameState:
     winner: np.ndarray
     score: np.ndarray
     innings: np.ndarray
+    # snooker's foul and a miss (WPBSA Section 3, Rule 14): the position the miss was played from, which the
+    # incoming player may have replaced (``Constraints.may_replace``); None in the other games. ``miss_pos``
+    # [E, B, 2] and ``miss_pocket`` [E, B] the balls as struck, ``miss_phase`` [E] the phase the offender
+    # played in (-1: no miss called on the last stroke)
+    miss_pos: np.ndarray | None = None
+    miss_pocket: np.ndarray | None = None
+    miss_phase: np.ndarray | None = None
 
     @classmethod
     def new(cls, breaker) -> "GameState":
@@ -120,15 +128,25 @@ class GameState:
         return len(self.shooter)
 
     def copy(self) -> "GameState":
-        return GameState(*(getattr(self, k).copy() for k in _GAME_FIELDS))
+        return GameState(*(_copy(getattr(self, k)) for k in _GAME_FIELDS))
 
     def take(self, idx) -> "GameState":
-        return GameState(*(getattr(self, k)[idx] for k in _GAME_FIELDS))
+        return GameState(*(_take(getattr(self, k), idx) for k in _GAME_FIELDS))
 
     def put(self, idx, other: "GameState") -> None:
-        """Write ``other`` (len(idx) tables) into tables ``idx``."""
+        """Write ``other`` (len(idx) tables) into tables ``idx`` (the optional fields only where both have them)."""
         for k in _GAME_FIELDS:
-            getattr(self, k)[idx] = getattr(other, k)
+            v = getattr(self, k)
+            if v is not None and getattr(other, k) is not None:
+                v[idx] = getattr(other, k)
+
+
+def _copy(v):
+    return None if v is None else v.copy()
+
+
+def _take(v, idx):
+    return None if v is None else v[idx]
 
 
 _GAME_FIELDS = tuple(f.name for f in dataclasses.fields(GameState))  # in order (copy, take and put run every shot)
@@ -143,6 +161,8 @@ class ShotInput:
     touched, so all of theirs count), ``object_rails`` [E, B] every ball's
     cushion hits during the shot (the break's four-ball count), and the
     declarations: ``push_out`` (bool), ``called_pocket`` (int, -1 none),
+    ``replaced`` (snooker: after a foul and a miss the incoming player had
+    the balls replaced and the offender plays again; no shot was played),
     ``passed`` (bool: after a push-out, or in 10-ball after an illegally
     pocketed ball, the player handed the shot back and no shot was played)
     and ``called_ball`` (10-ball: the ball called, CALL_SAFETY for a called
@@ -165,6 +185,7 @@ class ShotInput:
     contacts: np.ndarray | None = None
     n_contacts: np.ndarray | None = None
     pos_before: np.ndarray | None = None  # [E, B, 2] the balls where the shot was played from (snooker's free ball)
+    replaced: np.ndarray | None = None    # [E] snooker: the balls replaced after a miss (no shot played)
 
     def __post_init__(self):
         E, B = np.shape(self.pocket_before)
@@ -175,7 +196,7 @@ class ShotInput:
             raise ValueError(f"ShotInput.first_contact must have shape ({E},), got {np.shape(self.first_contact)}")
         fill = dict(object_rails=np.asarray(self.rails), push_out=np.zeros(E, dtype=bool),
                     called_pocket=np.full(E, -1, dtype=np.int64), passed=np.zeros(E, dtype=bool),
-                    called_ball=np.full(E, CALL_NONE, dtype=np.int64))
+                    called_ball=np.full(E, CALL_NONE, dtype=np.int64), replaced=np.zeros(E, dtype=bool))
         for k, v in fill.items():
             if getattr(self, k) is None:
                 object.__setattr__(self, k, v)
@@ -203,7 +224,10 @@ class ShotRecord:
     ``shooter`` (who played it), ``option`` (10-ball: the shot pocketed a
     ball illegally without a foul, so the next player may shoot or pass the
     shot back; snooker: the shot was a foul, so the incoming player may put
-    the offender back in; all False in the other games), ``points`` (the
+    the offender back in; all False in the other games), ``miss`` (snooker:
+    the foul was also a miss, WPBSA Section 3, Rule 14; ``rules.snooker.
+    judge_miss``), ``replaced`` (snooker: no shot, the balls were put back
+    where the miss was played from), ``points`` (the
     points the shot scored for its shooter; games to a score, else zeros),
     ``penalty`` (what a foul gave the opponent; snooker, else zeros) and
     ``restart`` (the balls go back to the starting position before the next
@@ -224,9 +248,11 @@ class ShotRecord:
     points: np.ndarray | None = None
     penalty: np.ndarray | None = None
     restart: np.ndarray | None = None
+    miss: np.ndarray | None = None
+    replaced: np.ndarray | None = None
 
     def __post_init__(self):
-        for name in ("option", "restart"):
+        for name in ("option", "restart", "miss", "replaced"):
             if getattr(self, name) is None:
                 object.__setattr__(self, name, np.zeros(len(self.legal), dtype=bool))
         for name in ("points", "penalty"):
@@ -241,7 +267,11 @@ class Constraints:
     may legally touch first, ``push_out_allowed``, ``may_pass`` (after the
     opponent's push-out: hand the shot back instead of shooting),
     ``call_needed`` (8-ball: the shot is on the 8, a pocket must be called),
-    ``is_break`` and ``over`` (the game has ended: no shot)."""
+    ``is_break``, ``over`` (the game has ended: no shot), ``may_replace``
+    (snooker, after a foul and a miss: have the balls replaced where they
+    were before the foul and the offender play again; all False elsewhere)
+    and ``touching`` [E, B] (snooker: the balls the cue ball lies touching,
+    which the stroke must play away from; all False elsewhere)."""
 
     shooter: np.ndarray
     ball_in_hand: np.ndarray
@@ -251,6 +281,14 @@ class Constraints:
     call_needed: np.ndarray
     is_break: np.ndarray
     over: np.ndarray
+    may_replace: np.ndarray | None = None
+    touching: np.ndarray | None = None
+
+    def __post_init__(self):
+        if self.may_replace is None:
+            object.__setattr__(self, "may_replace", np.zeros(len(self.shooter), dtype=bool))
+        if self.touching is None:
+            object.__setattr__(self, "touching", np.zeros(np.shape(self.targets), dtype=bool))
 
     def nominal_target(self) -> np.ndarray:
         """The lowest-numbered legal target of each table (-1 none): what

@@ -13,7 +13,13 @@ pocketed, no ball hit, a ball not on hit first, a ball not on pocketed)
 gives the opponent its value: at least 4, or the value of the ball on, of
 the ball hit first or of a ball pocketed, whichever is highest; colours
 pocketed on a foul are respotted, reds stay down. After a foul the incoming
-player may play, or put the offender back in (``ShotInput.passed``); if
+player may play, or put the offender back in (``ShotInput.passed``), or, when the referee called
+a miss (``judge_miss``: a foul that failed to hit a ball on although a
+full-ball contact lay open, with no player needing snookers), have the
+balls replaced where they were and the offender play again
+(``ShotInput.replaced``); a cue ball at rest touching a ball
+(``touching``) must be played away from it: hitting it first is a push
+stroke, and with a ball on touched, hitting nothing is no foul; if
 the cue ball lies snookered on every ball on (``snookered``, decided from
 the position), the incoming player may nominate a free ball
 (``called_ball``): it counts as the ball on, must be the first ball hit,
@@ -30,7 +36,7 @@ import numba
 from ..physics.state import SPOT_CLEAR, SPOT_EDGE, spot_free
 from .common import Rules, next_state
 from .placement import d_of, legal_spots
-from .records import (END_LAST_BLACK, END_NONE, FOUL_NO_CONTACT, FOUL_NONE, FOUL_SCRATCH, FOUL_WRONG_BALL,
+from .records import (END_LAST_BLACK, END_NONE, FOUL_NO_CONTACT, FOUL_NONE, FOUL_PUSH, FOUL_SCRATCH, FOUL_WRONG_BALL,
                       FOUL_WRONG_POT, IN_HAND_D, IN_HAND_NONE, PHASE_BREAK, PHASE_COLOUR, PHASE_OPTION, PHASE_PLAY,
                       Constraints, GameState, ShotInput, ShotRecord)
 
@@ -43,6 +49,9 @@ VALUE = np.array([0] + [1] * N_REDS + [2, 3, 4, 5, 6, 7], dtype=np.int64)  # poi
 MIN_FOUL = 4                       # the least penalty of a foul (WPBSA Section 3, rule 12)
 SCORE_SCALE = 147.0                # observed scores and points left are divided by the maximum break
 SNOOKER_R = 0.02625                # m, the ball radius of PhysicsParams.snooker() (the default for ``snookered``)
+# The cue ball touches a ball whose centre lies within 2R plus this (m): above the solver's rounding of a
+# resting contact, below SPOT_CLEAR (1e-6 m), so a placed or respotted ball never counts as touching.
+TOUCH_TOL = 5e-7
 # A grazing path is obstructed if a ball not on comes nearer to it than 2R less this (m): balls touching the
 # path at exactly 2R (a frozen neighbour) do not obstruct, as the rules' "wholly or partially obstructed" reads.
 OBSTRUCT_TOL = 1e-9
@@ -83,6 +92,15 @@ def snookered(pos: np.ndarray, before: np.ndarray, on: np.ndarray, R: float = SN
     straight paths that graze its extreme edges passes within 2R of a ball
     not on before the cue ball reaches it. ``before`` [E, B] balls on the
     table, ``on`` [E, B] the balls on. Cushions never obstruct here."""
+    return on.any(axis=1) & ~open_on(pos, before, on, R).any(axis=1)
+
+
+def open_on(pos: np.ndarray, before: np.ndarray, on: np.ndarray, R: float = SNOOKER_R) -> np.ndarray:
+    """[E, B] the balls on (``on``) that the cue ball (ball 0 at ``pos``) can
+    strike at both extreme edges in a straight line, no ball not on within
+    2R of either grazing path (so every contact between them, the full-ball
+    one included, is open too): ``snookered``'s test per ball, and the miss
+    rule's "clear path to a full-ball contact" (``judge_miss``)."""
     E, B = before.shape
     c = pos[:, 0]                                             # [E, 2]
     d = pos - c[:, None]                                      # [E, B, 2]
@@ -106,7 +124,43 @@ def snookered(pos: np.ndarray, before: np.ndarray, on: np.ndarray, R: float = SN
         hit = blockers[:, None, :] & (dist < 2 * R - OBSTRUCT_TOL)
         hit &= ~np.eye(B, dtype=bool)[None]                   # a ball never obstructs its own path
         clear &= ~hit.any(axis=2)
-    return on.any(axis=1) & ~(clear & on).any(axis=1)
+    return clear & on
+
+
+def touching(pos: np.ndarray, before: np.ndarray, R: float = SNOOKER_R) -> np.ndarray:
+    """[E, B] the object balls on the table (``before``) that the cue ball
+    (ball 0 at ``pos`` [E, B, 2], on the table) touches: centres within
+    2R + ``TOUCH_TOL`` (WPBSA Section 3, Rule 15, the touching ball)."""
+    d = np.linalg.norm(pos - pos[:, :1], axis=2)
+    out = before & (d < 2 * R + TOUCH_TOL) & before[:, :1]
+    out[:, 0] = False
+    return out
+
+
+def points_left(before: np.ndarray, phase: np.ndarray) -> np.ndarray:
+    """[E] the most points the balls on the table can still score: 8 per red
+    (the red and the black after it), the colours' face values, and 7 more
+    when a colour is on after a potted red (``before`` [E, B] on the table)."""
+    reds = before[:, REDS].sum(axis=1)
+    colours = (before[:, FIRST_COLOUR:] * VALUE[None, FIRST_COLOUR:]).sum(axis=1)
+    return reds * (VALUE[1] + VALUE[BLACK]) + colours + VALUE[BLACK] * (phase == PHASE_COLOUR)
+
+
+def needs_snookers(score: np.ndarray, left: np.ndarray) -> np.ndarray:
+    """[E] either player trails by more than the points ``left`` (``score`` [E, 2]): they need snookers."""
+    return np.abs(score[:, 0] - score[:, 1]) > left
+
+
+def judge_miss(failed: np.ndarray, open_path: np.ndarray, needs: np.ndarray) -> np.ndarray:
+    """[E] the referee calls a miss (WPBSA Section 3, Rule 14), as this
+    rules layer judges it: the striker failed to hit a ball on first
+    (``failed``: no contact, or another ball first), the cue ball had a clear
+    straight line to a full-ball contact on some ball on (``open_path``, both
+    edges unobstructed; the Rule's case where a miss is called whatever the
+    striker's effort), and neither player needed snookers before or after
+    the stroke (``needs``: the Rule's exception; the referee's judgement of
+    intent and of a thin but open edge is not modelled)."""
+    return failed & open_path & ~needs
 
 
 # The last resort of the colour respot search: steps of R / 4 past a pocket's capture circle on the line.
@@ -221,9 +275,15 @@ class SnookerRules(Rules):
     def __init__(self, R: float = SNOOKER_R):
         self.R = R
 
+    replaces = True           # after a foul and a miss the balls may be replaced (``ShotInput.replaced``)
+
     def new_game(self, breaker) -> GameState:
         g = GameState.new(breaker)
         g.ball_in_hand[:] = IN_HAND_D
+        E, B = g.n, N_BALLS + 1
+        g.miss_pos = np.zeros((E, B, 2))
+        g.miss_pocket = np.full((E, B), -1, dtype=np.int64)
+        g.miss_phase = np.full(E, -1, dtype=np.int64)
         return g
 
     def observe_extra(self, game: GameState, pocket=None, constraints=None) -> np.ndarray:
@@ -253,8 +313,9 @@ class SnookerRules(Rules):
         return out
 
     def check(self, game: GameState, shot: ShotInput) -> None:
-        """``Rules.check``, except that a pass (the offender put back in) needs no cue ball on the table."""
-        passed = np.asarray(shot.passed, dtype=bool) & (game.phase == PHASE_OPTION)
+        """``Rules.check``, except that a pass (the offender put back in) or the balls replaced after a miss
+        need no cue ball on the table (no stroke is played)."""
+        passed = (np.asarray(shot.passed, dtype=bool) | np.asarray(shot.replaced, dtype=bool)) & (game.phase == PHASE_OPTION)
         if passed.any():
             pb = np.array(shot.pocket_before, copy=True)
             pb[passed, 0] = -1
@@ -268,8 +329,9 @@ class SnookerRules(Rules):
         before = np.asarray(shot.pocket_before) < 0
         pk = shot.pocketed
         phase = game.phase
-        passed = np.asarray(shot.passed, dtype=bool) & (phase == PHASE_OPTION)  # put the offender back in
-        played = ~passed
+        replaced = np.asarray(shot.replaced, dtype=bool) & self.may_replace(game)  # the balls back, the offender on
+        passed = np.asarray(shot.passed, dtype=bool) & (phase == PHASE_OPTION) & ~replaced  # the offender back in
+        played = ~passed & ~replaced
         first = np.asarray(shot.first_contact, dtype=np.int64)
         nom = np.asarray(shot.called_ball, dtype=np.int64)
         nom_ok = (nom >= 1) & (nom <= N_BALLS)
@@ -293,10 +355,16 @@ class SnookerRules(Rules):
         # the simulator reports one first ball, so an exactly simultaneous hit counts as the one it reports)
         first_ok = (first >= 1) & np.where(free >= 0, first == free, on[ar, np.clip(first, 0, N_BALLS)])
         bad_pot = (pk[:, 1:] & ~(on | is_free)[:, 1:]).any(axis=1)
+        # the touching ball (WPBSA Section 3, Rule 15): playing away from a touching ball on hits no ball and
+        # is no foul; moving the touching ball is a push stroke, read here as the cue ball's first contact
+        touch = self.touching_balls(shot, before)
+        touch_on = (touch & (on | is_free)).any(axis=1)
+        push = (first >= 1) & touch[ar, np.clip(first, 0, N_BALLS)]
         foul = np.full(E, FOUL_NONE, dtype=np.int64)
         foul[bad_pot] = FOUL_WRONG_POT
         foul[(first >= 1) & ~first_ok] = FOUL_WRONG_BALL
-        foul[first < 1] = FOUL_NO_CONTACT
+        foul[(first < 1) & ~touch_on] = FOUL_NO_CONTACT
+        foul[push] = FOUL_PUSH
         foul[pk[:, 0]] = FOUL_SCRATCH
         foul[~played] = FOUL_NONE
         fouled = foul > 0
@@ -328,11 +396,12 @@ class SnookerRules(Rules):
         winner = np.where(over, np.argmax(g.score, axis=1), -1)
         respot[tie, BLACK] = True
         respot[tie, 0] = True
-        turn_over = (fouled | (points == 0) | passed) & ~over
+        turn_over = (fouled | (points == 0) | passed | replaced) & ~over
+        miss = self._miss(game, shot, fouled & ~over & played & ~first_ok & ~push, on | is_free, g.score)
         rec = ShotRecord(legal=played & ~fouled, foul=foul, turn_over=turn_over, game_over=over, winner=winner,
                          end=np.where(over, END_LAST_BLACK, END_NONE), push_out=np.zeros(E, dtype=bool),
                          passed=passed, respot=respot, shooter=s.copy(), option=fouled & ~over,
-                         points=points, penalty=penalty)
+                         points=points, penalty=penalty, miss=miss, replaced=replaced)
         g2 = next_state(g, rec, foul, played)
         g2.score = g.score
         # the re-spotted black: the cue ball in hand in the D; the player who did not break off plays first
@@ -342,7 +411,54 @@ class SnookerRules(Rules):
         g2.phase = np.where(tie, PHASE_PLAY, g2.phase)
         hand = np.where(passed, game.ball_in_hand, np.where(played & pk[:, 0], IN_HAND_D, IN_HAND_NONE))
         g2.ball_in_hand = np.where(tie, IN_HAND_D, hand).astype(np.int64)
+        self._keep_miss(g2, game, shot, miss, replaced)
         return rec, g2
+
+    def touching_balls(self, shot: ShotInput, before: np.ndarray) -> np.ndarray:
+        """[E, B] the balls the cue ball touched where the stroke was played from (none without positions)."""
+        if shot.pos_before is None:
+            return np.zeros_like(before)
+        return touching(np.asarray(shot.pos_before), before, self.R)
+
+    def may_replace(self, game: GameState) -> np.ndarray:
+        """[E] the incoming player may have the balls replaced: a miss was called on the last stroke."""
+        if game.miss_phase is None:
+            return np.zeros(game.n, dtype=bool)
+        return ~game.over & (game.phase == PHASE_OPTION) & (game.miss_phase >= 0)
+
+    def _miss(self, game: GameState, shot: ShotInput, failed: np.ndarray, on: np.ndarray,
+              score_after: np.ndarray) -> np.ndarray:
+        """[E] ``judge_miss`` on this stroke: ``failed`` [E] fouls that hit no ball on first, ``on`` [E, B] the
+        balls on (a free ball included); snookers needed on the scores before the stroke with the balls before
+        it, or on the scores after it with the reds left after it (colours are respotted on a foul)."""
+        if shot.pos_before is None or not failed.any():
+            return np.zeros(game.n, dtype=bool)
+        before = np.asarray(shot.pocket_before) < 0
+        any_on = balls_on(game.phase, before) | on      # "a ball that is or could be on": any colour after a red
+        r = np.nonzero(failed)[0]
+        open_path = np.zeros(game.n, dtype=bool)
+        open_path[r] = open_on(np.asarray(shot.pos_before)[r], before[r], any_on[r], self.R).any(axis=1)
+        left_after = before.copy()
+        left_after[:, REDS] &= np.asarray(shot.pocket_after)[:, REDS] < 0
+        needs = (needs_snookers(game.score, points_left(before, game.phase))
+                 | needs_snookers(score_after, points_left(left_after, np.full(game.n, PHASE_OPTION))))
+        return judge_miss(failed, open_path, needs)
+
+    @staticmethod
+    def _keep_miss(g2: GameState, game: GameState, shot: ShotInput, miss: np.ndarray, replaced: np.ndarray) -> None:
+        """In place on ``g2``: where a miss was called, the balls as struck and the phase the offender played in
+        (a free-ball stroke's option phase becomes open play: the replayed stroke has no free ball); where the
+        balls were replaced, the offender plays again from there in that phase without ball in hand
+        (``play_turn`` puts the balls back); elsewhere no miss is pending."""
+        if game.miss_phase is None:
+            return
+        g2.phase = np.where(replaced, game.miss_phase, g2.phase).astype(np.int64)
+        g2.ball_in_hand = np.where(replaced, IN_HAND_NONE, g2.ball_in_hand).astype(np.int64)
+        g2.miss_phase = np.where(miss, np.where(game.phase == PHASE_OPTION, PHASE_PLAY, game.phase), -1)
+        g2.miss_phase = g2.miss_phase.astype(np.int64)
+        if miss.any():
+            g2.miss_pos[miss] = np.asarray(shot.pos_before)[miss]
+            g2.miss_pocket[miss] = np.asarray(shot.pocket_before)[miss]
 
     def constraints(self, game: GameState, pocket: np.ndarray, pos: np.ndarray | None = None) -> Constraints:
         before = np.asarray(pocket) < 0
@@ -356,4 +472,7 @@ class SnookerRules(Rules):
                            targets=targets, push_out_allowed=np.zeros(E, dtype=bool),
                            may_pass=live & (game.phase == PHASE_OPTION),
                            call_needed=live & ((game.phase == PHASE_COLOUR) | free),
-                           is_break=live & (game.phase == PHASE_BREAK), over=game.over.copy())
+                           is_break=live & (game.phase == PHASE_BREAK), over=game.over.copy(),
+                           may_replace=self.may_replace(game),
+                           touching=(np.zeros_like(before) if pos is None else touching(pos, before, self.R))
+                           & live[:, None] & (game.ball_in_hand == IN_HAND_NONE)[:, None])

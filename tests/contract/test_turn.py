@@ -113,6 +113,32 @@ def test_a_placement_without_ball_in_hand_is_ignored():
     assert np.allclose(out["info"]["placement"][0], (0.5, 0.5))
 
 
+def test_a_snooker_replace_after_a_miss_is_previewed_as_the_env():
+    """After player 0's foul and a miss (no ball hit, the red open), player 1's replace declaration: the
+    preview puts the balls back and hands the stroke back exactly as the env's step does, and its next view
+    equals the env's; the same plan previewed as a pass differs (the balls stay where the miss left them)."""
+    core = game_table("snooker", {0: (0.9, 1.0), 1: (0.9, 2.0), 21: (0.9, 3.245)})
+    miss = ShotPlan.of(Shots(np.array([math.pi]), np.array([0.6]), 0.0, 0.0))
+    core.step(core.actions_of(miss, [0]), [0])
+    view = core.view([0])
+    assert view.may_replace[0] and view.constraints.may_replace[0]
+    shots = Shots(np.zeros(2), np.ones(2), 0.0, 0.0)
+    plans = ShotPlan.of(shots, declare=np.array([False, True]), replace=np.array([True, False]))
+    pv = view.preview(plans, rows=[0, 0])
+    assert pv.record.replaced[0] and pv.record.passed[1] and not np.array_equal(pv.pos[0], pv.pos[1])
+    plan = plans.take([0])
+    out = core.step(core.actions_of(plan, [0], view.codec), [0])
+    assert out["record"].replaced[0]
+    one = view.preview(plan)
+    _same(one.record, out["record"], "record")
+    assert np.array_equal(one.pos, core.state.pos) and np.array_equal(one.pocket, core.state.pocket)
+    _same(one.state, core.game, "state")
+    _same(one.next, core.constraints(), "next")
+    after, mine = view.after(one, [0], [0]), core.view([0])
+    for f in ("pos", "pocket", "to_move", "ball_in_hand", "targets", "may_pass", "may_replace"):
+        assert np.array_equal(getattr(after, f), getattr(mine, f)), f
+
+
 def test_common_draws_give_each_group_the_same_numbers():
     rng = np.random.default_rng(0)
     z = common_draws([0, 1, 0, 2, 1], rng)

@@ -29,9 +29,12 @@ def check_shot(core, idx, out, on_before, score_before, shooter_before):
     rec, info = out["record"], out["info"]
     on = core.state.pocket[idx] < 0
     reds_before, reds = on_before[:, 1:16], on[:, 1:16]
-    assert not (reds & ~reds_before).any(), "a red came back"
-    came_back = on & ~on_before
-    assert not came_back[:, 1:][~rec.respot[:, 1:]].any(), "a ball came back without a respot"
+    shot = ~rec.replaced  # the balls replaced after a miss: reds may come back, as they stood before the foul
+    assert not (reds & ~reds_before)[shot].any(), "a red came back"
+    came_back = (on & ~on_before)[shot]
+    assert not came_back[:, 1:][~rec.respot[shot][:, 1:]].any(), "a ball came back without a respot"
+    assert (rec.penalty[rec.replaced] == 0).all() and (rec.foul[rec.replaced] == 0).all()
+    assert (rec.turn_over[rec.replaced]).all() and not (rec.miss & ~(rec.foul > 0)).any()
     # colours are off the table only when every red is, and then only the lowest ones (the clearance)
     col_off = ~on[:, FIRST_COLOUR:]
     assert not (col_off.any(axis=1) & reds.any(axis=1)).any()
@@ -60,7 +63,7 @@ def test_random_frames_properties():
     core.reset_tables(np.arange(n))
     rng = np.random.default_rng(2)
     live = np.ones(n, dtype=bool)
-    steps = 0
+    steps = replaced = 0
     while live.any():
         idx = np.nonzero(live)[0]
         hand = core.constraints().ball_in_hand[idx] == R.IN_HAND_D
@@ -70,11 +73,13 @@ def test_random_frames_properties():
         placed = out["info"]["placement"][hand & ~out["info"]["passed"]]  # a pass places nothing
         assert core.table.marks.in_d(placed[:, 0], placed[:, 1]).all(), "ball in hand outside the D"
         check_shot(core, idx, out, on_before, score, shooter)
+        replaced += out["record"].replaced.sum()
         live[idx[out["terminated"] | out["truncated"]]] = False
         steps += 1
         assert steps <= 2 * cap + 1  # a pass (the offender put back in) is a step but no shot; one per foul at most
     assert (core.game.over | (core.game.shots >= cap)).all()
     assert core.game.score.sum() > 0
+    assert replaced > 0  # random a6 in (0, 0.5] after a miss: the replace declaration came up
 
 
 def test_bot_frames_end_on_the_last_black():
@@ -207,6 +212,74 @@ def test_sim_offender_put_back_in():
     pos = core.state.pos.copy()
     out = shoot(core, 0.0, 1.0, declare=True)  # player 1 puts player 0 back in
     assert out["record"].passed[0] and core.game.shooter[0] == 0 and (core.state.pos == pos).all()
+
+
+def replace(core):
+    """The incoming player has the balls replaced after a miss (the action's a6 = 0.25, the codec's encoding)."""
+    plan = ShotPlan.of(Shots(np.zeros(1), np.ones(1), np.zeros(1), np.zeros(1)), replace=np.array([True]))
+    actions = core.actions_of(plan, [0])
+    assert actions[0, 6] == 0.25
+    return core.step(actions, [0])
+
+
+def test_sim_foul_and_a_miss_the_balls_replaced():
+    """Player 0 plays away from an open red (a clear full-ball path) and hits nothing: a foul and a miss.
+    Player 1 has the balls replaced: player 0 plays again from where the miss was played, 4 points down;
+    missing again is another miss."""
+    core = game_table("snooker", {0: (0.9, 1.0), 1: (0.9, 2.0), BLACK: (0.9, 3.245)})
+    pos, pocket = core.state.pos.copy(), core.state.pocket.copy()
+    out = shoot(core, math.pi, 0.6)  # to the side cushion and back along y = 1: the red untouched
+    assert out["record"].foul[0] == R.FOUL_NO_CONTACT and out["record"].miss[0] and out["info"]["miss"][0]
+    assert not np.array_equal(core.state.pos[0, 0], pos[0, 0])  # the cue ball moved
+    c = core.constraints()
+    assert c.shooter[0] == 1 and c.may_pass[0] and c.may_replace[0] and core.view([0]).may_replace[0]
+    out = replace(core)
+    rec = out["record"]
+    assert rec.replaced[0] and out["info"]["replaced"][0] and out["info"]["passed"][0] and rec.foul[0] == 0
+    assert np.array_equal(core.state.pos, pos) and np.array_equal(core.state.pocket, pocket)
+    assert core.game.shooter[0] == 0 and core.game.score[0].tolist() == [0, 4] and core.game.shots[0] == 1
+    c = core.constraints()
+    assert not c.may_replace[0] and not c.may_pass[0] and c.targets[0, 1]
+    out = shoot(core, math.pi, 0.6)
+    assert out["record"].miss[0] and core.game.score[0].tolist() == [0, 8] and core.constraints().may_replace[0]
+
+
+def test_sim_no_miss_when_partly_snookered():
+    """The same stroke with the black covering one edge of the red: a foul but no miss; a replace
+    declaration is then ignored and player 1 plays the stroke (here one that hits the red)."""
+    R_ = 0.02625
+    core = game_table("snooker", {0: (0.9, 1.0), 1: (0.9, 2.0), BLACK: (0.9 + 1.2 * R_, 1.5)})
+    out = shoot(core, math.pi, 0.6)
+    assert out["record"].foul[0] == R.FOUL_NO_CONTACT and not out["record"].miss[0]
+    assert core.constraints().may_pass[0] and not core.constraints().may_replace[0]
+    out = replace(core)
+    assert not out["record"].replaced[0] and not out["record"].passed[0] and out["record"].shooter[0] == 1
+
+
+def test_sim_the_touching_ball():
+    """The cue ball at rest touching a red (on): played straight away from it, the stroke hits nothing and
+    is no foul (the turn passes, no points, no miss); played into it, the red's the first contact: a push
+    stroke, 4 away. Touching the blue (not on) and played away from it without hitting a red: the usual
+    no-contact foul (4; and a miss, the red being open on the other side)."""
+    R_ = 0.02625
+    red = np.array([0.9, 2.0])
+    cue = red - np.array([0.0, 2 * R_])               # frozen to the red, below it
+    core = game_table("snooker", {0: tuple(cue), 1: tuple(red), BLACK: (0.9, 3.245)})
+    c = core.constraints()
+    assert c.touching[0, 1] and c.touching[0].sum() == 1
+    out = shoot(core, -math.pi / 2, 0.5)               # straight away, towards the bottom cushion
+    rec = out["record"]
+    assert out["info"]["first_contact"][0] == -1 and rec.legal[0] and rec.foul[0] == R.FOUL_NONE
+    assert rec.turn_over[0] and out["info"]["points"][0] == 0 and not rec.miss[0]
+    assert np.array_equal(core.state.pos[0, 1], red)  # the red did not move
+    core = game_table("snooker", {0: tuple(cue), 1: tuple(red), BLACK: (0.9, 3.245)})
+    out = shoot(core, math.pi / 2, 0.5)                # into the red
+    assert out["info"]["first_contact"][0] == 1 and out["record"].foul[0] == R.FOUL_PUSH
+    assert out["info"]["penalty"][0] == 4 and not out["record"].miss[0]
+    core = game_table("snooker", {0: tuple(cue), BLUE: tuple(red), 1: (0.3, 1.5), BLACK: (0.9, 3.245)})
+    assert core.constraints().touching[0, BLUE]
+    out = shoot(core, -math.pi / 2, 0.5)
+    assert out["record"].foul[0] == R.FOUL_NO_CONTACT and out["info"]["penalty"][0] == 4 and out["record"].miss[0]
 
 
 def test_bot_pots_the_ball_on_and_nominates_the_colour():

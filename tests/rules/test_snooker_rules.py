@@ -8,7 +8,8 @@ import pytest
 from billiards_env.physics import PhysicsParams, Table
 from billiards_env.rules import GameState, ShotInput, SnookerRules
 from billiards_env.rules import records as R
-from billiards_env.rules.snooker import BLACK, FIRST_COLOUR, balls_on, respot_colours, snookered
+from billiards_env.rules.snooker import (BLACK, FIRST_COLOUR, TOUCH_TOL, balls_on, needs_snookers, points_left,
+                                         respot_colours, snookered)
 
 SNK = SnookerRules()
 YELLOW, GREEN, BROWN, BLUE, PINK = range(FIRST_COLOUR, FIRST_COLOUR + 5)
@@ -205,6 +206,93 @@ def test_the_free_ball_call_is_void_when_the_offender_is_put_back_in():
     g, p = position(off=[b for b in range(2, BLACK)], phase=R.PHASE_OPTION)
     _, g2 = SNK.judge(g, shot(p, -1, passed=True, pos=pos))
     assert g2.phase[0] == R.PHASE_PLAY and not SNK.constraints(g2, p, pos=pos).call_needed[0]
+
+
+def test_points_left_and_snookers_needed():
+    g, p = position()
+    on = p < 0
+    assert points_left(on, g.phase)[0] == 15 * 8 + 27
+    assert points_left(on, np.array([R.PHASE_COLOUR]))[0] == 15 * 8 + 27 + 7  # a colour on after a red
+    only = np.zeros((1, B), dtype=bool)
+    only[0, [0, RED] + list(range(FIRST_COLOUR, BLACK + 1))] = True
+    assert points_left(only, g.phase)[0] == 35
+    assert needs_snookers(np.array([[0, 36]]), np.array([35]))[0]
+    assert not needs_snookers(np.array([[36, 1]]), np.array([35]))[0]
+
+
+def _miss_game(score=(0, 0), off=()):
+    """Player 0 to play on a table of ``position``'s, with the miss bookkeeping of ``SnookerRules.new_game``."""
+    _, p = position(off=off, score=score)
+    g = SNK.new_game(np.array([0]))
+    g.phase[:], g.ball_in_hand[:], g.score[0] = R.PHASE_PLAY, R.IN_HAND_NONE, score
+    return g, p
+
+
+def test_a_foul_with_an_open_full_ball_path_is_a_miss_and_the_balls_may_be_replaced():
+    """No ball hit although the red lay open (both edges clear): a miss. The incoming player may put the
+    offender back in or have the balls replaced: the offender plays again from where the miss was played,
+    the penalty standing and no stroke counted; the red the foul sent down is back on the table."""
+    pos = _line((0, (0.9, 1.0)), (RED, (0.9, 2.0)), (2, (0.5, 2.5)), (BLACK, (0.9, 3.2)))
+    g, p = _miss_game(off=[b for b in range(3, BLACK)])
+    after = p.copy()
+    after[0, 2] = 1                                        # a red ball went down on the foul (no contact: impossible
+    s = ShotInput(p, after, np.array([-1]), np.zeros_like(p), pos_before=pos)  # by the cue, but a record all the same)
+    rec, g2 = SNK.judge(g, s)
+    c = SNK.constraints(g2, after, pos=pos)
+    assert rec.foul[0] == R.FOUL_NO_CONTACT and rec.miss[0] and rec.penalty[0] == 4
+    assert c.may_pass[0] and c.may_replace[0] and g2.shooter[0] == 1
+    assert (g2.miss_pos[0] == pos[0]).all() and (g2.miss_pocket[0] == p[0]).all()
+    z = np.zeros_like(p)
+    rep = ShotInput(after, after, np.array([-1]), z, pos_before=pos, replaced=np.array([True]))
+    rec2, g3 = SNK.judge(g2, rep)
+    c3 = SNK.constraints(g3, p, pos=pos)
+    assert rec2.replaced[0] and not rec2.passed[0] and rec2.foul[0] == R.FOUL_NONE and rec2.turn_over[0]
+    assert g3.shooter[0] == 0 and g3.phase[0] == R.PHASE_PLAY and g3.shots[0] == g2.shots[0]
+    assert g3.score[0].tolist() == [0, 4] and not c3.may_replace[0] and not c3.may_pass[0]
+    # the same foul, then a pass: no replace left on the table after it
+    rec2, g3 = SNK.judge(g2, ShotInput(after, after, np.array([-1]), z, passed=np.array([True]), pos_before=pos))
+    assert rec2.passed[0] and not SNK.constraints(g3, after, pos=pos).may_replace[0]
+
+
+def test_no_miss_when_snookered_or_when_snookers_are_needed_or_the_ball_on_was_hit():
+    open_ = _line((0, (0.9, 1.0)), (RED, (0.9, 2.0)), (BLACK, (0.3, 3.2)))
+    hidden = _line((0, (0.9, 1.0)), (RED, (0.9, 2.0)), (BLACK, (0.9 + 1.2 * P.R, 1.5)))  # one edge covered
+    off = [b for b in range(2, BLACK)]
+    cases = ((open_, (0, 0), -1, True), (hidden, (0, 0), -1, False),      # partly snookered: no miss
+             (open_, (0, 16), -1, False),                                 # player 0 needs snookers before
+             (open_, (0, 12), -1, False),                                 # ... or after the foul's 4
+             (open_, (0, 11), -1, True),                                  # 0-15 after it: 15 left, no snookers
+             (open_, (0, 0), BLACK, True),                                # a ball not on hit first: a miss
+             (open_, (0, 0), RED, False))                                 # the red hit (no foul): nothing
+    for pos, score, first, miss in cases:
+        g, p = _miss_game(score, off)
+        rec, g2 = SNK.judge(g, shot(p, first, pos=pos))
+        assert rec.miss[0] == miss and SNK.constraints(g2, p, pos=pos).may_replace[0] == miss, (score, first)
+    # points left: the red and the black, 8 + 7 = 15; snookers are needed when a player trails by more
+
+
+def test_the_touching_ball():
+    """Rule 15 from the position: the cue ball within 2R + TOUCH_TOL of a ball touches it. Touching a red
+    (on), no contact is no foul; first contact on it, a push stroke; touching a colour (not on), no contact
+    stays a foul, and so does a push on it (worth the colour)."""
+    R_ = P.R
+    pos = _line((0, (0.9, 1.0)), (RED, (0.9, 1.0 + 2 * R_ + 0.5 * TOUCH_TOL)), (BLUE, (0.5, 2.5)))
+    g, p = position(off=[b for b in range(2, BLACK + 1) if b != BLUE])
+    assert SNK.constraints(g, p, pos=pos).touching[0].tolist() == [b == RED for b in range(B)]
+    rec, _ = SNK.judge(g, shot(p, -1, pos=pos))
+    assert rec.legal[0] and rec.turn_over[0] and rec.penalty[0] == 0
+    rec, _ = SNK.judge(g, shot(p, RED, pos=pos))
+    assert rec.foul[0] == R.FOUL_PUSH and rec.penalty[0] == 4
+    far = pos.copy()
+    far[0, RED, 1] += 2 * TOUCH_TOL                    # a gap of 1.5 TOUCH_TOL: not touching
+    assert not SNK.constraints(g, p, pos=far).touching[0].any()
+    rec, _ = SNK.judge(g, shot(p, -1, pos=far))
+    assert rec.foul[0] == R.FOUL_NO_CONTACT
+    blue = _line((0, (0.9, 1.0)), (BLUE, (0.9, 1.0 + 2 * R_)), (RED, (0.5, 2.5)))
+    rec, _ = SNK.judge(g, shot(p, -1, pos=blue))
+    assert rec.foul[0] == R.FOUL_NO_CONTACT
+    rec, _ = SNK.judge(g, shot(p, BLUE, pos=blue))
+    assert rec.foul[0] == R.FOUL_PUSH and rec.penalty[0] == 5
 
 
 def test_colours_respot_on_their_spot_or_the_highest_free_one():

@@ -34,7 +34,9 @@ a8   10-ball only, the called ball when a call is needed: ball
 
 Snooker (``game="snooker"``): the 12 ft table and snooker balls; a4, a5
 place the cue ball in the D (the nearest point of it, ``placement_moved``);
-a6 > 0 after a foul puts the offender back in (``may_pass``).
+after a foul a6 > 0.5 puts the offender back in (``may_pass``), and after a
+foul and a miss 0 < a6 <= 0.5 has the balls replaced where they were before
+the foul and the offender play again (``may_replace``; elsewhere ignored).
 
 Components outside [-1, 1] are clipped (``info["action_clipped"]``);
 components the constraints do not use are ignored.
@@ -300,13 +302,15 @@ class GameCore:
         truncated = ~game.over & (game.shots >= self.config.max_shots)
         reward = np.where(rec.winner < 0, 0.0, np.where(rec.winner == rec.shooter, 1.0, -1.0))
         info = dict(legal=rec.legal, foul=rec.foul, turn_over=rec.turn_over, game_over=rec.game_over,
-                    winner=rec.winner, end=rec.end, push_out=rec.push_out, passed=rec.passed, shooter=rec.shooter,
+                    winner=rec.winner, end=rec.end, push_out=rec.push_out, passed=rec.passed | rec.replaced,
+                    shooter=rec.shooter,
                     respotted=rec.respot, option=rec.option, pocketed=shot.pocketed, first_contact=shot.first_contact,
                     called_pocket=shot.called_pocket, called_ball=shot.called_ball, points=rec.points,
                     score=game.score.copy(), placement=turn.placed, placement_moved=moved & ~shot.passed,
                     action_clipped=clipped, n_events=turn.n_events, sim_time=turn.sim_time, shot=game.shots.copy())
-        if self.rules.foul_points:  # snooker: a foul's points to the opponent
+        if self.rules.foul_points:  # snooker: a foul's points to the opponent, a miss, the balls replaced
             info["penalty"] = rec.penalty
+            info["miss"], info["replaced"] = rec.miss, rec.replaced
         out = dict(record=rec, reward=reward, terminated=game.over.copy(), truncated=truncated, info=info)
         for listener in self.listeners:
             listener.after_step(self, idx, out)
@@ -332,7 +336,7 @@ class GameCore:
             ball_in_hand=in_hand, targets=c.targets[idx], push_out_allowed=c.push_out_allowed[idx],
             may_pass=c.may_pass[idx], call_needed=c.call_needed[idx], is_break=c.is_break[idx],
             groups=g.group[idx], fouls=g.fouls[idx], shots=g.shots[idx], table=self.table, params=self.params,
-            effects=self.effects, models=self.models, noise=self.config.noise.config,
+            may_replace=c.may_replace[idx], touching=c.touching[idx], effects=self.effects, models=self.models, noise=self.config.noise.config,
             noise_scale=self.noise_scale[idx], min_draw=self.config.min_draw, rules=self.rules, state=g.take(idx),
             codec=codec, solver=self.config.solver, dt=self.config.dt, _observe=lambda: self.observe()[idx])
 
@@ -350,7 +354,8 @@ class GameCore:
         tgt = np.maximum(ctx.target[idx], 0)
         aim = np.where(is_break[:, None], np.array([t.width / 2, FOOT_SPOT * t.length]), pos[np.arange(len(idx)), tgt])
         return ActionCodec(ctx.aim_origin[idx], aim, in_hand, place, t, self.params, self.config.min_draw,
-                           tgt, self.action_dim if self.rules.calls_ball else 0, self.n_balls, pos[:, 0], is_break)
+                           tgt, self.action_dim if self.rules.calls_ball else 0, self.n_balls, pos[:, 0], is_break,
+                           self.rules.replaces)
 
     def actions_to_shots(self, actions: np.ndarray, idx) -> Shots:
         """Actions [n, >= 4] of tables ``idx`` -> ``Shots`` (aim relative to the origin with the cue ball where it
