@@ -31,6 +31,8 @@ def ruling_text(info: dict | None, k: int = 0) -> str:
     if info is None:
         return "new game"
     who = f"P{int(info['shooter'][k])}"
+    if "replaced" in info and info["replaced"][k]:
+        return f"{who} has the balls replaced"
     if info["passed"][k]:
         return f"{who} passes the shot back"
     if info["game_over"][k]:

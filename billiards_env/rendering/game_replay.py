@@ -146,6 +146,8 @@ class GameRecorder:
             if core.rules.to_points:  # games to a score: the shot's points, the score after it
                 game["points"] = int(info["points"][j])
                 game["score"] = np.asarray(info["score"][j]).astype(int).tolist()
+            if core.rules.replaces and rec.replaced[j]:  # snooker: the balls replaced after a miss (no stroke)
+                game["replaced"], game["declared"] = True, "replace"
             game["ruling"] = ruling_words(game, self.labels)
             rep = self._games[k][-1]
             shot_info = {"action": action.tolist(), "game": game}

@@ -117,6 +117,8 @@ def ruling_words(shot: dict, names: list[str]) -> str:
     s = int(shot["shooter"])
     who, other = names[s], names[1 - s]
     before, after = shot["before"], shot["after"]
+    if shot.get("replaced"):  # snooker, after a foul and a miss
+        return f"{who} has the balls replaced: {other} plays again."
     if shot.get("passed"):
         return f"{who} passes the shot back: {other} shoots."
     words = words_of(shot.get("game_name", ""))

@@ -60,3 +60,8 @@ def test_recorded_rulings_through_the_simulator(game, bot, word):
     assert any(word in r for r in rulings), rulings
     if game == "three_cushion":
         assert not any("pots" in r for r in rulings)
+
+
+def test_snooker_replace_after_a_miss_reads_as_a_replacement():
+    text = ruling_words(_shot(game_name="snooker", shooter=1, passed=True, replaced=True, turn_over=True), NAMES)
+    assert text == "Player 2 has the balls replaced: Player 1 plays again."
