@@ -105,10 +105,11 @@ class GameState:
     # snooker's foul and a miss (WPBSA Section 3, Rule 14): the position the miss was played from, which the
     # incoming player may have replaced (``Constraints.may_replace``); None in the other games. ``miss_pos``
     # [E, B, 2] and ``miss_pocket`` [E, B] the balls as struck, ``miss_phase`` [E] the phase the offender
-    # played in (-1: no miss called on the last stroke)
+    # played in (-1: no miss called on the last stroke), ``miss_hand`` [E] their ball in hand (IN_HAND_*)
     miss_pos: np.ndarray | None = None
     miss_pocket: np.ndarray | None = None
     miss_phase: np.ndarray | None = None
+    miss_hand: np.ndarray | None = None
 
     @classmethod
     def new(cls, breaker) -> "GameState":

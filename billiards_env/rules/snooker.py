@@ -284,6 +284,7 @@ class SnookerRules(Rules):
         g.miss_pos = np.zeros((E, B, 2))
         g.miss_pocket = np.full((E, B), -1, dtype=np.int64)
         g.miss_phase = np.full(E, -1, dtype=np.int64)
+        g.miss_hand = np.full(E, IN_HAND_NONE, dtype=np.int64)
         return g
 
     def observe_extra(self, game: GameState, pocket=None, constraints=None) -> np.ndarray:
@@ -447,13 +448,15 @@ class SnookerRules(Rules):
     @staticmethod
     def _keep_miss(g2: GameState, game: GameState, shot: ShotInput, miss: np.ndarray, replaced: np.ndarray) -> None:
         """In place on ``g2``: where a miss was called, the balls as struck and the phase the offender played in
-        (a free-ball stroke's option phase becomes open play: the replayed stroke has no free ball); where the
-        balls were replaced, the offender plays again from there in that phase without ball in hand
-        (``play_turn`` puts the balls back); elsewhere no miss is pending."""
+        (a free-ball stroke's option phase becomes open play: the replayed stroke has no free ball) and the
+        offender's ball in hand; where the balls were replaced, the offender plays again from there in that
+        phase, with the cue ball in hand in the D again if the miss was played from it (``play_turn`` puts the
+        balls back); elsewhere no miss is pending."""
         if game.miss_phase is None:
             return
         g2.phase = np.where(replaced, game.miss_phase, g2.phase).astype(np.int64)
-        g2.ball_in_hand = np.where(replaced, IN_HAND_NONE, g2.ball_in_hand).astype(np.int64)
+        g2.ball_in_hand = np.where(replaced, game.miss_hand, g2.ball_in_hand).astype(np.int64)
+        g2.miss_hand = np.where(miss, game.ball_in_hand, IN_HAND_NONE).astype(np.int64)
         g2.miss_phase = np.where(miss, np.where(game.phase == PHASE_OPTION, PHASE_PLAY, game.phase), -1)
         g2.miss_phase = g2.miss_phase.astype(np.int64)
         if miss.any():

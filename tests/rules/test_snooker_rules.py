@@ -254,6 +254,16 @@ def test_a_foul_with_an_open_full_ball_path_is_a_miss_and_the_balls_may_be_repla
     assert rec2.passed[0] and not SNK.constraints(g3, after, pos=pos).may_replace[0]
 
 
+def test_a_miss_from_the_d_is_replaced_with_the_cue_ball_in_hand():
+    pos = _line((0, (0.9, 0.7)), (RED, (0.9, 2.0)), (BLACK, (0.9, 3.2)))
+    g, p = _miss_game(off=[b for b in range(2, BLACK)])
+    g.ball_in_hand[:] = R.IN_HAND_D
+    rec, g2 = SNK.judge(g, shot(p, -1, pos=pos))
+    assert rec.miss[0] and g2.miss_hand[0] == R.IN_HAND_D and SNK.constraints(g2, p).ball_in_hand[0] == 0
+    rec2, g3 = SNK.judge(g2, ShotInput(p, p, np.array([-1]), np.zeros_like(p), replaced=np.array([True])))
+    assert rec2.replaced[0] and g3.shooter[0] == 0 and SNK.constraints(g3, p).ball_in_hand[0] == R.IN_HAND_D
+
+
 def test_no_miss_when_snookered_or_when_snookers_are_needed_or_the_ball_on_was_hit():
     open_ = _line((0, (0.9, 1.0)), (RED, (0.9, 2.0)), (BLACK, (0.3, 3.2)))
     hidden = _line((0, (0.9, 1.0)), (RED, (0.9, 2.0)), (BLACK, (0.9 + 1.2 * P.R, 1.5)))  # one edge covered
