@@ -41,7 +41,7 @@ import numpy as np
 from ..physics import Effects, Models, PhysicsParams, Table
 from ..physics.noise import NoiseConfig
 from ..rules import records as R
-from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP, d_of, legal_spots
+from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP
 from .turn import Equipment
 
 
@@ -163,8 +163,7 @@ class GameView:
         clear of the cushions, every ball and every pocket): (spots [k, 2],
         moved [k]). A spot that is already legal is returned unchanged."""
         rows = np.arange(self.n) if rows is None else np.asarray(rows, dtype=np.int64)
-        return legal_spots(xy, self.pos[rows], self.pocket[rows], self.ball_in_hand[rows] == R.IN_HAND_KITCHEN,
-                           self.table.width, self.table.length, self.params.R, self.pockets, d_of(self.table))
+        return self.equipment.place(xy, self.pos[rows], self.pocket[rows], self.ball_in_hand[rows] == R.IN_HAND_KITCHEN)
 
     def preview(self, plan, rows=None, noise=None, rng=None, draws=None):
         """Play ``plan`` (one row per entry of ``rows``, default one per view

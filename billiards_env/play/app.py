@@ -35,7 +35,7 @@ from ..bots.registry import BOT_NAMES, DEFAULT_SEARCH_K, is_bot_name
 from ..bots.registry import DEFAULT_BOTS, default_bot, make_bot
 from ..bots.learned.ladder import ladder_names
 from ..envs.games import GAMES
-from ..envs.games.core import NOISE_LEVELS
+from ..physics.noise import NOISE_LEVELS
 from ..rendering.game_words import game_words
 from ..rendering.html import replay_html
 from .guard import BODY_TIMEOUT_S, MAX_BODY, Guard, parse_json

@@ -56,11 +56,11 @@ from ...physics import BallState, Effects, Models, PhysicsParams, Table
 from ...physics.strike import Shots
 from ...rules import GAMES, GameState, get_game, get_rules
 from ...rules import records as R
-from ...physics.noise import NOISE_LEVELS, NoiseLevel  # noqa: F401 (NOISE_LEVELS: the level names, play.app reads them here)
+from ...physics.noise import NoiseLevel
 from ..config import _number
 from ..core import _observe
 from ..streams import TableStreams
-from ...rules.placement import FOOT_SPOT, HEAD_STRING, d_of, legal_spots
+from ...rules.placement import FOOT_SPOT, HEAD_STRING
 from .setup import RACKS, loosen
 
 EXTRA_OBS = 13  # observation entries after the one-player layout (see ``observation_doc``)
@@ -155,7 +155,6 @@ class GameCore:
         self.game: GameState | None = None
         self.noise_scale = np.ones(self.n_envs)
         self.streams = TableStreams(self.n_envs)
-        self._every = np.arange(self.n_envs)
         self.pockets = np.ascontiguousarray(self.table.geometry(True)[3], dtype=np.float64)
         self.last_start: list = [None] * self.n_envs
         self.last_events: list = [None] * self.n_envs
@@ -268,8 +267,7 @@ class GameCore:
         return self._place(xy, self.state.pos[idx], self.state.pocket[idx], kitchen)
 
     def _place(self, xy, pos, pocket, kitchen):
-        return legal_spots(xy, pos, pocket, kitchen, self.table.width, self.table.length, self.params.R, self.pockets,
-                           d_of(self.table))  # snooker: in hand means in the D
+        return self.equipment.place(xy, pos, pocket, kitchen)  # snooker: in hand means in the D
 
     # --- one shot -------------------------------------------------------------------
     def step(self, actions: np.ndarray, idx) -> dict:
