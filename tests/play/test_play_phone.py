@@ -383,3 +383,37 @@ def test_every_game_plays_by_touch_on_a_phone(server, browser, phone, game):
     assert turns == 4 and person.scrolled == 0, (turns, person.scrolled)
     errors = [e for e in browser.get_log("browser") if e["level"] == "SEVERE" and "favicon" not in e["message"]]
     assert not errors, errors
+
+
+def test_a_stroke_pulls_the_cue_back_and_pushes_through(server, browser, phone):
+    """Power by the cue: a finger on the drawn cue pulled back along the aim sets the power (the whole range over
+    STROKE_M = 0.18 m of pull, as the cue is drawn) without shooting; pulled back and pushed through towards the
+    ball, the shot is played at the deepest pull's power."""
+    phone(PORTRAIT)
+    _game(server, browser)
+    person = PagePerson(browser, touch=True)
+    person.wait_turn()
+    js = person.js
+    c, phi, R = person.cue(), js("return window.billiardsPlay.choice.phi;"), js("return window.billiardsPlay.state().limits.R;")
+    person.set_speed(js("return window.billiardsPlay.state().limits.speed_min;"), person.state()["limits"])
+    back = lambda t: person.px(c[0] - t * math.cos(phi), c[1] - t * math.sin(phi))  # noqa: E731
+    frac = lambda: js("const P = window.billiardsPlay; return P.frac(P.choice.speed);")  # noqa: E731
+    n_sent = js("return window.billiardsPlay.sent.length;")
+    start = 1.6 * R + 0.2
+    person.drag(back(start), back(start + 0.09), steps=6)  # half the stroke's range back, then let go
+    assert abs(frac() - 0.5) < 0.05, frac()
+    assert js("return window.billiardsPlay.sent.length;") == n_sent  # no push through: power only
+    f_half = frac()
+    start = 1.6 * R + 0.18 * f_half + 0.2
+    ab, left = person._actions()  # back 0.045 m more, then through 0.05 m towards the ball
+    ab.pointer_action.move_to_location(*back(start)).pointer_down(left)
+    for t in (0.015, 0.03, 0.045, 0.02, -0.005):
+        ab.pointer_action.move_to_location(*back(start + t))
+    ab.pointer_action.pointer_up(left)
+    ab.perform()
+    for _ in range(100):
+        if js("return window.billiardsPlay.sent.length;") > n_sent:
+            break
+        time.sleep(0.05)
+    assert js("return window.billiardsPlay.sent.length;") == n_sent + 1
+    assert abs(frac() - (f_half + 0.25)) < 0.05, frac()
