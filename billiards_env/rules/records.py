@@ -28,10 +28,13 @@ FOUL_NO_RAIL = 3         # nothing pocketed and no ball touched a rail after the
 FOUL_SCRATCH = 4         # the cue ball was pocketed
 FOUL_BAD_BREAK = 5       # break: no ball pocketed and fewer than four object balls reached a rail
 FOUL_WRONG_POT = 6       # snooker: a ball not on was pocketed
-FOUL_PUSH = 7            # snooker: a push stroke, the cue ball's first contact the ball it was touching
+FOUL_PUSH = 7            # the cue ball played into the ball it lay touching (snooker's push stroke, three-cushion's
+                         # ball in contact): its first contact, read from the simulator
+FOUL_WRONG_CUE_BALL = 8  # three-cushion: the cue struck another ball than the shooter's own cue ball
 FOUL_NAMES = {FOUL_NONE: "none", FOUL_NO_CONTACT: "no contact", FOUL_WRONG_BALL: "wrong ball first",
               FOUL_NO_RAIL: "no rail after contact", FOUL_SCRATCH: "scratch", FOUL_BAD_BREAK: "illegal break",
-              FOUL_WRONG_POT: "a ball not on pocketed", FOUL_PUSH: "push stroke (the touching ball moved)"}
+              FOUL_WRONG_POT: "a ball not on pocketed", FOUL_PUSH: "push stroke (the touching ball moved)",
+              FOUL_WRONG_CUE_BALL: "the wrong cue ball struck"}
 
 # --- how a game ended (ShotRecord.end) ----------------------------------------
 END_NONE = 0
@@ -162,13 +165,17 @@ class ShotInput:
     touched, so all of theirs count), ``object_rails`` [E, B] every ball's
     cushion hits during the shot (the break's four-ball count), and the
     declarations: ``push_out`` (bool), ``called_pocket`` (int, -1 none),
-    ``replaced`` (snooker: after a foul and a miss the incoming player had
-    the balls replaced and the offender plays again; no shot was played),
+    ``replaced`` (no shot was played: in snooker, after a foul and a miss
+    the incoming player had the balls replaced and the offender plays
+    again; in three-cushion the shooter had the balls of a frozen cue ball
+    put on the starting position),
     ``passed`` (bool: after a push-out, or in 10-ball after an illegally
     pocketed ball, the player handed the shot back and no shot was played)
     and ``called_ball`` (10-ball: the ball called, CALL_SAFETY for a called
     safety, CALL_NONE none; snooker: the nominated ball, a colour or a free
-    ball); ``pos_before`` (optional) the positions the shot was played from. From a ``physics.SimResult``: ``state.pocket``,
+    ball); ``struck`` (the ball the cue struck: 0, the default, the
+    shooter's own cue ball; three-cushion rules another ball a foul);
+    ``pos_before`` (optional) the positions the shot was played from. From a ``physics.SimResult``: ``state.pocket``,
     ``first_contact``, ``cushion_hits_after_contact`` (``rails``) and
     ``cushion_hits`` (``object_rails``); games judged on the order of the
     cue ball's contacts (three-cushion) also take ``contacts`` [E, K, 2] and
@@ -186,7 +193,8 @@ class ShotInput:
     contacts: np.ndarray | None = None
     n_contacts: np.ndarray | None = None
     pos_before: np.ndarray | None = None  # [E, B, 2] the balls where the shot was played from (snooker's free ball)
-    replaced: np.ndarray | None = None    # [E] snooker: the balls replaced after a miss (no shot played)
+    replaced: np.ndarray | None = None    # [E] the balls replaced on a declaration (no shot played; snooker, 3-cushion)
+    struck: np.ndarray | None = None      # [E] the ball the cue struck (0: the shooter's own cue ball)
 
     def __post_init__(self):
         E, B = np.shape(self.pocket_before)
@@ -197,7 +205,8 @@ class ShotInput:
             raise ValueError(f"ShotInput.first_contact must have shape ({E},), got {np.shape(self.first_contact)}")
         fill = dict(object_rails=np.asarray(self.rails), push_out=np.zeros(E, dtype=bool),
                     called_pocket=np.full(E, -1, dtype=np.int64), passed=np.zeros(E, dtype=bool),
-                    called_ball=np.full(E, CALL_NONE, dtype=np.int64), replaced=np.zeros(E, dtype=bool))
+                    called_ball=np.full(E, CALL_NONE, dtype=np.int64), replaced=np.zeros(E, dtype=bool),
+                    struck=np.zeros(E, dtype=np.int64))
         for k, v in fill.items():
             if getattr(self, k) is None:
                 object.__setattr__(self, k, v)
@@ -227,13 +236,14 @@ class ShotRecord:
     shot back; snooker: the shot was a foul, so the incoming player may put
     the offender back in; all False in the other games), ``miss`` (snooker:
     the foul was also a miss, WPBSA Section 3, Rule 14; ``rules.snooker.
-    judge_miss``), ``replaced`` (snooker: no shot, the balls were put back
-    where the miss was played from), ``points`` (the
+    judge_miss``), ``replaced`` (no shot, the balls were put back: snooker,
+    where the miss was played from; three-cushion, on the starting
+    position, ``restart``), ``points`` (the
     points the shot scored for its shooter; games to a score, else zeros),
     ``penalty`` (what a foul gave the opponent; snooker, else zeros) and
     ``restart`` (the balls go back to the starting position before the next
-    shot: three-cushion's equal-innings last inning,
-    ``envs.games.setup.restart_position``; all False elsewhere)."""
+    shot: three-cushion's equal-innings last inning and a frozen cue ball's
+    balls replaced, ``rules.respot.restart_position``; all False elsewhere)."""
 
     legal: np.ndarray
     foul: np.ndarray
@@ -269,10 +279,13 @@ class Constraints:
     opponent's push-out: hand the shot back instead of shooting),
     ``call_needed`` (8-ball: the shot is on the 8, a pocket must be called),
     ``is_break``, ``over`` (the game has ended: no shot), ``may_replace``
-    (snooker, after a foul and a miss: have the balls replaced where they
-    were before the foul and the offender play again; all False elsewhere)
-    and ``touching`` [E, B] (snooker: the balls the cue ball lies touching,
-    which the stroke must play away from; all False elsewhere)."""
+    (a declaration may have the balls replaced instead of a shot: snooker,
+    after a foul and a miss, where they were before the foul, the offender
+    to play again; three-cushion, a cue ball frozen to a ball, on the
+    starting position, the shooter to play on; all False elsewhere)
+    and ``touching`` [E, B] (snooker and three-cushion: the balls the cue
+    ball lies touching, which the stroke must play away from; all False
+    elsewhere)."""
 
     shooter: np.ndarray
     ball_in_hand: np.ndarray
