@@ -74,9 +74,13 @@ class TrainSettings:
     eval_noise: tuple = ("none", "tournament")
     # held-seed evaluations during training (``agents.sb3.training.HeldOutEvaluation``):
     # every ``eval_every`` env steps (0: none), ``eval_every_episodes`` episodes
-    # of seed ``eval_seed`` without noise; their time is not training time
+    # of seed ``eval_seed`` at noise ``eval_every_noise``; their time is not training time;
+    # ``eval_target``: the baseline bot measured once at the start, whose success the curve is
+    # compared with ("ghost"; a game's own bot where ghost cannot play it; "" for none)
     eval_every: int = 0
     eval_every_episodes: int = 1000
+    eval_every_noise: str = "none"
+    eval_target: str = "ghost"
     # a self-play run (a two-player game with no env_kwargs.opponent) is evaluated against this bot
     eval_opponent: str = "ghost"
     torch_threads: int = 1           # 1: PPO minibatches are small; a 2nd thread fights numba on 2 cores
@@ -129,6 +133,10 @@ class TrainConfig:
         if self.self_play and self.algo != "ppo":
             raise ValueError(f"{self.env_id} with no env_kwargs.opponent trains by self-play, which is PPO's "
                              f"(agents.sb3.self_play), not {self.algo!r}; name an opponent to train {self.algo!r}")
+        from billiards_env.physics.noise import NOISE_LEVELS
+        if self.train.eval_every_noise not in NOISE_LEVELS:
+            raise ValueError(f"train.eval_every_noise must be one of {tuple(NOISE_LEVELS)}, "
+                             f"got {self.train.eval_every_noise!r}")
         for name in ("ppo", "sac"):
             _check_algo_kwargs(name, getattr(self, name))
 

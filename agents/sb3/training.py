@@ -156,7 +156,7 @@ class EpisodeLogger(BaseCallback):
 
 class HeldOutEvaluation(BaseCallback):
     """Evaluates the policy on the held seeds (``agents.evaluation.harness.evaluate``,
-    ``episodes`` tables of seed ``seed``, no noise) every ``every`` env steps,
+    ``episodes`` tables of seed ``seed``, noise ``train.eval_every_noise``) every ``every`` env steps,
     at rollout boundaries, and once at the end. The clock of the training time
     (``train_s``) stops while it evaluates. Rows (steps, train_s, success,
     95% interval) go to ``<run>/evaluations.csv`` and ``self.rows``, the
@@ -183,13 +183,14 @@ class HeldOutEvaluation(BaseCallback):
 
     def _evaluate(self, policy) -> object:
         from ..evaluation.harness import evaluate
-        return evaluate(policy, self.cfg.env_id, self.episodes, self.seed, "none",
+        return evaluate(policy, self.cfg.env_id, self.episodes, self.seed, self.cfg.train.eval_every_noise,
                         env_kwargs=self.cfg.eval_env_kwargs, name=self.cfg.algo)
 
     def _on_training_start(self) -> None:
         from ..evaluation.policies import make_policy
-        if self.target is None:
-            self.target = self._evaluate(lambda env: make_policy("ghost", env)).success_rate
+        name = self.cfg.train.eval_target
+        if self.target is None and name:
+            self.target = self._evaluate(lambda env: make_policy(name, env)).success_rate
         self._f = open(self.run_dir / "evaluations.csv", "w", newline="")
         self._csv = csv.DictWriter(self._f, fieldnames=self.FIELDS)
         self._csv.writeheader()
@@ -209,7 +210,7 @@ class HeldOutEvaluation(BaseCallback):
         self.rows.append(row)
         self._csv.writerow(row)
         self._f.flush()
-        if self.steps_to_target is None and r.success_ci95[0] > self.target:
+        if self.steps_to_target is None and self.target is not None and r.success_ci95[0] > self.target:
             self.steps_to_target, self.time_to_target_s = row["timesteps"], row["train_s"]
         if self.report is not None and self.report(row) is False:
             self._stop = True

@@ -29,7 +29,9 @@ class Task:
     ``env_id``: the Gymnasium id; ``kind``: ``"task"`` (one player; score = success rate) or ``"game"``
     (against ``opponent``; score = win rate); ``budget``: training env steps allowed; ``reference``: the bot
     whose score is normalized to 1 (``baseline``'s to 0); ``noise``: the env's noise preset at evaluation;
-    ``episodes``: held tables per run."""
+    ``episodes``: held tables per run; ``since``: the first protocol version whose evaluation of the task is
+    this one (its id, opponent, noise, episodes and seeds): a bot's score from that version on still counts,
+    while a trained agent's row counts only under the version whose budget it trained for."""
 
     env_id: str
     kind: str
@@ -39,6 +41,7 @@ class Task:
     opponent: str | None = None
     noise: str = "tournament"
     baseline: str = "random"
+    since: int = 1   # the protocol version since which the task's evaluation is unchanged (score.check_results)
 
     def __post_init__(self):
         if self.kind not in ("task", "game"):
@@ -90,6 +93,9 @@ class Protocol:
         return dataclasses.replace(self, tasks=tasks, eval_seeds=self.eval_seeds[:2])
 
 
+# Protocol 2 (from 1): the budgets only, chosen so the reference agents' whole table (PPO and SAC, five seeds,
+# every task: python -m agents.evaluation.reference --jobs 2) regenerates in under three hours on 2 cores
+# (docs/benchmark.md, "Reference agents"); protocol 1's 0.5-10 M steps would have taken 3-16 hours per algorithm.
 EPISODES = 500        # one-player tables per run: a success rate's 95% interval within +-0.044
 GAMES = 200           # games per run against the opponent: +-0.07 per run, +-0.031 over the five runs
 EVAL_SEEDS = (900_000, 910_000, 920_000, 930_000, 940_000)  # run k's tables: seeds EVAL_SEEDS[k] + i, i < 10,000
@@ -97,24 +103,24 @@ QUICK_EPISODES = 12
 QUICK_GAMES = 4
 
 PROTOCOL = Protocol(
-    version=1,
+    version=2,
     tasks=(
         # one player, success rate; 1 = lookahead (pots that leave a next shot), the strongest one-player bot
-        Task("Billiards-PotOne-v1", "task", budget=500_000, reference="lookahead", episodes=EPISODES),
-        Task("Billiards-RunOut-v1", "task", budget=2_000_000, reference="lookahead", episodes=EPISODES),
-        Task("Billiards-NineBall-v1", "task", budget=5_000_000, reference="lookahead", episodes=EPISODES),
+        Task("Billiards-PotOne-v1", "task", budget=300_000, reference="lookahead", episodes=EPISODES),
+        Task("Billiards-RunOut-v1", "task", budget=400_000, reference="lookahead", episodes=EPISODES),
+        Task("Billiards-NineBall-v1", "task", budget=400_000, reference="lookahead", episodes=EPISODES),
         # two players, win rate against a fixed opponent; 1 = the opponent's own win rate against itself (~0.5:
         # "as strong as the opponent"; search64 was measured too, and does not beat ghost in 8-ball: 0.494)
-        Task("Billiards-NineBall2P-v1", "game", budget=6_000_000, reference="ghost", episodes=GAMES,
+        Task("Billiards-NineBall2P-v1", "game", budget=500_000, reference="ghost", episodes=GAMES,
              opponent="ghost"),
-        Task("Billiards-EightBall-v1", "game", budget=6_000_000, reference="ghost", episodes=GAMES,
+        Task("Billiards-EightBall-v1", "game", budget=500_000, reference="ghost", episodes=GAMES,
              opponent="ghost"),
-        Task("Billiards-TenBall-v1", "game", budget=6_000_000, reference="ghost", episodes=GAMES,
+        Task("Billiards-TenBall-v1", "game", budget=500_000, reference="ghost", episodes=GAMES,
              opponent="ghost"),
         # no pockets / its own rules: against the game's own bot
-        Task("Billiards-ThreeCushion-v1", "game", budget=10_000_000, reference="carom", episodes=GAMES,
+        Task("Billiards-ThreeCushion-v1", "game", budget=500_000, reference="carom", episodes=GAMES,
              opponent="carom"),
-        Task("Billiards-Snooker-v1", "game", budget=10_000_000, reference="snooker", episodes=GAMES,
+        Task("Billiards-Snooker-v1", "game", budget=500_000, reference="snooker", episodes=GAMES,
              opponent="snooker"),
     ),
     eval_seeds=EVAL_SEEDS,

@@ -93,13 +93,20 @@ def check_results(doc: dict) -> dict:
     """``doc`` if it is a results document of this schema (ValueError naming what is wrong otherwise)."""
     if not isinstance(doc, dict) or doc.get("schema") != SCHEMA:
         raise ValueError(f"not a benchmark results file (schema {SCHEMA!r} expected)")
-    if doc.get("protocol") != PROTOCOL.version:
-        raise ValueError(f"results of protocol {doc.get('protocol')!r}; this is protocol {PROTOCOL.version}")
+    version = doc.get("protocol")
+    if not isinstance(version, int) or not 1 <= version <= PROTOCOL.version:
+        raise ValueError(f"results of protocol {version!r}; this is protocol {PROTOCOL.version}")
     for key in ("policy", "algorithm", "tasks"):
         if key not in doc:
             raise ValueError(f"results file without {key!r}")
     for task, t in doc["tasks"].items():
-        PROTOCOL.task(task)
+        spec = PROTOCOL.task(task)
+        if version < spec.since:
+            raise ValueError(f"{task}: scored under protocol {version}; its evaluation changed in protocol "
+                             f"{spec.since}: score it again")
+        if doc.get("budget") is not None and version != PROTOCOL.version:
+            raise ValueError(f"{task}: a trained agent's row of protocol {version}, whose budgets differ from "
+                             f"protocol {PROTOCOL.version}'s: train it again at this protocol's budget")
         if not t.get("runs") or any("score" not in r for r in t["runs"]):
             raise ValueError(f"{task}: no runs with a score")
     return doc
@@ -119,6 +126,7 @@ def write_reference(docs, path=REFERENCE_FILE) -> Path:
         rows += [dataclasses.asdict(r) | {"scores": list(r.scores)} for r in rows_of(doc)]
     rows.sort(key=lambda r: ([t.env_id for t in PROTOCOL.tasks].index(r["task"]), r["algorithm"]))
     doc = {"about": "The benchmark's reference rows (billiards_env/benchmark/score.py), measured with the scoring "
-                    "command under protocol 1; see docs/benchmark.md", "protocol": PROTOCOL.version, "rows": rows}
+                    f"command under protocol {PROTOCOL.version} (bots' rows from the protocol their task's evaluation "
+                    f"dates from, Task.since); see docs/benchmark.md", "protocol": PROTOCOL.version, "rows": rows}
     Path(path).write_text(json.dumps(doc, indent=1) + "\n")
     return Path(path)

@@ -33,7 +33,7 @@ import types
 import numpy as np
 
 from ...contract.codec import ShotContext
-from ...contract.codec import ACTION_DIM, N_POCKETS
+from ...contract.codec import N_POCKETS
 from ...rules import records as R
 from ..ghost import GhostBot, PotGeometry
 from ...contract.preview import rest_state
@@ -130,20 +130,23 @@ class OnePlayerView:
 
     # --- the game's remaining components --------------------------------------------
     def complete_actions(self, a4: np.ndarray, items: np.ndarray | None = None) -> np.ndarray:
-        """The policy's a0..a3 [E, 4] -> game actions [E, 8]: the placement,
+        """The policy's a0..a3 [E, 4] -> game actions [E, codec.action_dim]: the placement,
         no declaration, the called pocket (menu ``items`` below the pocket
-        count name one), and the standard break on break shots."""
+        count name one), the game's nominal ball where it calls or nominates one
+        (10-ball, snooker: the codec's ``encode``), and the standard break on break shots."""
         self._refresh()
-        E = self.n_envs
-        out = np.zeros((E, ACTION_DIM), dtype=np.float32)
-        out[:, :AGENT_ACTION_DIM] = a4
-        out[:, 4:6] = self._view.codec.placement_to_actions(np.nan_to_num(self._placement, nan=0.0))
-        out[:, 6] = -1.0
+        codec = self._view.codec
         pocket = self._pocket
         if items is not None:
             items = np.asarray(items, dtype=np.int64)
             pocket = np.where(items < N_POCKETS, items, pocket)
+        out = np.zeros((self.n_envs, codec.action_dim), dtype=np.float32)
+        out[:, 4:6] = codec.placement_to_actions(np.nan_to_num(self._placement, nan=0.0))
+        out[:, 6] = -1.0
         out[:, 7] = -1.0 + (2.0 * pocket + 1.0) / N_POCKETS
+        if codec.ball_dim:   # the called / nominated ball: the codec's nominal (its ``encode`` with ball=None)
+            out[:, 8] = -1.0 + (2.0 * codec.nominal + 1.0) / codec.n_balls
+        out[:, :AGENT_ACTION_DIM] = a4
         brk = np.nonzero(self._break)[0]
         if len(brk):
             out[brk] = self._view.codec.take(brk).encode_plan(self.placer.act(self._view.take(brk)))
