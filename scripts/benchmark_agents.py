@@ -35,6 +35,16 @@ QUICK = ("n_envs=16", "policy.net_arch=[16]", "ppo.n_steps=16", "ppo.batch_size=
          "sac.learning_starts=64", "sac.batch_size=64", "sac.gradient_steps=1", "sac.buffer_size=4096")
 
 
+def doc_with_table(text: str | None, table_md: str) -> str:
+    """The page ``text`` (None: a new one) with ``table_md`` between the markers (appended when it has none):
+    what the command writes to --doc and scripts/regenerate.py renders from <out>/benchmark.json."""
+    table = f"{BEGIN}\n{table_md}\n{END}"
+    text = text if text is not None else f"# Agents' benchmark\n\n{BEGIN}\n{END}\n"
+    if BEGIN in text and END in text:
+        return text[:text.index(BEGIN)] + table + text[text.index(END) + len(END):]
+    return text + "\n" + table + "\n"
+
+
 def main(argv=None) -> int:
     from agents.benchmark import (ALGOS, TABLE_CONFIGS, TASKS, Budget, markdown_table, plot_curves, row_from_run,
                                   run_benchmark, store_row, table_configs)
@@ -77,14 +87,8 @@ def main(argv=None) -> int:
         rows = run_benchmark(out, a.task or TASKS, a.algo or ALGOS, budget, command, a.config,
                              table_configs() if a.all else None)
     plot_curves(rows, out / "learning_curves.png")
-    table = f"{BEGIN}\n{markdown_table(rows, out)}\n{END}"
     doc = out / "benchmark.md" if a.quick else Path(a.doc)
-    text = doc.read_text() if doc.exists() else f"# Agents' benchmark\n\n{BEGIN}\n{END}\n"
-    if BEGIN in text and END in text:
-        text = text[:text.index(BEGIN)] + table + text[text.index(END) + len(END):]
-    else:
-        text += "\n" + table + "\n"
-    doc.write_text(text)
+    doc.write_text(doc_with_table(doc.read_text() if doc.exists() else None, markdown_table(rows, out)))
     print(markdown_table(rows, out))
     print(f"\nwrote {doc}, {out / 'benchmark.json'}, {out / 'learning_curves.png'}")
     return 0

@@ -38,6 +38,12 @@ def table(rows: list) -> str:
     return "\n".join(lines)
 
 
+def markdown(doc: dict) -> str:
+    """``<game>.md`` from its JSON (``command`` and ``rows``): what scripts/regenerate.py renders."""
+    r = doc["rows"][0]
+    return f"# Breaks: {r['game']}, {r['racks']} racks\n\n`{doc['command']}`\n\n{table(doc['rows'])}\n"
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--game", choices=list(GAMES), default="nine_ball")
@@ -59,7 +65,7 @@ def main(argv=None) -> int:
             rows.append(break_outcomes(args.game, args.racks, args.seed, noise, rack=rack, **extra))
             print(f"{rack} racks, {noise} noise: done ({time.perf_counter() - t0:.0f} s)", file=sys.stderr)
     cmd = " ".join(["python", "scripts/break_stats.py"] + (argv if argv is not None else sys.argv[1:]))
-    md = f"# Breaks: {args.game}, {args.racks} racks\n\n`{cmd}`\n\n{table(rows)}\n"
+    md = markdown(dict(command=cmd, rows=rows))
     print(md)
     if not args.quick or "--out" in (argv if argv is not None else sys.argv[1:]):
         args.out.mkdir(parents=True, exist_ok=True)

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import io
 import json
 import sys
 import time
@@ -59,23 +60,50 @@ def cards_table(games) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_csv(out: Path, docs: list) -> None:
-    with open(out / "ratings.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["game", "noise", "entrant", "elo", "ci95_lo", "ci95_hi"])
-        for d in docs:
-            for r in d["ratings"]:
-                w.writerow([d["game"], d["noise"], r["name"], f"{r['elo']:.1f}", f"{r['ci95'][0]:.1f}",
-                            f"{r['ci95'][1]:.1f}"])
-    with open(out / "pairings.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(["game", "noise", "a", "b", "games", "a_wins", "b_wins", "draws", "a_win_rate", "ci95_lo",
-                    "ci95_hi", "mean_shots"])
-        for d in docs:
-            for p in d["pairings"]:
-                w.writerow([d["game"], d["noise"], p["a"], p["b"], p["games"], p["a_wins"], p["b_wins"], p["draws"],
-                            f"{p['a_win_rate']:.3f}", f"{p['ci95'][0]:.3f}", f"{p['ci95'][1]:.3f}",
-                            f"{p['mean_shots']:.1f}"])
+def csv_texts(docs: list) -> dict:
+    """``ratings.csv`` and ``pairings.csv`` of the tournaments ``docs``, as text (the csv module's line ends)."""
+    ratings, pairings = io.StringIO(newline=""), io.StringIO(newline="")
+    w = csv.writer(ratings)
+    w.writerow(["game", "noise", "entrant", "elo", "ci95_lo", "ci95_hi"])
+    for d in docs:
+        for r in d["ratings"]:
+            w.writerow([d["game"], d["noise"], r["name"], f"{r['elo']:.1f}", f"{r['ci95'][0]:.1f}",
+                        f"{r['ci95'][1]:.1f}"])
+    w = csv.writer(pairings)
+    w.writerow(["game", "noise", "a", "b", "games", "a_wins", "b_wins", "draws", "a_win_rate", "ci95_lo",
+                "ci95_hi", "mean_shots"])
+    for d in docs:
+        for p in d["pairings"]:
+            w.writerow([d["game"], d["noise"], p["a"], p["b"], p["games"], p["a_wins"], p["b_wins"], p["draws"],
+                        f"{p['a_win_rate']:.3f}", f"{p['ci95'][0]:.3f}", f"{p['ci95'][1]:.3f}",
+                        f"{p['mean_shots']:.1f}"])
+    return {"ratings.csv": ratings.getvalue(), "pairings.csv": pairings.getvalue()}
+
+
+def collect_command(docs: list) -> str:
+    """The command quoted in ladder.md: the one that played every part, or the parts' and ``--collect``."""
+    parts = sorted({d["command"] for d in docs})
+    return (parts[0] if len(parts) == 1 else
+            f"python scripts/ladder_table.py --racks {docs[0]['racks']}` (played as {len(parts)} processes, one per "
+            f"game and noise level, then `python scripts/ladder_table.py --collect")
+
+
+def collected(out: Path, docs: list, command: str, doc_text: str | None = None) -> dict:
+    """Every file the tables of ``docs`` (the ``<game>_<noise>.json`` of ``out``) make, by path, as text:
+    the CSVs, ``summary.md``, ``ladder.md`` and, given ``doc_text`` (docs/ladder.md), that page with the table
+    between its markers. What ``--collect`` writes and scripts/regenerate.py renders."""
+    games = [g for g in GAMES if any(d["game"] == g for d in docs)]
+    files = {out / name: text for name, text in csv_texts(docs).items()}
+    summary = match_report.summary(out)
+    files[out / "summary.md"] = summary
+    body = (f"`{command}`: {docs[0]['racks']} racks per pairing, each played twice (each side breaks once), seed "
+            f"{docs[0]['seed']}.\n\nThe agents:\n\n{cards_table(games)}\nBradley-Terry ratings (Elo scale, mean 0 "
+            f"per game and noise level; 95% bootstrap intervals over games):\n\n{summary}")
+    files[out / "ladder.md"] = "# The ladder's cross table\n\n" + body
+    if doc_text is not None:
+        a, b = doc_text.index(BEGIN) + len(BEGIN), doc_text.index(END)
+        files[DOC] = doc_text[:a] + "\n" + body + doc_text[b:]
+    return files
 
 
 def main(argv=None) -> int:
@@ -119,23 +147,12 @@ def main(argv=None) -> int:
         docs = [json.loads(p.read_text()) for p in sorted(args.out.glob("*_*.json"))]
         if not docs:
             raise SystemExit(f"no <game>_<noise>.json in {args.out} to collect")
-        args.racks, args.seed = docs[0]["racks"], docs[0]["seed"]
-        parts = sorted({d["command"] for d in docs})
-        command = (parts[0] if len(parts) == 1 else
-                   f"python scripts/ladder_table.py --racks {args.racks}` (played as {len(parts)} processes, one per "
-                   f"game and noise level, then `python scripts/ladder_table.py --collect")
-        args.games = [g for g in GAMES if any(d["game"] == g for d in docs)]
-    write_csv(args.out, docs)
-    summary = match_report.summary(args.out)
-    (args.out / "summary.md").write_text(summary)
-    body = (f"`{command}`: {args.racks} racks per pairing, each played twice (each side breaks once), seed "
-            f"{args.seed}.\n\nThe agents:\n\n{cards_table(args.games)}\nBradley-Terry ratings (Elo scale, mean 0 per "
-            f"game and noise level; 95% bootstrap intervals over games):\n\n{summary}")
-    (args.out / "ladder.md").write_text("# The ladder's cross table\n\n" + body)
-    if args.out.resolve() == (ROOT / "results" / "ladder").resolve() and DOC.exists():
-        text = DOC.read_text()
-        a, b = text.index(BEGIN) + len(BEGIN), text.index(END)
-        DOC.write_text(text[:a] + "\n" + body + text[b:])
+        command = collect_command(docs)
+    to_docs = args.out.resolve() == (ROOT / "results" / "ladder").resolve() and DOC.exists()
+    files = collected(args.out, docs, command, DOC.read_text() if to_docs else None)
+    for path, text in files.items():
+        path.write_text(text, newline="" if path.suffix == ".csv" else None)
+    summary = files[args.out / "summary.md"]
     print(summary)
     return 0
 

@@ -101,6 +101,23 @@ def budgets(game: str, names: list, racks: int, opponent: str, noise: str, seed:
     return rows
 
 
+def budgets_markdown(game: str, noise: str, seed: int, rows: list) -> str:
+    """``budgets_<game>_<noise>.md`` from its JSON rows (the budgets, the opponent and the racks are in them; the
+    seed is not): what scripts/regenerate.py renders."""
+    names = " ".join(r["budget"] for r in rows)
+    racks, opponent = rows[0]["games"] // 2, rows[0]["opponent"]
+    head = f"# lookahead budgets, {game}, {noise} noise, against {opponent}\n\n" \
+           f"`python scripts/lookahead_cost.py --game {game} --budgets {names} --racks {racks}" \
+           f" --opponent {opponent} --noise {noise} --seed {seed}` ({racks} racks, each played twice)\n\n" \
+           "| budget | games | win rate | 95% interval | lost without a shot | ms per shot | CPU ms per shot |" \
+           " previews per shot |\n|---|---|---|---|---|---|---|---|\n"
+    md = head + "".join(f"| {r['budget']} | {r['games']} | {r['win_rate']:.3f} | {r['ci95'][0]:.3f}-{r['ci95'][1]:.3f}"
+                        f" | {r['lost_without_a_shot']} | {r['ms_per_shot']:.1f} | {r['cpu_ms_per_shot']:.1f}"
+                        f" | {r['previews_per_shot']:.0f} |\n"
+                        for r in rows)
+    return md + "\n'lost without a shot': games the lookahead lost without playing a shot other than its break.\n"
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--game", default="nine_ball", choices=["nine_ball", "eight_ball"])
@@ -122,16 +139,7 @@ def main(argv=None) -> int:
         print(json.dumps(cost(a.game, a.tables, a.rounds, a.repeats, a.seed, a.budget)))
     if a.budgets:
         rows = budgets(a.game, a.budgets, a.racks, a.opponent, a.noise, a.seed)
-        head = f"# lookahead budgets, {a.game}, {a.noise} noise, against {a.opponent}\n\n" \
-               f"`python scripts/lookahead_cost.py --game {a.game} --budgets {' '.join(a.budgets)} --racks {a.racks}" \
-               f" --opponent {a.opponent} --noise {a.noise} --seed {a.seed}` ({a.racks} racks, each played twice)\n\n" \
-               "| budget | games | win rate | 95% interval | lost without a shot | ms per shot | CPU ms per shot |" \
-               " previews per shot |\n|---|---|---|---|---|---|---|---|\n"
-        md = head + "".join(f"| {r['budget']} | {r['games']} | {r['win_rate']:.3f} | {r['ci95'][0]:.3f}-{r['ci95'][1]:.3f}"
-                            f" | {r['lost_without_a_shot']} | {r['ms_per_shot']:.1f} | {r['cpu_ms_per_shot']:.1f}"
-                            f" | {r['previews_per_shot']:.0f} |\n"
-                            for r in rows)
-        md += "\n'lost without a shot': games the lookahead lost without playing a shot other than its break.\n"
+        md = budgets_markdown(a.game, a.noise, a.seed, rows)
         print(md)
         if not a.quick:
             out = Path(a.out)

@@ -96,6 +96,49 @@ def _safe(name: str) -> str:
     return "".join(c if c.isalnum() or c in "-." else "-" for c in Path(name).name)
 
 
+class _Pairing:
+    """A pairing's recorded summary (a ``<game>_<noise>.json``'s ``pairings`` entry) where the report wants a
+    result: ``summary()`` returns it."""
+
+    def __init__(self, summary: dict):
+        self._summary = summary
+
+    def summary(self) -> dict:
+        return self._summary
+
+
+COMPUTE_NOTE = ("\n## Compute per shot\n\nEach entrant's decisions (breaks included), timed where the games were "
+                "played: shots decided, wall ms per shot and, in brackets, CPU ms per shot (the process's, numba's "
+                "threads included).\n\n")
+
+
+def match_markdown(doc: dict) -> str:
+    """The Markdown of one ``<game>_<noise>.json`` (a match's, the ladder's or a league's tournament): every
+    pairing and the ratings (``studies.match_report.markdown``), and the compute per shot when the standard
+    protocol timed it (the championship's levels report theirs in ``championship.md``)."""
+    md = match_report.markdown(f"{doc['game']} matches, noise `{doc['noise']}`", doc["command"],
+                               [_Pairing(p) for p in doc["pairings"]], doc["ratings"], doc["seconds"])
+    if "compute" in doc and doc.get("protocol") != "championship":
+        md += COMPUTE_NOTE + compute_table([dict(noise=doc["noise"], compute=doc["compute"])]) + "\n"
+    return md
+
+
+def championship_markdown(doc: dict) -> str:
+    """``championship.md`` from ``championship.json``: the compute per shot at every level, then each level's
+    tournament (its title one level down)."""
+    parts = [f"# The championship protocol: {CHAMPIONSHIP_GAME}, {doc['racks']} racks per pairing and level\n",
+             f"`{doc['command']}`\n",
+             "Compute per shot: milliseconds of wall clock in each entrant's decisions (its previews included), over the "
+             "shots it played, and in brackets the process's CPU time in them (every thread's), which a loaded "
+             "machine does not inflate; the tables of a pairing are decided in batches, so this is the batched "
+             "cost.\n",
+             compute_table(doc["levels"]) + "\n"]
+    for lv in doc["levels"]:
+        parts.append("#" + match_markdown(dict(lv, game=CHAMPIONSHIP_GAME, command=doc["command"],
+                                               protocol="championship")))
+    return "\n".join(parts)
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--game", choices=list(GAMES), default=None, help="default nine_ball (championship: eight_ball)")
@@ -171,10 +214,8 @@ def main(argv=None) -> int:
     doc = dict(command=command, game=args.game, **config, noise=args.noise, racks=args.racks, seed=args.seed, seconds=seconds,
                pairings=[r.summary() for r in results], ratings=table, compute=compute)
     stem = args.out / f"{args.game}_{args.noise}"
-    md = match_report.write(stem, doc, results, table)
-    md += ("\n## Compute per shot\n\nEach entrant's decisions (breaks included), timed where the games were played: "
-           "shots decided, wall ms per shot and, in brackets, CPU ms per shot (the process's, numba's threads "
-           "included).\n\n" + compute_table([dict(noise=args.noise, compute=compute)]) + "\n")
+    match_report.write(stem, doc, results, table)
+    md = match_markdown(json.loads(stem.with_suffix(".json").read_text()))  # what scripts/regenerate.py renders
     stem.with_suffix(".md").write_text(md)
     print(md)
     return 0
@@ -187,25 +228,17 @@ def run_championship(args, command: str) -> int:
     levels = championship(args.policies, args.racks, args.seed, max_shots=args.max_shots, bot_factory=bot_factory,
                           rack=args.rack,
                           progress=lambda lv: print(f"noise {lv} ...", file=sys.stderr, flush=True))
-    parts = [f"# The championship protocol: {CHAMPIONSHIP_GAME}, {args.racks} racks per pairing and level\n",
-             f"`{command}`\n",
-             "Compute per shot: milliseconds of wall clock in each entrant's decisions (its previews included), over the "
-             "shots it played, and in brackets the process's CPU time in them (every thread's), which a loaded "
-             "machine does not inflate; the tables of a pairing are decided in batches, so this is the batched "
-             "cost.\n",
-             compute_table(levels) + "\n"]
     for lv in levels:
         doc = dict(command=command, protocol="championship", game=CHAMPIONSHIP_GAME, noise=lv["noise"], rack=args.rack,
                    racks=args.racks, seed=args.seed, seconds=lv["seconds"],
                    pairings=[r.summary() for r in lv["results"]], ratings=lv["ratings"], compute=lv["compute"])
-        md = match_report.write(args.out / f"{CHAMPIONSHIP_GAME}_{lv['noise']}", doc, lv["results"], lv["ratings"])
-        parts.append("#" + md)  # its title one level down
-    text = "\n".join(parts)
+        match_report.write(args.out / f"{CHAMPIONSHIP_GAME}_{lv['noise']}", doc, lv["results"], lv["ratings"])
+    doc = dict(command=command, racks=args.racks, seed=args.seed,
+               levels=[dict(noise=lv["noise"], compute=lv["compute"], ratings=lv["ratings"], seconds=lv["seconds"],
+                            pairings=[r.summary() for r in lv["results"]]) for lv in levels])
+    (args.out / "championship.json").write_text(json.dumps(doc, indent=2) + "\n")
+    text = championship_markdown(json.loads(json.dumps(doc)))  # as scripts/regenerate.py renders it from the JSON
     (args.out / "championship.md").write_text(text)
-    (args.out / "championship.json").write_text(json.dumps(dict(
-        command=command, racks=args.racks, seed=args.seed,
-        levels=[dict(noise=lv["noise"], compute=lv["compute"], ratings=lv["ratings"], seconds=lv["seconds"],
-                     pairings=[r.summary() for r in lv["results"]]) for lv in levels]), indent=2) + "\n")
     print(text)
     return 0
 
