@@ -179,6 +179,62 @@ def test_a_bank_into_a_pocket_is_warned_of(server, browser):
     assert text(browser, "pl-warn") == ""
 
 
+def object_first_touch(server, gid: str, phi: float, ball: int) -> tuple[int, int, np.ndarray]:
+    """After the cue ball's first contact (with ``ball``), the simulator's first event of ``ball`` that touches
+    anything (as ``first_touch``): (its kind, the other ball / segment / tip / pocket, ``ball``'s centre)."""
+    core = server.app.state.store.get(gid).core
+    state = BallState.from_positions(core.state.pos[0].copy(), pocket=core.state.pocket[:1].copy())
+    struck = strike_velocity(state, phi, SPEED, 0.0, 0.0, params=core.params)
+    log = core.equipment.simulate(struck, record=True).events[0]
+    hit = False
+    for k, kind, (i, j) in zip(range(len(log)), log.kind, log.balls):
+        if kind not in KIND.values():
+            continue
+        if not hit:
+            assert kind == C.EV_BALL_BALL and {i, j} == {0, ball}, (C.EVENT_NAMES[kind], i, j)
+            hit = True
+        elif i == ball or kind == C.EV_BALL_BALL and j == ball:
+            s = 0 if i == ball else 1
+            return int(kind), int(i if j == ball and kind == C.EV_BALL_BALL else j), log.states[k, s, :2].copy()
+    raise AssertionError(f"ball {ball} touched nothing after the cue ball")
+
+
+def test_a_bank_of_the_object_ball_is_drawn(server, browser):
+    """A cross-side bank: the 1 sent full ball (the aim at its centre) to the right cushion at the point whose
+    mirrored leg runs into the left side pocket. The 1's line ends on the right cushion where the simulator's 1
+    first meets it (within 0.25 mm: a full hit throws nothing), and its bank leg ends in the left side pocket's
+    capture circle (the pocket ringed; the leg is geometry: the real rebound is bent by the cushion and the ball's
+    roll). Then a bank off the foot cushion whose mirrored leg meets the 9: the leg ends with the 1's centre 2R from
+    the 9's, and the 1's straight line is not blocked."""
+    o = np.array([0.635, 0.8])
+    gid, person, st = arranged(server, browser, {0: (0.3, 0.7), 1: tuple(o), 9: (0.2, 2.2)})
+    L, pockets = st["limits"], st["pockets"]
+    W, R = L["width"], L["R"]
+    side = min(range(len(pockets)), key=lambda k: math.dist(pockets[k][:2], (0.0, L["length"] / 2)))
+    q = pockets[side]
+    image = np.array([2 * (W - R) - q[0], q[1]])  # the left side pocket's mirror image in the right cushion's line
+    u = (image - o) / np.linalg.norm(image - o)
+    gid, person, st = arranged(server, browser, {0: tuple(o - 0.4 * u), 1: tuple(o), 9: (0.2, 2.2)})
+    pv = preview(browser, towards(st["pos"][0], st["pos"][1]))
+    assert pv["ball"] == 1 and pv["objectBlockedBy"] is None and pv["objectPocket"] is None, pv
+    assert len(pv["objectPath"]) == 2 and pv["objectBankPocket"] == side and pv["objectBankBall"] is None, pv
+    assert abs(pv["objectTo"][0] - (W - R)) < CONTACT_TOL_M, pv["objectTo"]  # on the right cushion's line
+    assert abs(math.dist(pv["objectPath"][1], q[:2]) - q[2]) < CONTACT_TOL_M, pv["objectPath"]
+    kind, where, sim = object_first_touch(server, gid, pv["phi"], 1)
+    assert kind == C.EV_CUSHION, C.EVENT_NAMES[kind]
+    assert math.dist(pv["objectTo"], sim) < POINT_TOL_M, (pv["objectTo"], sim)
+
+    o, u = np.array([0.4, 1.6]), np.array([1.0, 3.0]) / math.sqrt(10.0)
+    foot = o + (L["length"] - R - o[1]) / u[1] * u  # where the 1 meets the foot cushion's line
+    nine = foot + 0.5 * np.array([u[0], -u[1]])     # on the mirrored leg, 0.5 m from the cushion
+    gid, person, st = arranged(server, browser, {0: tuple(o - 0.4 * u), 1: tuple(o), 9: tuple(nine)})
+    pv = preview(browser, towards(st["pos"][0], st["pos"][1]))
+    assert pv["ball"] == 1 and pv["objectBlockedBy"] is None and pv["objectBankBall"] == 9, pv
+    assert math.dist(pv["objectTo"], foot) < CONTACT_TOL_M, (pv["objectTo"], foot)
+    assert abs(math.dist(pv["objectPath"][1], nine) - 2 * R) < CONTACT_TOL_M, pv["objectPath"]
+    assert pv["scratchPocket"] is None and text(browser, "pl-warn") == "", pv
+
+
 # --- the last shot's trails -----------------------------------------------------------------------------------
 
 def trails(browser) -> int:
