@@ -18,6 +18,8 @@ import argparse
 import sys
 from pathlib import Path
 
+import yaml
+
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
@@ -34,6 +36,8 @@ def main(argv=None) -> int:
     ap.add_argument("--resume", action="store_true", help="continue the run in --run from its exit.json")
     ap.add_argument("--rounds", type=int, default=None, help="stop when this many rounds are done (default: all)")
     ap.add_argument("--ship", action="store_true", help="only copy the finished run's networks into the package")
+    ap.add_argument("--play", default=None, metavar="YAML",
+                    help="with --ship: changes to the config's play budget, e.g. '{k: 48, first: 16}'")
     ap.add_argument("--quick", action="store_true", help="a smoke run: 2 tiny rounds and the distillation")
     ap.add_argument("--address", default=None, help="play the games on Ray: local, auto or HOST:PORT")
     ap.add_argument("--workers", type=int, default=None,
@@ -41,7 +45,8 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     from agents.exit.loop import run_exit, ship
     if args.ship:
-        for stem in ship(args.run, log=lambda s: print(s, flush=True)):
+        play = yaml.safe_load(args.play) if args.play else None
+        for stem in ship(args.run, log=lambda s: print(s, flush=True), play=play):
             print(f"shipped {stem}.npz / .json")
         return 0
     cfg = None

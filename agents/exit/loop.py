@@ -11,7 +11,8 @@ Round r (``run_round``):
 
 After the last round, **distillation**: the student (``distill`` sizes) learns the last ``distill_window`` rounds'
 searches with ``distill_hard`` of each target moved to the shot the search played, from the last snapshot's
-weights where the sizes match, and is frozen as ``<run>/snapshots/fast``. ``ship`` copies the last snapshot and
+weights where the sizes match, and is frozen as ``<run>/snapshots/fast``; a run resumed past the config's rounds
+(``--rounds``) distils again from its newest rounds. ``ship`` copies the last snapshot and
 the student into the package as ``exit-search`` and ``exit-fast`` of the game, with the break strike a
 break search found for the game (``bots.planner.breaks``) and the training's figures in their cards.
 
@@ -114,10 +115,10 @@ def distill(run: Path, cfg: ExItConfig, state: dict, log=print, stop_after=None)
     teacher = PN.load(run / "snapshots" / _snapshot(run, state))[0]
     log(f"distilling: {data.n} decisions of the last {cfg.distill_window} rounds, {cfg.distill_hard} of each target "
         "on the played shot")
-    net, rep = fit(data, cfg.distill, targets(data, cfg.value_mix, cfg.distill_hard), (cfg.seed, DISTILL_KEY),
-                   run / "fit" / "distill", init=teacher, log=log, stop_after=stop_after)
+    net, rep = fit(data, cfg.distill, targets(data, cfg.value_mix, cfg.distill_hard), (cfg.seed, DISTILL_KEY + last),
+                   run / "fit" / f"distill_{last:03d}", init=teacher, log=log, stop_after=stop_after)
     net.save(run / "snapshots" / "fast", dict(game=cfg.game, version=f"exit-fast-round{last}", round=last, fit=rep))
-    state["fast"] = dict(stem="fast", sha256=weights_hash(run / "snapshots" / "fast"))
+    state["fast"] = dict(stem="fast", round=last, sha256=weights_hash(run / "snapshots" / "fast"))
     state["seconds"] += time.perf_counter() - t0
     save_state(run, state)
     log(f"distilled in {time.perf_counter() - t0:.0f} s: snapshots/fast")
@@ -150,7 +151,7 @@ def run_exit(run, cfg: ExItConfig | None = None, resume: bool = False, rounds: i
     while state["round"] < target:
         r = state["round"]
         run_round(run, cfg, state, address, log, stop.get("epoch") if stop.get("round") == r else None, workers)
-    if state["round"] >= cfg.rounds and state.get("fast") is None:
+    if state["round"] >= cfg.rounds and (state.get("fast") or {}).get("round") != state["round"]:
         distill(run, cfg, state, log, stop.get("distill"))
     return state
 
@@ -165,9 +166,10 @@ def evaluate(run: Path, cfg: ExItConfig, stem: str, address=None, workers: int |
     return dict(games=int(len(w)), score=float((w == 0).mean() + 0.5 * (w < 0).mean()), seed=cfg.eval_seed)
 
 
-def ship(run, root=CARD_DIR, log=print) -> list:
+def ship(run, root=CARD_DIR, log=print, play: dict | None = None) -> list:
     """Copy the run's last snapshot and its student into ``<root>/<game>/`` as ``exit-search`` and
-    ``exit-fast`` (module docstring); returns the stems written."""
+    ``exit-fast`` (module docstring); returns the stems written. ``play``: changes to the config's ``play`` budget,
+    the search's at decision time (its card's)."""
     run = Path(run)
     state = load_state(run)
     if state.get("fast") is None:
@@ -183,7 +185,8 @@ def ship(run, root=CARD_DIR, log=print) -> list:
     for name, stem in ((SEARCH, _snapshot(run, state)), (FAST, "fast")):
         net, doc = PN.load(run / "snapshots" / stem)
         card = dict(name=name, game=cfg.game, version=doc.get("version"), source=stem, training=training,
-                    fit=doc.get("fit"), budget=state["config"]["play"] if name == SEARCH else None,
+                    fit=doc.get("fit"),
+                    budget=dict(state["config"]["play"], **(play or {})) if name == SEARCH else None,
                     **{"break": [float(v) for v in strike]})
         net.save(Path(root) / cfg.game / name, card)
         out.append(Path(root) / cfg.game / name)

@@ -44,7 +44,8 @@ def test_quick_command_runs_rounds_and_the_distillation(tmp_path):
 
 def test_a_resumed_run_ends_with_the_networks_of_an_uninterrupted_one(tmp_path):
     """Stopped in round 1's fit after its first epoch, then in the distillation, and resumed each time: the
-    same snapshots (weight hashes), the same student and the same decision count as a run that went through."""
+    same snapshots (weight hashes), the same student and the same decision count as a run that went through; a
+    run resumed past its config's rounds distils its student again."""
     cfg = quick()
     whole = run_exit(tmp_path / "whole", cfg, log=QUIET)
     with pytest.raises(Stop):
@@ -57,6 +58,8 @@ def test_a_resumed_run_ends_with_the_networks_of_an_uninterrupted_one(tmp_path):
     assert parts["fast"]["sha256"] == whole["fast"]["sha256"] and parts["decisions"] == whole["decisions"]
     with pytest.raises(FileExistsError, match="--resume"):
         run_exit(tmp_path / "whole", cfg, log=QUIET)
+    more = run_exit(tmp_path / "whole", resume=True, rounds=3, log=QUIET)     # past the config: distilled again
+    assert more["round"] == 3 and more["fast"]["round"] == 3 and more["fast"]["sha256"] != whole["fast"]["sha256"]
 
 
 def test_the_numpy_network_computes_the_torch_networks_function():
