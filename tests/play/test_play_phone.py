@@ -74,6 +74,46 @@ def test_the_table_and_shoot_fit_the_phone_screen(server, browser, phone, metric
     assert touch[0] == "none" and all(t in ("auto", "manipulation", "pan-y") for t in touch[1:]), touch
 
 
+IN_VIEW = ("const b = document.getElementById('table').getBoundingClientRect();"
+           "return [b.top, b.bottom, b.height, innerHeight];")
+
+
+def test_each_shot_plays_in_view(server, browser, phone):
+    """On 390 x 844 the page scrolled down to the rulings, the table off the screen: a shot played from there
+    (Shoot, by the keyboard's click) brings the table back into view as it starts, and so does the bot's reply when
+    it starts to play after the page was scrolled down again while the person's shot played (at most a fifth of
+    the table off the screen); while a shot plays, a finger on the table scrolls (touch-action pan-y)."""
+    phone(PORTRAIT)
+    _game(server, browser, seed=15, opponent="ghost")
+    person = PagePerson(browser, touch=True)
+    st = person.wait_turn()
+    browser.execute_script("window.billiardsPlay.opts.speed = 1;")
+    person.set_speed(st["limits"]["speed_min"], st["limits"])  # a soft break: it pots nothing, the bot replies
+
+    def down():
+        browser.execute_script("window.scrollTo(0, document.documentElement.scrollHeight);")
+        top, bottom, height, inner = browser.execute_script(IN_VIEW)
+        assert top < -0.2 * height, f"the page does not scroll the table off the screen: top {top}"
+
+    def seen(k):  # once entry k plays: the table in view
+        end = time.monotonic() + 30
+        while not browser.execute_script("const c = window.billiardsReplay.current(); return c.shot >= arguments[0]"
+                                          " && c.playing;", k):
+            assert time.monotonic() < end, f"entry {k} did not start to play"
+            time.sleep(0.01)
+        top, bottom, height, inner = browser.execute_script(IN_VIEW)
+        assert top >= -0.2 * height - 1 and bottom <= inner + 0.2 * height + 1, (k, top, bottom, height, inner)
+        assert browser.execute_script("return document.getElementById('table').style.touchAction;") == "pan-y"
+
+    down()
+    browser.execute_script("document.getElementById('pl-shoot').click();")
+    seen(1)
+    down()
+    seen(2)
+    assert server("GET", f"/api/games/{browser.execute_script('return window.billiardsPlay.state().id;')}")[1][
+        "shots"][1]["info"]["game"]["shooter"] == 1, "entry 2 is the bot's"
+
+
 def _status(browser):
     return browser.execute_script("return document.getElementById('pl-status').textContent;")
 
