@@ -5,9 +5,11 @@ A game action is 8 numbers in [-1, 1] (see ``envs.games.spaces``): the aim
 relative to the table's aim origin (a0, in units of pi), the cue's draw
 (a1, over the env's draw range), the tip's side and height offsets (a2, a3,
 over the miscue limit), the cue ball's placement with ball in hand (a4, a5,
-over the free span of the bed), a declaration (a6 > 0; in snooker a6 >
-``PASS_LEVEL`` puts the offender back in and 0 < a6 <= ``PASS_LEVEL`` has
-the balls replaced after a miss), the called
+over the free span of the bed), a declaration (a6 > 0; in the games whose
+rules replace balls on a declaration, ``Rules.replaces``, 0 < a6 <=
+``PASS_LEVEL`` has the balls replaced: snooker's after a foul and a miss,
+three-cushion's when the cue ball touches a ball; a6 > ``PASS_LEVEL``
+there is a pass, snooker's offender put back in), the called
 pocket (a7, six equal bins) and, in 10-ball only, the called ball (a8,
 ``n_balls`` equal bins; 0 a safety). The aim origin is the direction from the cue
 ball to the table's nominal target (the lowest legal ball; on the break, the
@@ -33,11 +35,12 @@ from .plan import ShotPlan
 
 ACTION_DIM = 8
 N_POCKETS = 6
-# Snooker's a6 carries two declarations: above this a pass (the offender put back in, as a6 > 0 means in
-# the other games, so a bot's encoded pass, a6 = 1, keeps its meaning), in (0, this] the balls replaced after
-# a miss; the midpoint of (0, 1] leaves each an equal share of the positive half.
+# Where the rules replace balls on a declaration (snooker, three-cushion) a6 carries two: above this a pass
+# (snooker's offender put back in, as a6 > 0 means in the other games, so a bot's encoded pass, a6 = 1, keeps
+# its meaning), in (0, this] the balls replaced; the midpoint of (0, 1] leaves each an equal share of the
+# positive half.
 PASS_LEVEL = 0.5
-REPLACE_ACTION = 0.25  # the a6 a snooker replace declaration is encoded as (the middle of its share; float32-exact)
+REPLACE_ACTION = 0.25  # the a6 a replace declaration is encoded as (the middle of its share; float32-exact)
 
 # The shot mapping's per-table passes, fused (numpy would take one pass, and a temporary, per operation).
 _jit = numba.njit(cache=True, nogil=True)
@@ -173,7 +176,7 @@ class ActionCodec:
     n_balls: int
     cue: np.ndarray
     is_break: np.ndarray
-    replaces: bool = False  # snooker: a6 carries a replace declaration below PASS_LEVEL
+    replaces: bool = False  # a6 carries a replace declaration below PASS_LEVEL (snooker, three-cushion)
 
     @property
     def n(self) -> int:
@@ -247,8 +250,8 @@ class ActionCodec:
         nearest legal one first, so the aim stays absolute), ``declare`` [n]
         (push-out or pass), the called ``pocket`` [n] and, in 10-ball, the
         called ``ball`` [n] (0 a safety; -1 or None: the lowest legal ball)
-        and, in snooker, ``replace`` [n] (the balls replaced after a miss;
-        it wins over ``declare``, as ``play_turn`` plays them)."""
+        and, in snooker and three-cushion, ``replace`` [n] (the balls
+        replaced; it wins over ``declare``, as ``play_turn`` plays them)."""
         n = self.n
         out = np.zeros((n, self.action_dim))
         out[:, 4:6] = self.placement_to_actions(self.cue)
@@ -275,8 +278,13 @@ class ActionCodec:
 
     def encode_plan(self, plan) -> np.ndarray:
         """The actions [n, 8] of a bot's ``ShotPlan`` (checked first), rounded
-        through float32, the action space's dtype, as a policy's actions are."""
+        through float32, the action space's dtype, as a policy's actions are.
+        A plan that strikes another ball than the cue ball (``ShotPlan.struck``)
+        has no action: a ValueError."""
         plan.check(self.n, self.params, self.n_balls)
+        if (plan.struck != 0).any():
+            raise ValueError("ShotPlan.struck: the env's actions always strike the shooter's own cue ball; a shot "
+                             "with another ball is played through contract.turn.play_turn (a preview), not encoded")
         a = self.encode(plan.shots, plan.placement, plan.declare, plan.pocket, plan.ball, plan.replace)
         return a.astype(np.float32).astype(np.float64)
 

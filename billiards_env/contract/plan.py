@@ -20,10 +20,16 @@ Every field is an array over the view's rows (n):
 ``ball``       10-ball: the called ball (1..10; 0 calls a safety; -1, the
                default: the nominal target, the lowest legal one), used
                where the view says a call is needed; ignored elsewhere
-``replace``    bool, snooker: after the opponent's foul and a miss
-               (``may_replace``), have the balls replaced where they were
-               before the foul and the offender play again (no shot is
-               played; it takes precedence over ``declare``); ignored elsewhere
+``replace``    bool, where the constraints allow it (``may_replace``), have
+               the balls replaced instead of a shot (it takes precedence over
+               ``declare``): snooker, after the opponent's foul and a miss,
+               where they were before the foul, the offender to play again;
+               three-cushion, with the cue ball touching a ball, on the
+               starting position, the shooter to play on; ignored elsewhere
+``struck``     the ball the cue strikes (0, the default: the shooter's own
+               cue ball). Three-cushion only: the opponent's ball (1) or the
+               red (2) is a foul there (the wrong cue ball). The env's
+               actions never strike another ball; a bot never plans it
 =============  ===========================================================
 """
 from __future__ import annotations
@@ -46,19 +52,23 @@ class ShotPlan:
     pocket: np.ndarray
     ball: np.ndarray | None = None  # filled with -1 (none) when not given
     replace: np.ndarray | None = None  # filled with False when not given
+    struck: np.ndarray | None = None   # filled with 0 (the shooter's own cue ball) when not given
 
     def __post_init__(self):
         if self.ball is None:
             self.ball = np.full(np.shape(self.phi)[:1] or (1,), -1, dtype=np.int64)
         if self.replace is None:
             self.replace = np.zeros(np.shape(self.phi)[:1] or (1,), dtype=bool)
+        if self.struck is None:
+            self.struck = np.zeros(np.shape(self.phi)[:1] or (1,), dtype=np.int64)
 
     @classmethod
-    def of(cls, shots: Shots, placement=None, declare=None, pocket=None, ball=None, replace=None) -> "ShotPlan":
+    def of(cls, shots: Shots, placement=None, declare=None, pocket=None, ball=None, replace=None,
+           struck=None) -> "ShotPlan":
         """A plan from ``Shots`` (arrays or scalars broadcast to the batch)
-        and optional placements, declarations, called pockets, called balls
-        and (snooker) replace declarations."""
-        given = [len(np.atleast_1d(v)) for v in (placement, declare, pocket, ball, replace) if v is not None]
+        and optional placements, declarations, called pockets, called balls,
+        replace declarations and (three-cushion) the ball struck."""
+        given = [len(np.atleast_1d(v)) for v in (placement, declare, pocket, ball, replace, struck) if v is not None]
         n = max([np.size(v) for v in (shots.phi, shots.speed, shots.a, shots.b)] + given)
         vec = [np.broadcast_to(np.asarray(v, dtype=np.float64), (n,)).copy() for v in shots]
         place = np.full((n, 2), np.nan) if placement is None else np.asarray(placement, dtype=np.float64)
@@ -66,7 +76,8 @@ class ShotPlan:
         pk = np.full(n, -1, dtype=np.int64) if pocket is None else np.asarray(pocket, dtype=np.int64)
         bl = np.full(n, -1, dtype=np.int64) if ball is None else np.asarray(ball, dtype=np.int64)
         rp = np.zeros(n, dtype=bool) if replace is None else np.asarray(replace, dtype=bool)
-        return cls(*vec, place, decl, pk, bl, rp)
+        st = np.zeros(n, dtype=np.int64) if struck is None else np.asarray(struck, dtype=np.int64)
+        return cls(*vec, place, decl, pk, bl, rp, st)
 
     @property
     def n(self) -> int:
@@ -83,8 +94,9 @@ class ShotPlan:
         """Raise a ValueError naming the first problem: a field of the wrong
         shape, a NaN or infinite shot, a speed out of range, offsets outside
         the miscue disc, a bad pocket index, a called ball outside -1 ..
-        ``n_balls - 1`` (when given)."""
-        for f in ("phi", "speed", "a", "b", "declare", "pocket", "ball", "replace"):
+        ``n_balls - 1`` or a struck ball outside 0 .. ``n_balls - 1`` (when
+        given)."""
+        for f in ("phi", "speed", "a", "b", "declare", "pocket", "ball", "replace", "struck"):
             if np.shape(getattr(self, f)) != (n,):
                 raise ValueError(f"ShotPlan.{f} must have shape ({n},), got {np.shape(getattr(self, f))}")
         if np.shape(self.placement) != (n, 2):
@@ -97,6 +109,9 @@ class ShotPlan:
         if n_balls is not None and ((self.ball < -1) | (self.ball >= n_balls)).any():
             raise ValueError(f"ShotPlan.ball must be -1 (none), 0 (a safety) or a ball 1..{n_balls - 1}, "
                              f"got {self.ball}")
+        if n_balls is not None and ((self.struck < 0) | (self.struck >= n_balls)).any():
+            raise ValueError(f"ShotPlan.struck must be a ball 0..{n_balls - 1} (0: the shooter's cue ball), "
+                             f"got {self.struck}")
         p = self.placement
         if not np.isfinite(p).all() and not (np.isfinite(p) | np.isnan(p[:, :1])).all():
             raise ValueError("ShotPlan.placement rows must be finite (or NaN in both coordinates)")

@@ -10,9 +10,10 @@ game).
 A turn, for each of ``n`` tables (a ``ShotPlan`` row, absolute aim):
 
 1. a pass (``declare`` where the constraints allow a pass, ``may_pass``)
-   plays no shot; nor does snooker's replace (``replace`` where the
-   constraints allow it, ``may_replace``): the balls go back where the
-   miss was played from (``GameState.miss_pos``) after the ruling;
+   plays no shot; nor does a replace (``replace`` where the constraints
+   allow it, ``may_replace``): after the ruling the balls go back where
+   snooker's miss was played from (``GameState.miss_pos``), or, in
+   three-cushion, to the starting position (``ShotRecord.restart``);
 2. with ball in hand the cue ball goes to the plan's placement made legal
    (the nearest legal spot under the constraint: anywhere, behind the head
    string, in the D); a placement is ignored without ball in hand (the cue
@@ -25,7 +26,10 @@ A turn, for each of ``n`` tables (a ``ShotPlan`` row, absolute aim):
    tables' streams, a preview from its ``rng`` or from the draws it is
    handed), in ``physics.noise.perturb``'s order;
 5. the strike and the simulation to rest with the game's equipment
-   (``Equipment``: table, physics, effects, models, solver);
+   (``Equipment``: table, physics, effects, models, solver); the cue
+   strikes the shooter's cue ball, or where the plan names another ball
+   (``ShotPlan.struck``, games where each player has a cue ball:
+   three-cushion's wrong cue ball) that ball, with the same arithmetic;
 6. the rules' ruling from the game state, then the balls the ruling puts
    back (respotted object balls, snooker's colours, the re-placed carom
    balls), and in games where each player has a cue ball, the incoming
@@ -45,7 +49,7 @@ from ..physics.strike import apply_strike
 from ..rules import records as R
 from ..rules.placement import d_of, legal_spots
 from ..rules.records import Constraints, GameState, ShotInput, ShotRecord
-from ..rules.respot import hand_over, respot, respot_frozen, restart_position
+from ..rules.respot import hand_over, respot, restart_position
 from ..rules.snooker import respot_colours
 from .plan import ShotPlan
 
@@ -131,6 +135,11 @@ def play_turn(rules, eq: Equipment, game: GameState, c: Constraints, pos: np.nda
     standard normal draws (times each table's noise factor) of the shooting
     rows ``rows``. ``record``: keep each shot's event log (``Turn.events``)."""
     n, B = plan.n, pos.shape[1]
+    if (plan.struck != 0).any() and not rules.own_cue_balls:
+        raise ValueError(f"{rules.name}: ShotPlan.struck names another ball than the cue ball; only games where each "
+                         "player has a cue ball (three-cushion) rule a shot with the wrong ball")
+    if ((plan.struck < 0) | (plan.struck >= B)).any():
+        raise ValueError(f"ShotPlan.struck must be a ball 0..{B - 1}, got {plan.struck}")
     replaced = c.may_replace & plan.replace
     passed = c.may_pass & plan.declare & ~replaced
     push = c.push_out_allowed & plan.declare
@@ -167,6 +176,7 @@ def play_turn(rules, eq: Equipment, game: GameState, c: Constraints, pos: np.nda
             shots = perturb(shots, draw(shoot), noise, eq.params)
         struck = start.take(shoot)  # a copy, struck in place
         apply_strike(struck, *(np.ascontiguousarray(v, dtype=np.float64) for v in shots), eq.params.R)
+        _strike_other(struck, plan.struck[shoot])
         t0 = time.perf_counter()
         res = eq.simulate(struck, K, record)
         sim_wall = time.perf_counter() - t0
@@ -181,26 +191,37 @@ def play_turn(rules, eq: Equipment, game: GameState, c: Constraints, pos: np.nda
     # the shot as it ended (a copy: the balls the ruling puts back below stay pocketed in ``shot.pocketed``)
     shot = ShotInput(start.pocket, pocket_after.copy(), first, rails, object_rails, push, called, passed, ball,
                      contacts, n_contacts, pos_before=start.pos if rules.reads_position else None,
-                     replaced=replaced)
+                     replaced=replaced, struck=np.where(replaced | passed, 0, plan.struck))
     rec, after = rules.judge(game, shot)
     _put_back(rules, eq, pos_after, pocket_after, rec)
-    if rec.replaced.any():  # snooker: the balls where the miss was played from
+    if game.miss_pos is not None and rec.replaced.any():  # snooker: the balls where the miss was played from
         pos_after[rec.replaced], pocket_after[rec.replaced] = game.miss_pos[rec.replaced], game.miss_pocket[rec.replaced]
     return Turn(rec, after, pos_after, pocket_after, shot, start.pos[:, 0].copy(), moved, n_events, sim_time,
                 start, shoot, events, sim_wall, rules)
 
 
+def _strike_other(struck: BallState, ball: np.ndarray) -> None:
+    """Where ``ball`` [k] names another ball than the cue ball (``ShotPlan.struck``),
+    the strike ``apply_strike`` gave the cue ball goes to that ball instead, in
+    place (the same velocity and spin: the cue does not know which ball it hits)."""
+    r = np.nonzero(ball != 0)[0]
+    if len(r):
+        j = ball[r]
+        struck.vel[r, j], struck.omega[r, j] = struck.vel[r, 0], struck.omega[r, 0]
+        struck.vel[r, 0], struck.omega[r, 0] = 0.0, 0.0
+
+
 def _put_back(rules, eq: Equipment, pos: np.ndarray, pocket: np.ndarray, rec: ShotRecord) -> None:
     """The balls the ruling puts back, in place: respotted balls (snooker's
     colours on their spots), and in the games where each player has a cue
-    ball, the incoming player's ball to slot 0, the balls back at the
+    ball, the incoming player's ball to slot 0 and the balls back at the
     starting position where the ruling restarts (three-cushion's last
-    inning with equal innings) and a frozen cue ball's table re-placed."""
+    inning with equal innings, and balls in contact the shooter had
+    replaced)."""
     t = eq.table
     (respot_colours if t.marks is not None else respot)(pos, pocket, rec.respot, t, eq.params.R, eq.pockets)
     if rules.own_cue_balls:
         hand_over(pos, rec.turn_over & ~rec.game_over)
-        if rec.restart is not None:  # three-cushion's equal-innings last inning: from the starting position
+        if rec.restart is not None:  # three-cushion: from the starting position
             restart_position(pos, rec.restart, t, eq.params.R)
-        respot_frozen(pos, t, eq.params.R)
 

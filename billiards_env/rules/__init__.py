@@ -7,7 +7,7 @@ game state (``GameState``), and tells the next shooter what they may do
 """
 from .common import BREAK_RAIL_BALLS, Rules, lowest_on_table
 from .eight_ball import EightBallRules
-from .games import GAMES, GameSpec, GameWords, get_game, register_game
+from .games import DEFAULT_GAME, GAMES, GameSpec, GameWords, StudyPresets, bot_games, get_game, register_game
 from .nine_ball import NineBallRules
 from .placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP
 from .records import (CALL_NONE, CALL_SAFETY, END_NAMES, FOUL_NAMES, GROUP_OPEN, GROUP_SOLIDS, GROUP_STRIPES,
@@ -39,5 +39,6 @@ __all__ = ["BREAK_RAIL_BALLS", "Rules", "lowest_on_table", "EightBallRules", "Ni
            "SnookerRules",
            "CALL_NONE", "CALL_SAFETY", "PHASE_OPTION", "END_NAMES",
            "FOUL_NAMES", "IN_HAND_ANYWHERE", "IN_HAND_KITCHEN", "IN_HAND_NONE", "Constraints", "GameState",
-           "ShotInput", "ShotRecord", "GAMES", "GameSpec", "GameWords", "get_game", "register_game", "get_rules", "GROUP_OPEN", "GROUP_SOLIDS", "GROUP_STRIPES",
+           "ShotInput", "ShotRecord", "DEFAULT_GAME", "GAMES", "GameSpec", "GameWords", "StudyPresets", "get_game",
+           "register_game", "bot_games", "get_rules", "GROUP_OPEN", "GROUP_SOLIDS", "GROUP_STRIPES",
            "PHASE_AFTER_BREAK", "PHASE_BREAK", "PHASE_PLAY", "PHASE_PUSHED", "FOOT_SPOT", "HEAD_STRING", "KITCHEN_GAP"]

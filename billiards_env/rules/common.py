@@ -117,6 +117,9 @@ class Rules:
     name: str = ""
     n_balls: int = 0
     calls_ball: bool = False  # the shooter calls a ball as well as a pocket (``ShotInput.called_ball``; 10-ball)
+    game_ball: int = 0  # the ball whose legal pot wins the game (9-ball's 9, 8-ball's 8, 10-ball's 10; 0: none)
+    groups: bool = False  # the players take groups (8-ball's solids and stripes: ``GameState.group``)
+    game_ball_loses: bool = False  # the game ball pocketed early or on a foul loses the game (8-ball), not respotted
     # The equipment and what the game reads beyond the pool games (three-cushion sets them): the table
     # (``Table.style``: "pool" is ``Table.pool``), the physics preset the config's "standard" stands for
     # (None: "standard" itself), the cue-ball contacts kept in order (``SimOptions.contacts``; 0 none),
@@ -129,8 +132,10 @@ class Rules:
     extra_obs: int = 0
     foul_points: bool = False  # a foul scores points for the opponent (``ShotRecord.penalty``; snooker)
     to_points: bool = False   # won on points (``GameState.score``: snooker, three-cushion), not by a last ball
-    reads_position: bool = False  # ``constraints`` and ``judge`` read where the balls lie (snooker's free ball)
-    replaces: bool = False  # a declaration may have the balls replaced after a foul and a miss (snooker; a6 in (0, 0.5])
+    reads_position: bool = False  # ``constraints`` and ``judge`` read where the balls lie (free ball, touching ball)
+    # a declaration may have the balls replaced (a6 in (0, 0.5]): snooker after a foul and a miss, three-cushion with
+    # the cue ball touching a ball
+    replaces: bool = False
     env_doc: str = ""  # what the game's envs add to the shared env docstring (its observation entries, its info)
 
     def new_game(self, breaker) -> GameState:

@@ -46,6 +46,9 @@ def _group_of(ball: np.ndarray) -> np.ndarray:
 class EightBallRules(Rules):
     name = "eight_ball"
     n_balls = 15
+    game_ball = EIGHT
+    groups = True
+    game_ball_loses = True
 
     def _on_eight(self, game: GameState, pocket: np.ndarray) -> np.ndarray:
         """The shooter's group is assigned and cleared: the shot is on the 8."""

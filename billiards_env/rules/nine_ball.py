@@ -29,7 +29,7 @@ NINE = 9
 class NineBallRules(Rules):
     name = "nine_ball"
     n_balls = 9
-    game_ball = NINE  # the ball whose legal pot wins (a rotation game on fewer balls sets its own)
+    game_ball = NINE  # a rotation game on fewer balls sets its own
 
     def __init__(self, spot_break_nine: bool = False):
         self.spot_break_nine = bool(spot_break_nine)

@@ -1,10 +1,11 @@
 """Where the rules put balls back after a shot, in place on position arrays:
 object balls respotted on the foot spot (``respot``), and in the games
 where each player has a cue ball (three-cushion) the incoming player's ball
-to slot 0 (``hand_over``), the starting position (``three_cushion_spots``,
-``restart_position``) and a frozen cue ball's table re-placed
-(``respot_frozen``). Snooker's colours go back by ``rules.snooker.respot_colours``.
-``contract.turn.play_turn`` applies them after every ruling."""
+to slot 0 (``hand_over``) and the starting position (``three_cushion_spots``,
+``restart_position``: the equal-innings last inning, and balls in contact
+the shooter had replaced). Snooker's colours go back by
+``rules.snooker.respot_colours``. ``contract.turn.play_turn`` applies them
+after every ruling."""
 from __future__ import annotations
 
 import numpy as np
@@ -43,7 +44,8 @@ RESTART_SIDE = 1.0  # the side of the head spot (+x) of the mover's ball when th
 
 def restart_position(pos: np.ndarray, rows: np.ndarray, table, R: float) -> None:
     """Three-cushion: on the tables of ``rows`` [n] (bool; ``ShotRecord.restart``:
-    the equal-innings last inning) the balls go back to the starting position,
+    the equal-innings last inning, or balls in contact the shooter had
+    replaced, UMB Art. 27) the balls go back to the starting position,
     in place, in the frame of the player to move (call it after ``hand_over``:
     slot 0 the mover's ball): the red on the foot spot, the other player's ball
     on the head spot, the mover's own ball on the head string ``OPENING_OFFSET``
@@ -53,21 +55,6 @@ def restart_position(pos: np.ndarray, rows: np.ndarray, table, R: float) -> None
     r = np.nonzero(rows)[0]
     if len(r):
         pos[r] = three_cushion_spots(table, R, np.full((len(r), 1), 0.5 + 0.5 * RESTART_SIDE))
-
-
-def respot_frozen(pos: np.ndarray, table, R: float) -> None:
-    """Three-cushion: where the cue ball of the player to move (slot 0) is
-    frozen to a ball (closer than 2R + ``FROZEN_GAP``), the balls go to the
-    opening spots, in place: the cue ball on the head spot, the red on the
-    foot spot, the opponent's ball on the centre spot (docs/rules.md: UMB
-    lets the player choose; this always respots)."""
-    from .three_cushion import FROZEN_GAP
-    gap = np.linalg.norm(pos[:, 1:] - pos[:, :1], axis=2).min(axis=1)
-    r = np.nonzero(gap < 2 * R + FROZEN_GAP)[0]
-    w, l = table.width, table.length
-    pos[r, 0] = (w / 2, HEAD_STRING * l)
-    pos[r, 1] = (w / 2, 0.5 * l)
-    pos[r, 2] = (w / 2, FOOT_SPOT * l)
 
 
 def respot(pos: np.ndarray, pocket: np.ndarray, balls: np.ndarray, table, R: float, pockets: np.ndarray) -> None:

@@ -33,6 +33,7 @@ PASS_PHASES = (PHASE_PUSHED, PHASE_OPTION)  # the shot may be handed back after 
 class TenBallRules(Rules):
     name = "ten_ball"
     n_balls = 10
+    game_ball = TEN
     calls_ball = True
 
     def judge(self, game: GameState, shot: ShotInput) -> tuple[ShotRecord, GameState]:

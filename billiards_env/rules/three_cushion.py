@@ -1,4 +1,5 @@
-"""Three-cushion (UMB, "Rules of the Game of Three-Cushion"; the
+"""Three-cushion (UMB, "Rules of the Game of Three-Cushion" and the UMB
+World Rules of Carom Billiard, 1989 edition, Art. 27 and Art. 41; the
 simplifications are in docs/rules.md).
 
 Three balls on a carom table without pockets: each player's own cue ball
@@ -19,10 +20,22 @@ slot 0, ``Rules.own_cue_balls``).
   head spot, the starting player's ball on the head string 18.2 cm beside
   it (``OPENING_OFFSET``); the cue ball must strike the red first: striking
   the opponent's ball first is a foul (``FOUL_WRONG_BALL``).
-- **Fouls** the simulator can produce: the opening shot's wrong first ball.
-  A foul scores nothing and ends the inning. (Playing the wrong cue ball,
-  jumped balls, push shots and touching balls cannot happen here; a cue
-  ball frozen to a ball is respotted by the envs: ``FROZEN_GAP``.)
+- **Balls in contact** (UMB Art. 27): a cue ball at rest touching a ball
+  (centres within 2R + ``TOUCH_TOL``, snooker's touching-ball test,
+  ``Constraints.touching``) may be played from where it lies, away from
+  that ball: played straight into it (the cue ball's first contact of any
+  kind is the touching ball) is a foul (``FOUL_PUSH``); a cushion first, or
+  the other ball first, is fair. Or the shooter declares the balls replaced
+  (``ShotInput.replaced``, allowed by ``Constraints.may_replace``): no shot
+  is played, the balls go to the starting position (``ShotRecord.restart``;
+  ``rules.respot.restart_position``) and the same shooter plays on, the
+  first shot from there like the opening shot (the red first).
+- **The wrong cue ball** (UMB Art. 41): the cue striking another ball than
+  the shooter's own cue ball (``ShotInput.struck``: the opponent's ball or
+  the red) is a foul (``FOUL_WRONG_CUE_BALL``).
+- **A foul** scores nothing (not even a point made on that shot) and ends
+  the inning. (Jumped balls, a double hit, push shots through the cue
+  ball and touching a ball by hand cannot happen here.)
 - **The game** is to ``target`` points, or ends after ``max_innings``
   innings of each player with the higher score winning (equal: a draw).
   With ``equal_innings`` the opponent of the starting player gets a last
@@ -38,17 +51,18 @@ from __future__ import annotations
 import numpy as np
 
 from ..physics import constants as PC
+from ..physics.params import PhysicsParams
 from .common import Rules, next_state
-from .records import (END_INNINGS, END_NONE, END_TARGET, FOUL_NONE, FOUL_WRONG_BALL, IN_HAND_NONE, PHASE_BREAK,
-                      PHASE_FINAL, PHASE_FINAL_OPENING, PHASE_PLAY, Constraints, GameState, ShotInput, ShotRecord)
+from .records import (END_INNINGS, END_NONE, END_TARGET, FOUL_NONE, FOUL_PUSH, FOUL_WRONG_BALL, FOUL_WRONG_CUE_BALL,
+                      IN_HAND_NONE, PHASE_BREAK, PHASE_FINAL, PHASE_FINAL_OPENING, PHASE_PLAY, Constraints, GameState,
+                      ShotInput, ShotRecord)
+from .snooker import touching  # the touching-ball test (centres within 2R + TOUCH_TOL): one for both games
 
 CUE, OPPONENT_BALL, RED = 0, 1, 2  # slots in the shooter's frame
 POINT_CUSHIONS = 3                 # cushions the cue ball needs before its contact with the second object ball
 CONTACTS_KEPT = 64                 # the cue ball's contacts the simulator keeps: a point is decided within a few dozen
 OPENING_OFFSET = 0.182             # m: the starting player's ball on the head string beside the head spot (UMB)
-# A cue ball closer than this to another ball (m) at the start of an inning counts as frozen to it (the envs
-# respot: docs/rules.md); the simulator leaves touching balls exactly 2R apart, give or take rounding.
-FROZEN_GAP = 1e-6
+CAROM_R = PhysicsParams.carom().R  # m, the carom ball's radius: the default of the touching-ball test
 TARGET = 15                        # default points to win (UMB matches: 40 or 50; shorter games train faster)
 MAX_INNINGS = 50                   # default innings limit per player
 
@@ -86,13 +100,20 @@ class ThreeCushionRules(Rules):
     own_cue_balls = True
     extra_obs = 4
     to_points = True
+    reads_position = True  # the balls in contact are read from where they lie (``touching``)
+    replaces = True        # a frozen cue ball's balls may be replaced on the starting position (a6 in (0, 0.5])
     env_doc = """
     **Three-cushion** (UMB rules, docs/rules.md) on the carom match table
     with carom balls: B = 3 balls in the shooter's frame, ball 0 the cue
     ball of the player to move (the starting player plays white, the other
     yellow), ball 1 the opponent's cue ball, ball 2 the red. The action is
-    the 8-component one above; only a0 (aim, relative to ball 1; to the red
-    on the opening shot), a1 (draw), a2 (side) and a3 (height) are used.
+    the 8-component one above; a0 (aim, relative to ball 1; to the red
+    on the opening shot), a1 (draw), a2 (side) and a3 (height) are used,
+    and a6 where the cue ball lies touching a ball (``may_replace``):
+    0 < a6 <= 0.5 has the balls replaced on the starting position (no shot;
+    the same player then plays the opening shot from there), any other a6
+    plays from where the ball lies, away from the touching ball (played
+    straight into it is a foul).
     A point (the cue ball meets both object balls and >= 3 cushions before
     the second) keeps the player at the table; the game is to ``target``
     points (``rule_options``), ends after ``max_innings`` innings each, the
@@ -105,16 +126,19 @@ class ThreeCushionRules(Rules):
     4*B + 17        1 in the equal-innings last inning
     ==============  ===========================================================
 
-    **Info** adds ``points`` (the shot's points) and ``score`` [2].
+    **Info** adds ``points`` (the shot's points), ``score`` [2] and
+    ``replaced`` (the balls were replaced on the starting position: no shot).
 """
 
-    def __init__(self, target: int = TARGET, max_innings: int = MAX_INNINGS, equal_innings: bool = False):
+    def __init__(self, target: int = TARGET, max_innings: int = MAX_INNINGS, equal_innings: bool = False,
+                 R: float = CAROM_R):
         for name, v in (("target", target), ("max_innings", max_innings)):
             if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1:
                 raise ValueError(f"three_cushion: {name} must be a positive integer, got {v!r}")
         if not isinstance(equal_innings, (bool, np.bool_)):
             raise TypeError(f"three_cushion: equal_innings must be True or False, got {equal_innings!r}")
         self.target, self.max_innings, self.equal_innings = int(target), int(max_innings), bool(equal_innings)
+        self.R = float(R)
 
     def judge(self, game: GameState, shot: ShotInput) -> tuple[ShotRecord, GameState]:
         self.check(game, shot)
@@ -123,19 +147,32 @@ class ThreeCushionRules(Rules):
                              "and n_contacts, from simulate(..., options=SimOptions(contacts=K)))")
         E = game.n
         ar, s = np.arange(E), game.shooter
+        touch = self.touching_balls(shot)
+        # balls in contact (UMB Art. 27): the shooter had them replaced on the starting position: no shot
+        replaced = np.asarray(shot.replaced, dtype=bool) & touch.any(axis=1)
+        played = ~replaced
         point, _ = point_made(shot.contacts, shot.n_contacts)
-        # an opening shot: the game's first, or the first of the equal-innings last inning (from the starting
-        # position): the red must be struck first
+        # an opening shot: the game's first, or the first from the starting position (the equal-innings last
+        # inning, balls in contact replaced): the red must be struck first
         is_break = (game.phase == PHASE_BREAK) | (game.phase == PHASE_FINAL_OPENING)
         first = np.asarray(shot.first_contact, dtype=np.int64)
         foul = np.where(is_break & (first == OPPONENT_BALL), FOUL_WRONG_BALL, FOUL_NONE).astype(np.int64)
-        scored = point & (foul == FOUL_NONE)
+        # played straight into the touching ball: the cue ball's first contact of any kind is that ball (a
+        # cushion first, or the other ball first, plays away from it)
+        kind, other = np.asarray(shot.contacts)[:, 0, 0], np.asarray(shot.contacts)[:, 0, 1]
+        into = (np.asarray(shot.n_contacts) > 0) & (kind == PC.EV_BALL_BALL)
+        into &= touch[ar, np.clip(other, 0, touch.shape[1] - 1)]
+        foul[into] = FOUL_PUSH
+        # the wrong cue ball (UMB Art. 41): the cue struck the opponent's ball or the red
+        foul[np.asarray(shot.struck) != CUE] = FOUL_WRONG_CUE_BALL
+        foul[~played] = FOUL_NONE
+        scored = point & played & (foul == FOUL_NONE)
         score = game.score.copy()
         score[ar, s] += scored
         reached = scored & (score[ar, s] >= self.target)
         starter = s == game.breaker
         final = (game.phase == PHASE_FINAL) | (game.phase == PHASE_FINAL_OPENING)
-        missed = ~scored
+        missed = played & ~scored
         # the game ends: the target reached (with equal innings, the starter's opponent first plays a last
         # inning), that last inning ended, or each player's innings limit played out
         last_inning = final & (missed | reached)
@@ -148,32 +185,45 @@ class ThreeCushionRules(Rules):
         end = np.where(win_now | last_inning, END_TARGET, np.where(limit, END_INNINGS, END_NONE))
         to_final = reached & starter & self.equal_innings & ~final
         turn_over = (missed | to_final) & ~over
-        rec = ShotRecord(legal=foul == FOUL_NONE, foul=foul, turn_over=turn_over, game_over=over,
+        rec = ShotRecord(legal=played & (foul == FOUL_NONE), foul=foul, turn_over=turn_over, game_over=over,
                          winner=winner.astype(np.int64), end=end.astype(np.int64), push_out=np.zeros(E, dtype=bool),
                          passed=np.zeros(E, dtype=bool), respot=np.zeros(np.shape(shot.pocket_before), dtype=bool),
-                         shooter=s.copy(), points=scored.astype(np.int64), restart=to_final)
-        g = next_state(game, rec, foul, np.ones(E, dtype=bool))
+                         shooter=s.copy(), points=scored.astype(np.int64), restart=to_final | replaced,
+                         replaced=replaced)
+        g = next_state(game, rec, foul, played)
         g.score = score
         g.innings[ar, 1 - s] += turn_over  # the incoming player begins an inning
-        g.phase = np.where(to_final, PHASE_FINAL_OPENING, np.where(final, PHASE_FINAL, PHASE_PLAY)).astype(np.int64)
+        g.phase = np.where(to_final | (replaced & final), PHASE_FINAL_OPENING,
+                           np.where(replaced, PHASE_BREAK, np.where(final, PHASE_FINAL, PHASE_PLAY))).astype(np.int64)
         g.ball_in_hand = np.full(E, IN_HAND_NONE, dtype=np.int64)
         return rec, g
 
-    def constraints(self, game: GameState, pocket: np.ndarray) -> Constraints:
+    def touching_balls(self, shot: ShotInput) -> np.ndarray:
+        """[E, B] the balls the cue ball touched where the shot was played from (none without positions)."""
+        on = np.asarray(shot.pocket_before) < 0
+        if shot.pos_before is None:
+            return np.zeros_like(on)
+        return touching(np.asarray(shot.pos_before), on, self.R)
+
+    def constraints(self, game: GameState, pocket: np.ndarray, pos: np.ndarray | None = None) -> Constraints:
         E, B = np.shape(pocket)
         live = ~game.over
         brk = live & ((game.phase == PHASE_BREAK) | (game.phase == PHASE_FINAL_OPENING))
         targets = np.zeros((E, B), dtype=bool)
         targets[:, RED] = live
         targets[:, OPPONENT_BALL] = live & ~brk  # the opening shot must strike the red first
+        on = np.asarray(pocket) < 0
+        touch = (np.zeros_like(on) if pos is None else touching(np.asarray(pos), on, self.R)) & live[:, None]
         no = np.zeros(E, dtype=bool)
         return Constraints(shooter=game.shooter.copy(), ball_in_hand=np.full(E, IN_HAND_NONE, dtype=np.int64),
                            targets=targets, push_out_allowed=no, may_pass=no.copy(), call_needed=no.copy(),
-                           is_break=brk, over=game.over.copy())
+                           is_break=brk, over=game.over.copy(), may_replace=touch.any(axis=1), touching=touch)
 
-    def observe_extra(self, game: GameState) -> np.ndarray:
+    def observe_extra(self, game: GameState, pocket=None, constraints=None) -> np.ndarray:
         """The shooter's and the opponent's score / target, the shooter's
-        innings / max_innings, and 1 in the equal-innings last inning."""
+        innings / max_innings, and 1 in the equal-innings last inning
+        (``pocket`` and ``constraints``, which the envs hand to games that
+        read positions, are not needed)."""
         ar, s = np.arange(game.n), game.shooter
         x = np.zeros((game.n, 4), dtype=np.float32)
         x[:, 0] = np.minimum(game.score[ar, s] / self.target, 1.0)

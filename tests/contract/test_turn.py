@@ -139,6 +139,51 @@ def test_a_snooker_replace_after_a_miss_is_previewed_as_the_env():
         assert np.array_equal(getattr(after, f), getattr(mine, f)), f
 
 
+def test_a_three_cushion_replace_is_previewed_as_the_env():
+    """The shooter's ball frozen to the red: the replace declaration previewed puts the balls on the starting
+    position with the same shooter to play, exactly as the env's step does (record, balls, state, next
+    constraints, next view); the same aim without it plays the shot (here straight into the red: a foul)."""
+    R_ = 0.03075
+    core = game_table("three_cushion", {0: (0.6, 0.8), 1: (0.3, 2.0), 2: (0.6 + 2 * R_, 0.8)})
+    view = core.view([0])
+    assert view.may_replace[0] and view.constraints.may_replace[0] and view.touching[0, 2]
+    plans = ShotPlan.of(Shots(np.zeros(2), np.full(2, 2.0), 0.0, 0.0), replace=np.array([True, False]))
+    pv = view.preview(plans, rows=[0, 0])
+    assert pv.record.replaced[0] and not pv.record.turn_over[0] and pv.next.is_break[0]
+    assert pv.record.foul[1] == R.FOUL_PUSH and pv.record.turn_over[1]
+    plan = plans.take([0])
+    out = core.step(core.actions_of(plan, [0], view.codec), [0])
+    assert out["record"].replaced[0]
+    one = view.preview(plan)
+    _same(one.record, out["record"], "record")
+    assert np.array_equal(one.pos, core.state.pos) and np.array_equal(one.pocket, core.state.pocket)
+    _same(one.state, core.game, "state")
+    _same(one.next, core.constraints(), "next")
+    after, mine = view.after(one, [0], [0]), core.view([0])
+    for f in ("pos", "pocket", "to_move", "targets", "is_break", "may_replace", "touching"):
+        assert np.array_equal(getattr(after, f), getattr(mine, f)), f
+
+
+def test_the_wrong_cue_ball_is_played_and_ruled_but_never_encoded():
+    """A plan naming the opponent's ball (``struck`` 1) or the red (2): the turn strikes that ball (the
+    shooter's own ball stays where it lay) and the rules call a foul; such a plan has no env action, and a
+    game without a cue ball per player refuses it."""
+    core = game_table("three_cushion", {0: (0.4, 0.5), 1: (1.0, 0.5), 2: (0.7, 2.2)})
+    view = core.view([0])
+    up = Shots(np.full(3, math.pi / 2), np.full(3, 1.0), 0.0, 0.0)  # along +y: nothing in the way of any ball
+    pv = view.preview(ShotPlan.of(up, struck=np.array([0, 1, 2])), rows=[0, 0, 0])
+    assert pv.record.foul.tolist() == [R.FOUL_NONE, R.FOUL_WRONG_CUE_BALL, R.FOUL_WRONG_CUE_BALL]
+    assert pv.record.turn_over.all() and (pv.record.points == 0).all()
+    start = pv.turn.start.pos
+    moved = np.linalg.norm(pv.turn.pos[:, [1, 0, 2]] - start, axis=2) > 1e-3  # after the hand-over, in the
+    assert moved.tolist() == [[True, False, False], [False, True, False], [False, False, True]]  # old frame
+    with pytest.raises(ValueError, match="struck"):
+        core.actions_of(ShotPlan.of(up.take([1]), struck=np.array([1])), [0])
+    pool = game_table("nine_ball", {0: (0.5, 0.5), 1: (0.9, 1.5), 9: (0.3, 2.0)})
+    with pytest.raises(ValueError, match="struck"):
+        pool.view([0]).preview(ShotPlan.of(Shots(np.array([1.0]), np.array([1.0]), 0.0, 0.0), struck=np.array([1])))
+
+
 def test_common_draws_give_each_group_the_same_numbers():
     rng = np.random.default_rng(0)
     z = common_draws([0, 1, 0, 2, 1], rng)

@@ -47,12 +47,14 @@ def test_hash_ignores_ulps_and_sees_changes():
 
 
 @pytest.mark.parametrize("env_id", IDS)
-def test_v0_is_deprecated_naming_v1(env_id):
-    """-v0 played other behaviour (docs/versions.md): making it fails with Gymnasium's DeprecatedEnv, which
-    names the current id; it never silently gives v1."""
-    assert env_id.endswith("-v1")
-    old = env_id[:-1] + "0"
-    for make in (lambda: gym.make(old), lambda: gym.make_vec(old, num_envs=2, vectorization_mode="vector_entry_point"),
-                 lambda: gym.make(f"billiards_env:{old}")):
-        with pytest.raises(DeprecatedEnv, match=f"`{env_id}`"):
-            make()
+def test_older_versions_are_deprecated_naming_the_current_id(env_id):
+    """Every older version (-v0; -v1 of an id now at -v2) played other behaviour (docs/versions.md): making it
+    fails with Gymnasium's DeprecatedEnv, which names the current id; it never silently gives the current one."""
+    stem, version = env_id.rsplit("-v", 1)
+    assert int(version) >= 1
+    for old in (f"{stem}-v{k}" for k in range(int(version))):
+        for make in (lambda: gym.make(old),
+                     lambda: gym.make_vec(old, num_envs=2, vectorization_mode="vector_entry_point"),
+                     lambda: gym.make(f"billiards_env:{old}")):
+            with pytest.raises(DeprecatedEnv, match=f"`{env_id}`"):
+                make()

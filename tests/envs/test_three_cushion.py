@@ -1,18 +1,21 @@
-"""Three-cushion environments: Billiards-ThreeCushion-v1 (gym.make and make_vec), the self-play vector env,
-the PettingZoo AEC env; thousands of random games; the opening, each player's own ball, frozen balls."""
+"""Three-cushion environments: Billiards-ThreeCushion-v2 (gym.make and make_vec), the self-play vector env,
+the PettingZoo AEC env; thousands of random games; the opening, each player's own ball, balls in contact."""
 import gymnasium as gym
 import numpy as np
 import pytest
 
 import billiards_env  # noqa: F401 (registers the ids)
 from billiards_env.envs.games import GameConfig, GameCore
-from billiards_env.rules.respot import hand_over, respot_frozen, restart_position
+from billiards_env.contract import ShotPlan
+from billiards_env.physics.strike import Shots
+from billiards_env.rules.respot import hand_over, restart_position
 from billiards_env.envs.games.vector import GameVectorEnv
 from billiards_env.physics.table import Table
 from billiards_env.rules import records as R
 from billiards_env.rules.three_cushion import OPENING_OFFSET
+from billiards_env.testing.positions import game_table
 
-ID = "Billiards-ThreeCushion-v1"
+ID = "Billiards-ThreeCushion-v2"
 SHORT = {"max_innings": 6}  # short games keep the tests fast
 
 
@@ -85,12 +88,48 @@ def test_opening_spots_and_each_players_own_ball():
     assert np.allclose(core.state.pos[0, 0], before[1])  # the opponent's ball did not move: it is slot 0 now
 
 
-def test_frozen_cue_ball_is_respotted():
-    t, R_ = Table.carom(), 0.03075
-    pos = np.array([[[0.5, 1.0], [0.5 + 2 * R_, 1.0], [1.0, 2.0]], [[0.5, 1.0], [0.5 + 2 * R_ + 1e-3, 1.0], [1.0, 2.0]]])
-    respot_frozen(pos, t, R_)
-    assert np.allclose(pos[0], [(0.71, 0.71), (0.71, 1.42), (0.71, 2.13)])
-    assert np.allclose(pos[1, 1], (0.5 + 2 * R_ + 1e-3, 1.0))  # 1 mm apart: not frozen
+def _frozen_table():
+    """Player 0's ball frozen to the red (centres 2R apart along +x), the opponent's ball up the table."""
+    R_ = 0.03075
+    return game_table("three_cushion", {0: (0.6, 0.8), 1: (0.3, 2.0), 2: (0.6 + 2 * R_, 0.8)})
+
+
+def test_balls_in_contact_replaced_by_a6():
+    """With the cue ball touching a ball the constraints and the view allow the replace declaration;
+    0 < a6 <= 0.5 has the balls replaced on the starting position (UMB Art. 27): no shot (no events), the
+    same player to play the opening shot from there (the red first)."""
+    core = _frozen_table()
+    c = core.constraints()
+    assert c.may_replace[0] and c.touching[0].tolist() == [False, False, True]
+    assert core.view([0]).may_replace[0] and core.view([0]).touching[0, 2]
+    a = np.zeros((1, 8))
+    a[0, 6] = 0.25
+    out = core.step(a, [0])
+    rec, t = out["record"], core.table
+    assert rec.replaced[0] and rec.restart[0] and out["info"]["passed"][0] and not rec.turn_over[0]
+    assert out["info"]["replaced"][0]
+    assert out["info"]["n_events"][0] == 0 and core.game.shots[0] == 0 and core.game.shooter[0] == 0
+    pos = core.state.pos[0]
+    assert np.allclose(pos[0], (t.width / 2 + OPENING_OFFSET, t.length / 4))  # the mover's ball beside the head spot
+    assert np.allclose(pos[1], (t.width / 2, t.length / 4)) and np.allclose(pos[2], (t.width / 2, 3 * t.length / 4))
+    c = core.constraints()
+    assert c.is_break[0] and c.targets[0].tolist() == [False, False, True] and not c.may_replace[0]
+
+
+def test_balls_in_contact_the_default_action_plays_from_where_the_ball_lies():
+    """a6 <= 0 (the default of a zero action) or a6 > 0.5 plays the shot: a0 = 0 aims at the opponent's
+    ball, away from the red it touches, and is fair; a shot aimed straight into the red is a foul."""
+    for a6 in (0.0, 1.0):
+        core = _frozen_table()
+        a = np.zeros((1, 8))
+        a[0, 6] = a6
+        out = core.step(a, [0])
+        assert not out["record"].replaced[0] and out["info"]["n_events"][0] > 0
+        assert out["info"]["first_contact"][0] == 1 and out["record"].foul[0] == R.FOUL_NONE
+    core = _frozen_table()
+    into = ShotPlan.of(Shots(np.array([0.0]), np.array([2.0]), 0.0, 0.0))
+    out = core.step(core.actions_of(into, [0]), [0])
+    assert out["record"].foul[0] == R.FOUL_PUSH and out["record"].turn_over[0] and out["info"]["points"][0] == 0
 
 
 def test_random_games_end_and_scores_follow_the_shot_records():
@@ -112,7 +151,7 @@ def test_random_games_end_and_scores_follow_the_shot_records():
         rec = out["record"]
         steps += 1
         np.add.at(points, (idx, rec.shooter), rec.points)
-        assert rec.turn_over[(rec.points == 0) & ~rec.game_over].all()  # a miss ends the inning
+        assert rec.turn_over[(rec.points == 0) & ~rec.game_over & ~rec.replaced].all()  # a miss ends the inning
         assert not (rec.turn_over & (rec.points > 0) & (core.game.phase[idx] != R.PHASE_FINAL)
                     & (core.game.phase[idx] != R.PHASE_FINAL_OPENING)).any()
         assert (core.game.shooter[idx] == np.where(rec.turn_over, 1 - before, before)).all()
@@ -121,7 +160,7 @@ def test_random_games_end_and_scores_follow_the_shot_records():
         d = np.linalg.norm(pos[:, :, None] - pos[:, None], axis=-1) + np.eye(3) * 9
         assert (d >= 2 * core.params.R - 1e-9).all()
         live[idx[out["terminated"] | out["truncated"]]] = False
-        assert steps <= cap + 1
+        assert steps <= 2 * cap + 1  # a replace (no shot) is always followed by a shot from the starting position
     g = core.game
     assert (g.score == points).all() and points.sum() > 0
     assert g.over.all()  # the innings limit ends every game well inside the cap
@@ -134,7 +173,6 @@ def test_point_task_success_and_shaped_reward():
     """Billiards-ThreeCushionPoint-v1: success is the point read from the contact order, and the reward is
     the sum of its spec's terms (success 1.0, both balls 0.2, 0.3 x cushions before the second / 3, foul -0.1)."""
     from gymnasium.utils.env_checker import check_env
-    from billiards_env.rules.three_cushion import point_made
     check_env(gym.make("Billiards-ThreeCushionPoint-v1").unwrapped, skip_render_check=True)
     n = 1024
     v = gym.make_vec("Billiards-ThreeCushionPoint-v1", num_envs=n, vectorization_mode="vector_entry_point")

@@ -1,5 +1,7 @@
 """Three-cushion rules (rules.three_cushion, UMB), one test per rule: constructed positions and shots played
 through the simulator (the point reads the order of the cue ball's contacts)."""
+import math
+
 import numpy as np
 import pytest
 
@@ -11,6 +13,7 @@ from billiards_env.physics.strike import strike_velocity
 from billiards_env.physics.table import Table
 from billiards_env.rules import ShotInput, get_rules
 from billiards_env.rules import records as R
+from billiards_env.rules.snooker import TOUCH_TOL
 from billiards_env.rules.three_cushion import CONTACTS_KEPT, ThreeCushionRules, point_made
 
 T, P = Table.carom(), PhysicsParams.carom()
@@ -218,3 +221,112 @@ def test_the_equal_innings_last_inning_starts_from_the_starting_position():
     assert not rec2.restart[0] and g2.score[0].tolist() == [2, 0]
     # without equal innings, and in the other games, nothing is re-placed
     assert not _scripted(ThreeCushionRules(target=2), [True, True])[-1][0].restart[0]
+
+
+# --- balls in contact (UMB Art. 27) and the wrong cue ball (UMB Art. 41) -------------------------------------------
+R_ = P.R
+# the shooter's ball frozen to the red along +x (centres exactly 2R apart, as the simulator leaves touching balls),
+# the opponent's ball up the table on the side away from the red
+FROZEN = np.array([[0.6, 0.8], [0.3, 2.0], [0.6 + 2 * R_, 0.8]])
+
+
+def _play(pos, phi, speed=2.0, rows_struck=None, replaced=None, phase=R.PHASE_PLAY, rules=None):
+    """Shots [k] (aim ``phi``) from the position ``pos`` [3, 2] through the simulator, judged with the positions
+    they were played from: (record, state after, simulator result)."""
+    rules = rules or ThreeCushionRules()
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    k = len(phi)
+    s = BallState.from_positions(np.repeat(pos[None], k, axis=0))
+    s = strike_velocity(s, phi, np.full(k, speed), np.zeros(k), np.zeros(k), params=P)
+    res = simulate(s, T, P, options=SimOptions(contacts=CONTACTS_KEPT))
+    game = rules.new_game(np.zeros(k, dtype=np.int64))
+    game.phase[:] = phase
+    pk = np.full((k, 3), -1)
+    shot = ShotInput(pk, pk.copy(), res.first_contact, res.cushion_hits_after_contact, res.cushion_hits,
+                     contacts=res.contacts, n_contacts=res.n_contacts, pos_before=np.repeat(pos[None], k, axis=0),
+                     replaced=replaced, struck=rows_struck)
+    rec, g = rules.judge(game, shot)
+    return rec, g, res
+
+
+def test_balls_in_contact_are_named_and_may_be_replaced():
+    """A cue ball within 2R + TOUCH_TOL of a ball touches it (snooker's test, one for both games): the
+    constraints name the ball and allow the replace declaration; 1.5 TOUCH_TOL apart nothing is touching."""
+    rules = ThreeCushionRules()
+    g, pk = rules.new_game([0]), np.full((1, 3), -1)
+    g.phase[:] = R.PHASE_PLAY
+    c = rules.constraints(g, pk, pos=FROZEN[None])
+    assert c.touching[0].tolist() == [False, False, True] and c.may_replace[0]
+    near = FROZEN.copy()
+    near[2, 0] += 0.5 * TOUCH_TOL
+    assert rules.constraints(g, pk, pos=near[None]).touching[0, 2]
+    far = FROZEN.copy()
+    far[2, 0] += 1.5 * TOUCH_TOL
+    c = rules.constraints(g, pk, pos=far[None])
+    assert not c.touching[0].any() and not c.may_replace[0]
+    assert not rules.constraints(g, pk).may_replace[0]  # without positions nothing is known to touch
+    g.over[:] = True
+    assert not rules.constraints(g, pk, pos=FROZEN[None]).may_replace[0]  # a finished game: no declaration
+
+
+def test_balls_in_contact_played_straight_into_the_touching_ball_is_a_foul():
+    """Through the simulator from the frozen position: straight into the red (the cue ball's first contact
+    is the red) is a foul that ends the inning; away from it, to the opponent's ball first or to a cushion
+    first, is fair; the same shot into the red from 1 mm away is no foul (nothing was touching)."""
+    into, to_ball, to_cushion = 0.0, math.atan2(FROZEN[1, 1] - 0.8, FROZEN[1, 0] - 0.6), math.pi
+    rec, g, res = _play(FROZEN, [into, to_ball, to_cushion])
+    assert res.contacts[0, 0].tolist() == [C.EV_BALL_BALL, 2] and res.first_contact[1] == 1
+    assert res.contacts[2, 0, 0] == C.EV_CUSHION
+    assert rec.foul.tolist() == [R.FOUL_PUSH, R.FOUL_NONE, R.FOUL_NONE]
+    assert rec.turn_over[0] and rec.points[0] == 0 and g.shooter[0] == 1 and not rec.legal[0]
+    gap = FROZEN.copy()
+    gap[2, 0] += 1e-3
+    rec, _, res = _play(gap, [into])
+    assert res.first_contact[0] == 2 and rec.foul[0] == R.FOUL_NONE
+
+
+def test_balls_in_contact_replaced_on_the_starting_position():
+    """The replace declaration with the cue ball touching a ball: no shot, no inning change, the balls to the
+    starting position (``restart``) and the same shooter's next shot an opening shot (the red first; in the
+    equal-innings last inning its opening phase). Declared with nothing touching, it is ignored."""
+    rules = ThreeCushionRules()
+    pk, pos = np.full((2, 3), -1), np.stack([FROZEN, FROZEN + [0.0, 0.5]])
+    pos[1, 2, 0] += 1e-3                                   # table 1: nothing touching
+    g = rules.new_game(np.zeros(2, dtype=np.int64))
+    g.phase[:] = R.PHASE_PLAY
+    none = np.full((2, CONTACTS_KEPT, 2), -1)
+    shot = ShotInput(pk, pk.copy(), np.full(2, -1), np.zeros((2, 3), int), contacts=none,
+                     n_contacts=np.zeros(2, dtype=np.int64), pos_before=pos, replaced=np.array([True, True]))
+    rec, g2 = rules.judge(g, shot)
+    assert rec.replaced.tolist() == [True, False] and rec.restart.tolist() == [True, False]
+    assert not rec.turn_over[0] and g2.shooter[0] == 0 and g2.innings[0].tolist() == [1, 0]
+    assert g2.shots[0] == 0 and g2.phase[0] == R.PHASE_BREAK and rec.points[0] == 0 and rec.foul[0] == 0
+    assert g2.shots[1] == 1 and rec.turn_over[1]           # table 1 played its (empty) shot: a miss
+    c = rules.constraints(g2.take([0]), pk[:1])
+    assert c.is_break[0] and c.targets[0].tolist() == [False, False, True]
+    fin = rules.new_game([0])
+    fin.phase[:] = R.PHASE_FINAL
+    rec, g3 = rules.judge(fin, ShotInput(pk[:1], pk[:1], np.array([-1]), np.zeros((1, 3), int),
+                                         contacts=none[:1], n_contacts=np.zeros(1, dtype=np.int64),
+                                         pos_before=pos[:1], replaced=np.array([True])))
+    assert rec.replaced[0] and g3.phase[0] == R.PHASE_FINAL_OPENING
+
+
+def test_the_wrong_cue_ball_is_a_foul_and_scores_nothing(shots):
+    """The cue striking the opponent's ball or the red (``ShotInput.struck``) is a foul that ends the inning,
+    even where the contacts read as a point; the shooter's own ball (0) is the default."""
+    _, res = shots
+    e = _find(res, lambda w, e: bool(point_made(res.contacts[e:e + 1], res.n_contacts[e:e + 1])[0][0]))
+    rows = np.array([e, e, e])
+    rules = ThreeCushionRules()
+    game = rules.new_game(np.zeros(3, dtype=np.int64))
+    game.phase[:] = R.PHASE_PLAY
+    pk = np.full((3, 3), -1)
+    shot = ShotInput(pk, pk.copy(), res.first_contact[rows], res.cushion_hits_after_contact[rows],
+                     res.cushion_hits[rows], contacts=res.contacts[rows], n_contacts=res.n_contacts[rows],
+                     struck=np.array([0, 1, 2]))
+    rec, g = rules.judge(game, shot)
+    assert rec.points.tolist() == [1, 0, 0] and g.score[:, 0].tolist() == [1, 0, 0]
+    assert rec.foul.tolist() == [R.FOUL_NONE, R.FOUL_WRONG_CUE_BALL, R.FOUL_WRONG_CUE_BALL]
+    assert rec.turn_over.tolist() == [False, True, True] and g.shooter.tolist() == [0, 1, 1]
+    assert R.FOUL_NAMES[R.FOUL_WRONG_CUE_BALL] == "the wrong cue ball struck"

@@ -306,9 +306,11 @@ class GameCore:
                     called_pocket=shot.called_pocket, called_ball=shot.called_ball, points=rec.points,
                     score=game.score.copy(), placement=turn.placed, placement_moved=moved & ~shot.passed,
                     action_clipped=clipped, n_events=turn.n_events, sim_time=turn.sim_time, shot=game.shots.copy())
-        if self.rules.foul_points:  # snooker: a foul's points to the opponent, a miss, the balls replaced
+        if self.rules.foul_points:  # snooker: a foul's points to the opponent, a miss
             info["penalty"] = rec.penalty
-            info["miss"], info["replaced"] = rec.miss, rec.replaced
+            info["miss"] = rec.miss
+        if self.rules.replaces:  # snooker after a miss, three-cushion with balls in contact: the balls replaced
+            info["replaced"] = rec.replaced
         out = dict(record=rec, reward=reward, terminated=game.over.copy(), truncated=truncated, info=info)
         for listener in self.listeners:
             listener.after_step(self, idx, out)
