@@ -9,6 +9,7 @@ import json
 import math
 import random
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -329,5 +330,8 @@ def test_the_lobby_offers_each_game_its_bots(server):
     assert not any(b.startswith("ladder") for b in games["ten_ball"]["bots"] + games["snooker"]["bots"])
     assert games["three_cushion"]["default_bot"] == "carom" and "ghost" not in games["three_cushion"]["bots"]
     assert games["snooker"]["bots"][0] == "snooker"
+    docs = (Path(__file__).parents[2] / "docs" / "play.md").read_text()  # the page says which rungs the lobby lists
+    assert f"`ladder-1`..`{ladder_names('nine_ball')[-1]}` on 9-ball and 8-ball" in docs
+    assert ladder_names("nine_ball") == ladder_names("eight_ball")
     status, g = server("POST", "/api/games", {"game": "nine_ball", "opponent": "ladder-3", "seed": 1, "breaker": 1})
     assert status == 201 and server("POST", f"/api/games/{g['id']}/bot")[0] == 200
