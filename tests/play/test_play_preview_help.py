@@ -235,6 +235,23 @@ def test_a_bank_of_the_object_ball_is_drawn(server, browser):
     assert pv["scratchPocket"] is None and text(browser, "pl-warn") == "", pv
 
 
+# --- the default aim -------------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("game", ["nine_ball", "eight_ball", "ten_ball", "snooker"])
+def test_the_default_aim_meets_a_legal_ball(server, browser, game):
+    """A new game's break, as the page first shows it: the aim goes to the foot spot (the rack's apex) when the
+    cue ball's path there meets a legal ball first, and else to a legal ball it can reach: in snooker the pink
+    stands on that spot, in front of the apex red, and the aim goes to the first red with a clear path."""
+    st, g = server("POST", "/api/games", {"game": game, "opponent": "human", "seed": 3, "breaker": 0})
+    browser.get(server.url + "/game/" + g["id"])
+    st = PagePerson(browser).wait_turn()
+    pv = preview(browser)
+    assert st["break"] and pv["ball"] in st["targets"], (pv["ball"], st["targets"])
+    foot = st["limits"]["foot_spot"]
+    at_foot = abs(math.remainder(pv["phi"] - towards(st["pos"][0], foot), 2 * math.pi)) < ANGLE_TOL
+    assert at_foot == (game != "snooker"), (game, pv["phi"], towards(st["pos"][0], foot))
+
+
 # --- the last shot's trails -----------------------------------------------------------------------------------
 
 def trails(browser) -> int:
