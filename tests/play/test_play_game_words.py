@@ -1,6 +1,7 @@
 """Each game's own words where a person reads them, in headless Chromium: a snooker nomination reads as a
 nomination, and a three-cushion point as a point, on the play page (the status line and the Rulings list, once the
-animation has reached the shot) and in the replay viewer (the saved game's page, its ruling under the players).
+animation has reached the shot) and in the replay viewer (the live page's and the saved game's: the ruling under the
+players).
 
 Snooker: a position set on the server's game before the page loads (a red just potted: a colour is on and must be
 nominated), the pink moved clear of the pack with the cue ball straight behind it on the line to the foot right
@@ -93,6 +94,7 @@ def test_a_snooker_nomination_reads_as_a_nomination(server, browser, tmp_path):
     status, listed = text(browser, "pl-status"), rulings(browser)
     for where in (status, listed[0]):
         assert "(nominated: the pink)" in where and "called" not in where and "pots the pink" in where, where
+    assert text(browser, "ruling") == ruling  # the live page's viewer, under the players
     assert saved_rulings(server, browser, g["id"], tmp_path, [1]) == [ruling]
 
 
@@ -119,6 +121,7 @@ def test_a_three_cushion_point_reads_as_a_point(server, browser, tmp_path):
     assert state["points"] == [1, 0] and state["to_move"] == 1, state
     missed = rulings(browser)[0]
     assert "no point" in missed and "pots" not in missed, missed
+    assert "no point" in text(browser, "ruling") and "points 1" in text(browser, "players")  # the live page's viewer
     saved = saved_rulings(server, browser, g["id"], tmp_path, [1, 2])
     assert "a point" in saved[0] and "no point" in saved[1] and not any("pots" in r for r in saved), saved
     players = text(browser, "players")
