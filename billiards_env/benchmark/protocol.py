@@ -118,7 +118,7 @@ PROTOCOL = Protocol(
         Task("Billiards-TenBall-v1", "game", budget=500_000, reference="ghost", episodes=GAMES,
              opponent="ghost"),
         # no pockets / its own rules: against the game's own bot
-        Task("Billiards-ThreeCushion-v1", "game", budget=500_000, reference="carom", episodes=GAMES,
+        Task("Billiards-ThreeCushion-v2", "game", budget=500_000, reference="carom", episodes=GAMES, since=2,
              opponent="carom"),
         Task("Billiards-Snooker-v1", "game", budget=500_000, reference="snooker", episodes=GAMES,
              opponent="snooker"),
