@@ -270,6 +270,7 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default=None, help="results, table and plots (default a new runs/reference_<time>/)")
     ap.add_argument("--reference", action="store_true", help="merge the rows into billiards_env/benchmark/reference.json")
     ap.add_argument("--jobs", type=int, default=1, help="algorithms trained side by side, one process each")
+    ap.add_argument("--units-only", action="store_true", help=argparse.SUPPRESS)  # --jobs' children
     a = ap.parse_args(argv)
     algos = tuple(x.strip() for x in a.algo.split(",") if x.strip())
     if not algos or any(x not in ALGOS for x in algos):
@@ -287,14 +288,17 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     if a.jobs > 1 and len(algos) > 1:   # one child per algorithm, then the report over all of them
         import subprocess
-        base = [sys.executable, "-m", "agents.evaluation.reference", "--work", str(work), "--out", str(out)]
+        base = [sys.executable, "-m", "agents.evaluation.reference", "--work", str(work), "--out", str(out),
+                "--units-only"]
         base += (["--quick"] if a.quick else []) + (["--task", a.task] if a.task else [])
         base += [f"--seed={s}" for s in (a.seed or [])]
         procs = [subprocess.Popen(base + ["--algo", algo], cwd=ROOT) for algo in algos]
-        if any(p.wait() for p in procs):
+        if any([p.wait() for p in procs]):  # wait for every child, not only up to the first that failed
             print("a child failed; rerun the same command to resume", file=sys.stderr)
             return 1
     run(algos, tasks, seeds, work, out, a.quick)
+    if a.units_only:
+        return 0
     docs = collect(out, a.quick)
     report(docs, out, a.quick)
     print(f"{len(docs)} units; wrote {out / 'table.md'} and {out / 'curves.png'} "
