@@ -31,6 +31,13 @@ class Effects:
       cushion model, Han 2005 by default); off: a plain reflection with the
       cushion restitution.
     - ``pockets``: six pockets with jaws; off: a closed box.
+    - ``airborne``: balls leave the slate (an elevated cue's jump, flight
+      under gravity, bounces on the slate: ``airborne``, issue 46). Off,
+      the default: the planar simulator, whose kernels it leaves as they
+      are. An opt-in effect: ``each_off``, ``minimal``, ``key`` and
+      ``to_dict`` name it only when it is on, so every set and record
+      without it is what it was before it existed. The solvers do not
+      simulate it yet: ``simulate`` refuses it (docs/physics.md, "The third dimension").
 
     Rolling resistance is always on: without it no ball ever stops.
     """
@@ -41,6 +48,7 @@ class Effects:
     ball_friction: bool = True
     cushion_friction: bool = True
     pockets: bool = True
+    airborne: bool = False
 
     @classmethod
     def all(cls) -> "Effects":
@@ -57,6 +65,8 @@ class Effects:
         by name: the sets the benchmark times and the fuzzer checks."""
         sets = {"all": cls.all()}
         for f in dataclasses.fields(cls):
+            if f.name in OPT_IN:
+                continue
             sets[f"no {f.name.replace('_', ' ')}"] = cls(**{f.name: False})
         sets["minimal"] = cls.minimal()
         return sets
@@ -83,7 +93,14 @@ class Effects:
 
     def key(self) -> tuple:
         n = self.normalized()
-        return (n.spin, n.sliding, n.vertical_spin, n.ball_friction, n.cushion_friction, n.pockets)
+        key = (n.spin, n.sliding, n.vertical_spin, n.ball_friction, n.cushion_friction, n.pockets)
+        return key + ("airborne",) if n.airborne else key
 
     def to_dict(self) -> dict:
-        return dataclasses.asdict(self)
+        """The fields by name; an opt-in effect only when it is on."""
+        return {k: v for k, v in dataclasses.asdict(self).items() if k not in OPT_IN or v}
+
+
+# Effects that are off by default and that the sets and records above name
+# only when on (``Effects`` docstring).
+OPT_IN = ("airborne",)

@@ -78,6 +78,10 @@ def make_kernel(kind: str, effects: Effects, models: Models, diagnostics: bool =
     (``forking.threads_usable``)."""
     if kind not in KINDS:
         raise ValueError(f"unknown solver {kind!r}; choose one of {KINDS}")
+    if effects.airborne:
+        raise NotImplementedError("Effects(airborne=True): the airborne model (physics.airborne: flight, "
+                                  "slate impacts, bounces) is not in the solvers yet (issue 46, "
+                                  "docs/physics.md, 'The third dimension'); simulate with airborne=False")
     n = effects.normalized()
     bb_name, cu_name = models.resolved(n)
     key = (kind, n.spin, n.sliding, n.vertical_spin, bb_name, cu_name, bool(diagnostics))

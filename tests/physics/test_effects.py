@@ -7,7 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from billiards_env.physics import BallState, Effects, Models, PhysicsParams, Table, random_placement, simulate, strike_velocity
+from billiards_env.physics import BallState, Effects, Models, Table, random_placement, simulate, strike_velocity
+from billiards_env.physics.effects import OPT_IN
 from billiards_env.physics.kernels import make_kernel
 
 ALL = Effects()
@@ -130,9 +131,11 @@ def test_each_off_lists_every_effect_once():
     sets = Effects.each_off()
     assert sets["all"] == Effects.all() and sets["minimal"] == Effects.minimal()
     singles = {k: v for k, v in sets.items() if k not in ("all", "minimal")}
-    assert len(singles) == len(dataclasses.fields(Effects))
+    default_on = [f.name for f in dataclasses.fields(Effects) if f.name not in OPT_IN]  # opt-in: off by default
+    assert len(singles) == len(default_on)
     for eff in singles.values():
-        assert sum(not getattr(eff, f.name) for f in dataclasses.fields(Effects)) == 1
+        assert sum(not getattr(eff, name) for name in default_on) == 1
+        assert not any(getattr(eff, name) for name in OPT_IN)
     assert len({v.key() for v in sets.values()}) == len(sets)  # distinct kernels
 
 
