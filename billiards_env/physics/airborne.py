@@ -43,6 +43,11 @@ inelastic ball-table collision):
 The slip changes by 7/2 P_t / m, so 2/7 m |u| is the impulse that ends it:
 friction never reverses the slip and the impact never adds energy. Spin
 about z is untouched (a point contact has no torque about the normal).
+pooltool's main branch resolves the same impact with the same equations
+while the ball slides through it; where the cap is reached (the ball
+leaves rolling) it sets all of w to 2/7 w + 5/7 (z x v) / R, which agrees
+here about x and y but also takes 5/7 of the spin about z away, a torque
+its contact at -R z cannot exert; here w_z is kept in both cases.
 
 Settling (``settles``, ``bounces``). Each bounce leaves at e times the
 vertical speed it came in with, so the bounce heights fall by e^2 and the
@@ -88,9 +93,9 @@ from .roots import first_entry
 # Alciatore's ball-table coefficient of restitution ("physical properties":
 # e = 0.5), the vertical rebound of a ball dropped on the slate.
 SLATE_RESTITUTION = 0.5
-# Rebounds lower than this (m) end the bounces: a hop of 0.1 mm stays within
-# the cloth's nap (a worsted cloth is about 0.5 mm thick), lasts 9 ms and
-# clears nothing.
+# Rebounds lower than this (m) end the bounces: a hop of 0.1 mm lasts 9 ms
+# (2 sqrt(2h/g)), 3 cm of travel at 3 m/s, rises a fraction of the cloth's
+# thickness and clears nothing.
 SETTLE_HEIGHT = 1e-4
 
 
