@@ -285,8 +285,28 @@ def _env_docs(root: Path, files: list) -> list:
                   ("billiards_env/envs/tasks", "billiards_env/envs/billiards.py", "scripts/make_env_docs.py"))]
 
 
+def _reference_agents(root: Path, files: list) -> list:
+    """The reference agents' table (``agents.evaluation.reference``): ``table.md`` from the units' results files
+    (and the reference bots' rows in billiards_env/benchmark/reference.json); the units themselves are measured."""
+    folder = "results/suite/agents"
+    page = f"{folder}/table.md"
+    if page not in files:
+        return []
+
+    def render(r: Path) -> str:
+        from agents.evaluation.reference import collect, table_text
+        return table_text(collect(r / folder))
+    cmd = f"python -m agents.evaluation.reference --jobs 2 --out {folder}"
+    units = [f for f in files if f.startswith(folder + "/") and f.endswith(".json") and "/seed" in f]
+    out = [Entry(page, CHEAP, f"{cmd} (its table: agents.evaluation.reference.table_text)", render, tuple(units))]
+    out += [Entry(f, MEASURED, cmd) for f in units]
+    out += [Entry(f, PLOT, cmd) for f in files if f.startswith(folder + "/") and f.endswith(".png")]
+    out += [Entry(f, MEASURED, cmd) for f in files if f == f"{folder}/aggregate.json"]
+    return out
+
+
 DERIVED = (_tournaments, _championships, _summaries, _ladder, _breaks, _budgets, _bench_join, _latency,
-           _agents_benchmark, _env_docs)
+           _agents_benchmark, _env_docs, _reference_agents)
 
 # Measured files by folder (first match wins): the command that re-measures them, when the file records none.
 MEASURED_BY_FOLDER = (
