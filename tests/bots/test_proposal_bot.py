@@ -50,6 +50,9 @@ def test_the_networks_distribution_sums_to_one_over_the_legal_proposals():
     legal[0, SS.legal_proposals(layout, 0)] = True
     assert np.isfinite(lp[legal]).all() and np.isneginf(lp[~legal]).all()
     assert abs(np.exp(lp[legal]).sum() - 1) < 1e-9
+    for seed in range(20):       # the fast player's factored argmax is the distribution's mode
+        out = np.random.default_rng(seed).normal(size=out.shape) * 3
+        assert PN.best_proposal(out, layout.mask)[0] == np.argmax(PN.joint_logp(out, layout.mask)[0])
 
 
 def test_the_search_over_the_hand_prior_pots_an_open_ball():

@@ -150,12 +150,12 @@ class ProposalPlayer:
             logp, v = PR.log_softmax(PR.hand_logits(layout)), None
         else:
             out, v = net.forward(g, x)
+            if budget is None:       # the network alone: its most probable proposal, refined
+                c = SS.refine(view, SS.decode(layout, np.arange(len(rows)), PN.best_proposal(out, layout.mask)))
+                return c, np.arange(len(rows)), v
             logp = PN.joint_logp(out, layout.mask)
         if budget is None:
-            if v is None:
-                raise ValueError(f"{self.name}: the network alone needs a network")
-            c = SS.refine(view, SS.decode(layout, np.arange(len(rows)), np.argmax(logp, axis=1)))
-            return c, np.arange(len(rows)), v
+            raise ValueError(f"{self.name}: the network alone needs a network")
         leaf = None if net is None else (lambda vw, pv: _leaf_value(net, vw, pv))
         res = PR.ProposalSearch(budget, self, leaf).run(layout, logp, v)
         if self.trace is not None:

@@ -214,6 +214,26 @@ def joint_logp(out: np.ndarray, mask: np.ndarray) -> np.ndarray:
     return np.where(mask[..., None], lp, -np.inf).reshape(n, -1)
 
 
+def best_proposal(out: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    """[n] the most probable legal proposal's joint index, ``argmax(joint_logp(out, mask), axis=1)`` found per
+    factor (the best turn and variant of every slot, then the best slot) without the [n, S * T * V] array: the
+    fast player's choice."""
+    n, S, T = mask.shape
+    out = np.asarray(out, np.float64)
+    V = out.shape[2] - 1 - T
+    legal = mask.any(axis=2)
+    ls = lambda x, ax: x - _logsumexp(x, ax)
+    with np.errstate(invalid="ignore"):        # a slot without a legal turn: nan, masked below
+        lt = ls(np.where(mask, out[..., 1:1 + T], -np.inf), 2)
+    lv = ls(out[..., 1 + T:], 2)
+    t, v = np.argmax(np.nan_to_num(lt, nan=-np.inf), axis=2), np.argmax(lv, axis=2)
+    pick = lambda x, i: np.take_along_axis(x, i[..., None], axis=2)[..., 0]
+    score = np.where(legal, ls(np.where(legal, out[..., 0], -np.inf), 1) + pick(lt, t) + pick(lv, v), -np.inf)
+    s = np.argmax(score, axis=1)
+    r = np.arange(n)
+    return (s * T + t[r, s]) * V + v[r, s]
+
+
 def _logsumexp(x: np.ndarray, axis: int) -> np.ndarray:
     top = np.max(x, axis=axis, keepdims=True)
     top = np.where(np.isfinite(top), top, 0.0)
