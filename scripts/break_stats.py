@@ -22,6 +22,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from billiards_env.envs.games import GAMES  # noqa: E402
+from billiards_env.rules import DEFAULT_GAME  # noqa: E402
 from billiards_env.envs.games.core import BREAK_NINE  # noqa: E402
 from billiards_env.envs.games.setup import RACKS  # noqa: E402
 from billiards_env.studies.breaks import break_outcomes  # noqa: E402
@@ -46,7 +47,9 @@ def markdown(doc: dict) -> str:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--game", choices=list(GAMES), default="nine_ball")
+    pool = [g for g, spec in GAMES.items() if spec.rules.game_ball]  # the games with a game ball to break on
+    ap.add_argument("--game", choices=pool, default=DEFAULT_GAME,
+                    help="a game with a game ball (the pool games; three-cushion and snooker have none)")
     ap.add_argument("--racks", type=int, default=1000)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--noise", nargs="+", default=["none", "tournament"])

@@ -120,7 +120,10 @@ def budgets_markdown(game: str, noise: str, seed: int, rows: list) -> str:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--game", default="nine_ball", choices=["nine_ball", "eight_ball"])
+    from billiards_env.rules import DEFAULT_GAME, GAMES
+    pool = [g for g, spec in GAMES.items() if not spec.own_bots]  # the games the pool bots (lookahead) play
+    ap.add_argument("--game", default=DEFAULT_GAME, choices=pool,
+                    help="a game the lookahead plays (the pool games; three-cushion and snooker have bots of their own)")
     ap.add_argument("--tables", type=int, default=0, help="time one decision on this many tables")
     ap.add_argument("--rounds", type=int, default=3, help="shots played into the games before timing")
     ap.add_argument("--repeats", type=int, default=3)

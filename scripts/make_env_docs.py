@@ -61,15 +61,19 @@ def _md(text: str) -> str:
 
 
 def _defaults(path: Path) -> str:
+    """The task's YAML as a table: a section's keys one row each (``equipment.table``), a mapping in one cell."""
     import yaml
 
-    d = yaml.safe_load(path.read_text())
-    rows = []
-    for k, v in d.items():
-        if isinstance(v, dict):
-            v = ", ".join(f"{a}: {b}" for a, b in v.items())
-        rows.append(f"| `{k}` | {v} |")
-    return "| key | default |\n|---|---|\n" + "\n".join(rows)
+    def rows(d: dict, prefix: str = ""):
+        for k, v in d.items():
+            if isinstance(v, dict) and any(isinstance(x, dict) for x in v.values()):
+                yield from rows(v, f"{prefix}{k}.")
+                continue
+            if isinstance(v, dict):
+                v = ", ".join(f"{a}: {b}" for a, b in v.items())
+            yield f"| `{prefix}{k}` | {v} |"
+
+    return "| key | default |\n|---|---|\n" + "\n".join(rows(yaml.safe_load(path.read_text())))
 
 
 # How the envs are made and used with Gymnasium: the section after the table of ids.
@@ -126,7 +130,8 @@ def render() -> str:
     for t in builtin:
         parts += ["", f"## {t.env_id}", "", _md(t.__doc__), "",
                   "Observation, action, reward, info: [common to every task](#common-to-every-task). "
-                  f"Defaults (`{t.default_config_path.relative_to(ROOT)}`; keys: `TaskConfig`):", "",
+                  f"Defaults (`{t.default_config_path.relative_to(ROOT)}`; keys: `TaskConfig`, the `equipment` "
+                  "section: [configuration.md](configuration.md#the-equipment-section)):", "",
                   _defaults(t.default_config_path)]
     parts += ["", "## Common to every task", "", _md(billiards._COMMON_DOC), "",
               "### Vector env: seeding and autoreset", "", _md(billiards.BilliardsVectorEnv.__doc__)]

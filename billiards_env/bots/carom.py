@@ -18,9 +18,11 @@ import numpy as np
 
 from ..physics import constants as C
 from ..physics.strike import Shots
+from ..rules import bot_games
 from ..rules.three_cushion import point_made
 from ..contract.plan import ShotPlan
 
+FAMILY = "carom"     # its name in bots.registry (carom<K>), which the games it plays list in their own_bots
 DEFAULT_K = 96       # candidate strikes per table
 TOP = 6              # candidates re-played under noise
 SAMPLES = 6          # noisy plays per re-played candidate
@@ -46,8 +48,8 @@ class CaromBot:
         return Shots(phi.ravel(), speed.ravel(), rng.uniform(-SIDE, SIDE, n * k), rng.uniform(-HEIGHT, HEIGHT, n * k))
 
     def act(self, view) -> ShotPlan:
-        if view.game != "three_cushion":
-            raise ValueError(f"the carom bot plays three-cushion, not {view.game!r}")
+        if view.game not in bot_games(FAMILY):
+            raise ValueError(f"the carom bot plays {' and '.join(bot_games(FAMILY))} only, not {view.game!r}")
         n, k, top, m = view.n, self.k, self.top, self.samples
         shots = self._candidates(n, view.params.max_speed)
         rows = np.repeat(np.arange(n), k)

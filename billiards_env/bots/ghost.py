@@ -274,7 +274,7 @@ class GhostBot:
         self.refine(view, rows[pot_rows], pos, pots["ball"][pot_rows], shots, pocket[rows[pot_rows]])
         phi, speed, a, b = shots
         lose = np.zeros(0, dtype=np.int64)
-        if view.game == "eight_ball":  # a pot that would sink the 8 (early or on a scratch) loses the game:
+        if getattr(view.rules, "game_ball_loses", False):  # a pot sinking the 8 early or on a scratch loses (8-ball):
             chk = rows[~declare[rows] & ~view.call_needed[rows]]  # preview pots and full hits first;
             chk = chk[~np.isin(chk, search)]                      # if one loses, search instead
             if len(chk):

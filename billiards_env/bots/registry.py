@@ -32,7 +32,7 @@ import dataclasses
 import importlib
 import re
 
-from ..rules import GAMES, get_game
+from ..rules import get_game
 
 BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "lookahead-2026.12", "champion", "carom<K>",
              "snooker", "ladder-<k>", "value-lookahead", "<module>:<factory>")
@@ -48,10 +48,6 @@ FROZEN_LOOKAHEAD = dict(
     reply=(("n_pots", 3), ("hand_pots", 2), ("n_safe", 6), ("n_kick", 2), ("n_bank", 4), ("n_push", 0),
            ("n_eval", 8), ("n_eval_safe", 2), ("n_samples", 8), ("throws", (0.0,)), ("speeds", (1.15, 1.8, 2.8)),
            ("break_search", 0), ("reply_eval", 0)))
-# The games with a bot of their own, played by it when none is named (the registry's default_bot, rules.games); every
-# other game is played by ``ghost``.
-DEFAULT_BOTS = {name: spec.default_bot for name, spec in GAMES.items() if spec.default_bot != "ghost"}
-
 # fields of the frozen Budget that were off that day; a later Budget without them plays the same
 FROZEN_OFF = dict(q_run=0.0, combos=False, w_next=0.0)
 

@@ -112,9 +112,12 @@ _COMMON_DOC = """
     ``action_clipped``, ``shot``, ``reward_terms``.
 
     **Configuration**: ``billiards_env/envs/tasks/defaults/<task>.yaml`` loaded into ``TaskConfig``;
-    ``config=`` (a path or TaskConfig) replaces it, and any TaskConfig field
-    given as a keyword argument (``n_balls=``, ``noise=``, ``solver=``,
-    ``dt=``, ``physics=``, ``reward={...}``, ``effects={...}``, ...) overrides it.
+    ``config=`` (a path or TaskConfig) replaces it, and any TaskConfig key
+    given as a keyword argument (``n_balls=``, ``reward={...}``, ...)
+    overrides it, the keys of its ``equipment`` section (table, physics,
+    solver, ``min_draw``, effects, models, noise: the games' section too,
+    docs/configuration.md) flat: ``noise=``, ``solver=``, ``dt=``,
+    ``physics=``, ``effects={...}``.
 """
 
 

@@ -31,11 +31,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ..bots.registry import BOT_NAMES, DEFAULT_SEARCH_K, is_bot_name
-from ..bots.registry import DEFAULT_BOTS, default_bot, make_bot
+from ..bots.registry import BOT_NAMES, COUNTED, DEFAULT_SEARCH_K, is_bot_name
+from ..bots.registry import default_bot, make_bot
 from ..bots.learned.ladder import ladder_names
 from ..envs.games import GAMES
 from ..physics.noise import NOISE_LEVELS
+from ..rules import DEFAULT_GAME, bot_games, get_game
 from ..rendering.game_words import game_words
 from ..rendering.html import replay_html
 from .guard import BODY_TIMEOUT_S, MAX_BODY, Guard, parse_json
@@ -50,23 +51,21 @@ MAX_SEARCH_K = 1024       # search<K>: 16x the default 64, <= 45 ms a shot measu
 MAX_CAROM_K = 1536        # carom<K>: 16x the default 96; <= 45 ms a shot measured (K = 6,144: 90 ms)
 MAX_TURN = 10 ** 6        # a turn number past any game (games are cut at session.MAX_SHOTS shots)
 BUDGETS = {"search": MAX_SEARCH_K, "carom": MAX_CAROM_K}
-OWN_GAME = {"carom": "three_cushion", "snooker": "snooker"}  # bot families that play one game only
-POCKETLESS = ("three_cushion",)  # games without pockets: played by carom<K> and random only (the others pot balls)
 # the lobby's list: the bot registry's names (search<K> at its default K; a module:factory bot only when the
 # server is started with it, ``--bot``: a request never makes the server import code)
 OFFERED_BOTS = tuple(sorted((f"search{DEFAULT_SEARCH_K}" if n == "search<K>" else n for n in BOT_NAMES
                              if "<" not in n or n == "search<K>"), key=lambda n: n != "ghost"))  # ghost first
-# the bots that play the pool games (the games without a bot of their own in bots.registry.DEFAULT_BOTS)
+# the bots that play the pool games (the games without bots of their own: the registry's own_bots, rules.games)
 POOL_BOTS = ("ghost", "ghost-safety", f"search{DEFAULT_SEARCH_K}", "lookahead", "random")
 HERE = Path(__file__).resolve().parent
 
 
 def game_bots(game: str) -> list[str]:
     """The opponents the lobby offers for ``game``: its default bot first, then the pool bots on the pool
-    games (a game with a bot of its own, snooker or three-cushion, adds ``random`` only), then the game's
-    shipped ladder rungs (``ladder-1``..: 9-ball and 8-ball)."""
-    own = default_bot(game)
-    rest = ("random",) if game in DEFAULT_BOTS else POOL_BOTS
+    games (a game with bots of its own, its spec's ``own_bots``: snooker or three-cushion, adds them and
+    ``random`` only), then the game's shipped ladder rungs (``ladder-1``..: 9-ball and 8-ball)."""
+    own, spec = default_bot(game), get_game(game)
+    rest = spec.own_bots + ("random",) if spec.own_bots else POOL_BOTS
     return [own] + [b for b in rest if b != own] + ladder_names(game)
 DECLARATIONS = ("push_out", "pass")
 SHOT_FIELDS = {"turn", "player", "aim", "speed", "side", "height", "placement", "declare", "pocket", "ball"}
@@ -161,7 +160,7 @@ def shot_request(req, lim: dict) -> dict:
 def new_request(req, extra_bots=()) -> dict:
     """A new game's request checked; ``extra_bots``: bot specs the server was started with (``--bot``)."""
     _fields(req, NEW_FIELDS)
-    game = _choice(req, "game", tuple(GAMES), "nine_ball")
+    game = _choice(req, "game", tuple(GAMES), DEFAULT_GAME)
     if "players" in req:
         players = req["players"]
         if not (isinstance(players, list) and len(players) == 2):
@@ -227,11 +226,12 @@ def bot_problem(name: str, game: str) -> str | None:
     problem = budget_problem(name)
     if problem:
         return problem
-    own = OWN_GAME.get(family)
-    if own is not None and own != game:
-        return f"the {name} bot plays {game_words(own)} only, not {title}"
-    if game in POCKETLESS and family not in ("carom", "random"):
-        return f"the {name} bot pots balls and {title} has no pockets: choose carom<K> or random"
+    spec, own = get_game(game), bot_games(family)
+    if own and game not in own:
+        return f"the {name} bot plays {' and '.join(game_words(g) for g in own)} only, not {title}"
+    if not spec.words.pockets and family not in spec.own_bots + ("random",):
+        able = [f"{b}<K>" if b in COUNTED else b for b in spec.own_bots + ("random",)]
+        return f"the {name} bot pots balls and {title} has no pockets: choose {' or '.join(able)}"
     if family == "ladder" and name not in ladder_names(game):
         return f"no {name} is shipped for {title} (its rungs: {', '.join(ladder_names(game)) or 'none'})"
     if family == "value-lookahead" and game not in _value_network_games():

@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..rules import DEFAULT_GAME
 from .browser import PagePerson
 
 FPS_SECONDS = 2.5        # s of break animation timed at 1x
@@ -55,7 +56,7 @@ def chromium(width: int = 1400, height: int = 900):
 
 
 def _new_game(client, bot: str, seed: int) -> str:
-    status, g = client("POST", "/api/games", {"game": "nine_ball", "opponent": bot, "seed": seed})
+    status, g = client("POST", "/api/games", {"game": DEFAULT_GAME, "opponent": bot, "seed": seed})
     if status != 201:
         raise RuntimeError(f"could not start a game: {g}")
     return g["id"]
@@ -67,7 +68,7 @@ def warm(client, bot: str, turns: int = WARM_TURNS) -> None:
     gid, seed = None, 0
     for _ in range(turns):
         if gid is None:
-            status, g = client("POST", "/api/games", {"game": "nine_ball", "players": [bot, bot], "seed": seed})
+            status, g = client("POST", "/api/games", {"game": DEFAULT_GAME, "players": [bot, bot], "seed": seed})
             seed += 1
             gid = g["id"]
         status, r = client("POST", f"/api/games/{gid}/bot")

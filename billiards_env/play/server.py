@@ -9,6 +9,8 @@ import threading
 import time
 import webbrowser
 
+from ..rules import DEFAULT_GAME
+
 LOOPBACK = "127.0.0.1"
 DEFAULT_PORT = 8765
 LOOPBACK_HOSTS = ("127.0.0.1", "localhost")  # the Host names answered on loopback (a rebound name is refused)
@@ -45,7 +47,7 @@ def json_http_protocol():
     return JsonErrorsH11
 
 
-def warm_up(games=("nine_ball",)) -> float:
+def warm_up(games=(DEFAULT_GAME,)) -> float:
     """Compile the simulator's and bots' kernels before the first person's shot (numba caches them on disk,
     so this is seconds on a first run and fast afterwards): seconds taken."""
     from .session import HUMAN, Session

@@ -55,7 +55,7 @@ def status_lines(core, k: int, info: dict | None = None) -> list[str]:
     if c.call_needed[k]:
         extras.append(call_words(core.config.game))
     groups = (f"groups: P0 {GROUP_NAMES[int(g.group[k, 0])]}, P1 {GROUP_NAMES[int(g.group[k, 1])]}; "
-              if core.config.game == "eight_ball" else "")
+              if core.rules.groups else "")
     if core.rules.to_points:  # games to a score (snooker, three-cushion): the scores
         groups = f"score: P0 {int(g.score[k, 0])}, P1 {int(g.score[k, 1])}; "
     return [first + (" - " + ", ".join(e for e in extras if e) if any(extras) else ""),

@@ -34,7 +34,7 @@ DEFAULT_PLAYERS = ("", "")
 def state_words(core, k: int, score) -> dict:
     """Where table ``k``'s game stands, for the next turn."""
     c, g = core.constraints(), core.game
-    groups = [group_words(x) for x in g.group[k]] if core.config.game == "eight_ball" else None
+    groups = [group_words(x) for x in g.group[k]] if core.rules.groups else None
     return {"to_move": int(c.shooter[k]), "ball_in_hand": in_hand_words(c.ball_in_hand[k]),
             "targets": np.nonzero(c.targets[k])[0].astype(int).tolist(), "break": bool(c.is_break[k]),
             "push_out_allowed": bool(c.push_out_allowed[k]), "may_pass": bool(c.may_pass[k]),

@@ -10,17 +10,20 @@ import numpy as np
 from ..bots import make_bot
 from ..envs.games import GameConfig, GameCore
 from ..envs.games.play import play_round
+from ..rules import DEFAULT_GAME, get_game
 from .stats import wilson_interval
 
-GAME_BALL = {"nine_ball": 9, "eight_ball": 8, "ten_ball": 10}
 
-
-def break_outcomes(game: str = "nine_ball", n_racks: int = 500, seed: int = 0, noise: str = "none",
+def break_outcomes(game: str = DEFAULT_GAME, n_racks: int = 500, seed: int = 0, noise: str = "none",
                    bot: str = "ghost", **config) -> dict:
     """One break by ``bot`` on each of ``n_racks`` seeded racks (the seeds of
     ``studies.matches.play_pairing``, so the racks are the matches' racks);
     ``config``: more ``GameConfig`` fields (``rack``, ``break_nine``).
-    Returns the rates with 95% Wilson intervals and the mean balls pocketed."""
+    Returns the rates with 95% Wilson intervals and the mean balls pocketed. The game must have a game ball
+    (its rules' ``game_ball``: the pool games)."""
+    game_ball = get_game(game).rules.game_ball
+    if not game_ball:
+        raise ValueError(f"{game} has no game ball (its rules' game_ball is 0): break_outcomes studies the pool games")
     cfg = GameConfig(game=game, noise=noise, **config)
     core = GameCore(cfg, n_racks)
     idx = np.arange(n_racks)
@@ -30,7 +33,7 @@ def break_outcomes(game: str = "nine_ball", n_racks: int = 500, seed: int = 0, n
     info = play_round(core, [b, b], idx)["info"]
     pocketed = info["pocketed"]
     objects = pocketed[:, 1:].sum(axis=1)
-    rates = {"pockets a ball": objects > 0, "game ball down": pocketed[:, GAME_BALL[game]],
+    rates = {"pockets a ball": objects > 0, "game ball down": pocketed[:, game_ball],
              "breaker wins": info["game_over"] & (info["winner"] == 0), "legal": info["legal"],
              "scratch": pocketed[:, 0], "breaker shoots on": ~info["turn_over"] & ~info["game_over"]}
     out = dict(game=game, noise=noise, racks=n_racks, seed=seed, bot=bot, config=dict(config),

@@ -11,9 +11,10 @@ from ..envs.games import GameConfig, GameCore
 from ..envs.games.play import bot_actions
 from ..rendering.draw import Animation, write_animation
 from ..rendering.game import GAME_ANIMATION, render_game, shot_frames
+from ..rules import DEFAULT_GAME
 
 
-def save_game_animation(path, game: str = "nine_ball", policies=("ghost", "ghost"), seed: int = 0,
+def save_game_animation(path, game: str = DEFAULT_GAME, policies=("ghost", "ghost"), seed: int = 0,
                         anim: Animation = GAME_ANIMATION, max_shots: int = 60, noise: str = "tournament") -> Path:
     """Play one seeded game between two bots (names for ``bots.make_bot``,
     or bots) and write it as a GIF (or MP4): every shot animated at

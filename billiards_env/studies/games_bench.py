@@ -13,7 +13,8 @@ finished. The split: ``simulate`` is the simulator time of the env's shots,
 bots' ``act`` (which includes the simulator calls of their previews,
 reported as ``policy_simulate``); ``other`` is the rest of the env step
 (placement, respots, bookkeeping, re-racks). Each game is played by its
-own bots (``DEFAULT_POLICIES``: the ghost bot, three-cushion's ``carom``).
+own default bot (its spec's ``default_bot``: the ghost bot, three-cushion's ``carom``, snooker's ``snooker``);
+the games a run times and their rule settings are their specs' ``presets`` (``rules.games.StudyPresets``).
 
 ``carom_shots``: three-cushion shots per second per thread (random strikes
 from random three-ball positions on the carom table with carom equipment,
@@ -32,6 +33,7 @@ import numpy as np
 
 from ..bots import make_bot
 from ..envs.games import GAMES, GameConfig, GameCore
+from ..rules import DEFAULT_GAME, get_game
 from ..envs.games.play import play_round
 from ..envs.games.vector import GameVectorEnv
 
@@ -52,15 +54,12 @@ def _timed_simulate(calls: dict):
     return lambda: setattr(pv, "simulate", inner)
 
 
-DEFAULT_POLICIES = {"three_cushion": ("carom", "carom")}  # every other game: ("ghost", "ghost")
-
-
-def games_per_second(game: str = "nine_ball", n_tables: int = 1024, n_games: int = 3072, policies=None,
+def games_per_second(game: str = DEFAULT_GAME, n_tables: int = 1024, n_games: int = 3072, policies=None,
                      noise: str = "tournament", seed: int = 0, max_shots: int = 200,
                      rule_options: dict | None = None) -> dict:
     """Complete games per second (see the module docstring) and the time split;
     ``rule_options``: the ruleset's settings (a quick run's short three-cushion games)."""
-    policies = policies or DEFAULT_POLICIES.get(game, ("ghost", "ghost"))
+    policies = policies or (get_game(game).default_bot,) * 2
     core = GameCore(GameConfig(game=game, noise=noise, max_shots=max_shots, rule_options=rule_options or {}),
                     n_tables)
     all_ = np.arange(n_tables)
@@ -95,7 +94,7 @@ def games_per_second(game: str = "nine_ball", n_tables: int = 1024, n_games: int
                            other=wall - sim - rules - t_pol))
 
 
-def vector_steps_per_second(game: str = "nine_ball", n_tables: int = 1024, n_steps: int = 30, seed: int = 0,
+def vector_steps_per_second(game: str = DEFAULT_GAME, n_tables: int = 1024, n_steps: int = 30, seed: int = 0,
                             noise: str = "tournament") -> dict:
     """Steps per second (tables x steps / s) of the self-play vector env under uniform random actions."""
     env = GameVectorEnv(n_tables, game=game, noise=noise)
@@ -164,24 +163,25 @@ def carom_markdown(rows_: list[dict]) -> str:
 
 def warm(game: str) -> None:
     """Compile (or load) every kernel the measurements use."""
-    games_per_second(game, 8, 4, rule_options=QUICK_RULES.get(game))
+    games_per_second(game, 8, 4, rule_options=get_game(game).presets.rule_options(quick=True))
     vector_steps_per_second(game, 8, 2)
 
 
-QUICK_RULES = {"three_cushion": {"max_innings": 3}}  # a quick run's games: three innings each
-# A full run's three-cushion games end after 10 innings each (an innings limit, as UMB events set one): games to
-# the default target take about 110 shots, and 3 x 1,024 of them took half an hour on 2 cores; one game per table.
-FULL_RULES = {"three_cushion": {"max_innings": 10}}
-GAMES_PER_TABLE = {"three_cushion": 1}
+def benchmarked_games() -> tuple[str, ...]:
+    """The games the benchmark's games section times: those whose spec's ``presets.benchmarked`` is set."""
+    return tuple(name for name, spec in GAMES.items() if spec.presets.benchmarked)
 
 
-def rows(games=("nine_ball",), n_tables: int = 1024, n_games: int = 3072, n_steps: int = 30,
+def rows(games=(DEFAULT_GAME,), n_tables: int = 1024, n_games: int = 3072, n_steps: int = 30,
          quick: bool = False) -> list[dict]:
+    """Each game's ``games_per_second`` and ``vector_steps_per_second``; its spec's ``presets`` set its rules
+    (a quick or a full run's) and how many games each table plays (0: ``n_games`` over all the tables)."""
     out = []
     for g in games:
         warm(g)
-        games = n_tables * GAMES_PER_TABLE[g] if g in GAMES_PER_TABLE else n_games
-        out.append(games_per_second(g, n_tables, games, rule_options=(QUICK_RULES if quick else FULL_RULES).get(g)))
+        p = get_game(g).presets
+        played = n_tables * p.games_per_table if p.games_per_table else n_games
+        out.append(games_per_second(g, n_tables, played, rule_options=p.rule_options(quick)))
         out.append(vector_steps_per_second(g, n_tables, n_steps))
     return out
 
@@ -207,7 +207,7 @@ def markdown(results: list[dict]) -> str:
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--games", nargs="+", default=["nine_ball"], choices=list(GAMES))
+    ap.add_argument("--games", nargs="+", default=[DEFAULT_GAME], choices=list(GAMES))
     ap.add_argument("--tables", type=int, default=1024)
     ap.add_argument("--n-games", type=int, default=3072)
     ap.add_argument("--steps", type=int, default=30)

@@ -30,6 +30,7 @@ from ..bots import make_bot
 from ..envs.games import GameConfig, GameCore
 from ..envs.games.play import play_out
 from ..rendering.game_replay import GameRecorder
+from ..rules import DEFAULT_GAME
 from .stats import wilson_interval
 
 ELO = 400.0 / math.log(10.0)  # Elo points per unit of log-strength
@@ -77,7 +78,7 @@ class PairingResult:
                     b_points_per_inning=float(self.score[:, 1].sum() / max(1, self.innings[:, 1].sum())))
 
 
-def play_pairing(a, b, game: str = "nine_ball", n_racks: int = 100, seed: int = 0,
+def play_pairing(a, b, game: str = DEFAULT_GAME, n_racks: int = 100, seed: int = 0,
                  noise: str = "tournament", max_shots: int = 200, bot_factory=make_bot, save_replays: int = 0,
                  **config) -> PairingResult:
     """``n_racks`` racks, each played twice (a breaks, then b breaks) between
@@ -87,7 +88,7 @@ def play_pairing(a, b, game: str = "nine_ball", n_racks: int = 100, seed: int = 
     return play_racks(a, b, game, np.arange(n_racks), seed, noise, max_shots, bot_factory, save_replays, **config)
 
 
-def play_racks(a, b, game: str = "nine_ball", racks=(0,), seed: int = 0, noise: str = "tournament",
+def play_racks(a, b, game: str = DEFAULT_GAME, racks=(0,), seed: int = 0, noise: str = "tournament",
                max_shots: int = 200, bot_factory=make_bot, save_replays: int = 0, **config) -> PairingResult:
     """``play_pairing`` on the racks numbered ``racks`` (rack k is drawn from
     ``seed * 1_000_003 + k``, whichever other racks are played with it):

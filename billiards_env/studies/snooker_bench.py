@@ -11,8 +11,8 @@ one thread, timed in alternation (``repeats`` rounds, medians): breaks per
 second, events per break, and the cost of one event, with the snooker
 cost's ratio to the pool break's measured in the same run.
 
-``frame_row``: ``games_bench.games_per_second`` for snooker (the ``snooker``
-bot against itself at tournament noise): frames per second over ``tables``
+``frame_row``: ``games_bench.games_per_second`` for snooker (its default bot,
+``snooker``, against itself at tournament noise): frames per second over ``tables``
 tables, shots per frame, and the time in the simulator, the rules and the
 bots.
 """
@@ -28,6 +28,7 @@ from ..physics import PhysicsParams, Table, rack, set_num_threads, simulate, str
 from . import games_bench
 from .scenes import straight_break
 
+GAME = "snooker"           # the game whose frames this study times (the registry's name)
 BREAK_SPEED = (8.0, 0.2)   # m/s: as the pool scenes' breaks
 BREAK_CUE = (0.1, -0.03)   # m from the D's centre: the cue ball's spot for the opening (right of the brown)
 
@@ -72,8 +73,8 @@ def break_rows(batch: int, repeats: int) -> list[dict]:
 
 
 def frame_row(tables: int, frames: int) -> dict:
-    games_bench.games_per_second("snooker", 4, 2, ("snooker", "snooker"))  # compile / load the kernels
-    return games_bench.games_per_second("snooker", tables, frames, ("snooker", "snooker"))
+    games_bench.games_per_second(GAME, 4, 2)  # compile / load the kernels
+    return games_bench.games_per_second(GAME, tables, frames)
 
 
 def markdown(breaks: list[dict], frames: dict) -> str:

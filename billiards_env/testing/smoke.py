@@ -2,9 +2,10 @@
 
 Run from any folder after ``pip install billiards_env`` (the wheel, not a
 checkout): every registered env id makes, resets and steps (the one-player
-tasks also render an RGB frame, singly and as a vector env), a two-player
-match between built-in bots plays to the end, and an exact replay page is
-written. Exits non-zero, naming the failure, if any step fails. It also
+tasks also render an RGB frame, singly and as a vector env), on each game
+with learned agents in the package its strongest shipped rung loads and
+plays a match against ``ghost-safety`` to the end, and an exact replay page
+is written. Exits non-zero, naming the failure, if any step fails. It also
 checks that the wheel installed no top-level ``agents`` module.
 """
 from __future__ import annotations
@@ -23,7 +24,10 @@ def main(argv=None) -> int:
     import billiards_env  # noqa: F401 (registers the ids)
     from billiards_env.envs.registration import ENV_IDS, GAME_IDS
     from billiards_env.rendering import RecordReplay
+    from billiards_env.bots.learned.ladder import ladder_names
     from billiards_env.bots.registry import default_bot
+    from billiards_env.rendering.game_words import game_words
+    from billiards_env.rules import GAMES
     from billiards_env.studies.matches import play_pairing
 
     argv = sys.argv[1:] if argv is None else argv
@@ -54,12 +58,14 @@ def main(argv=None) -> int:
         venv.reset(seed=0)
         venv.step(venv.action_space.sample())
         print(f"ok  {env_id}: made and stepped against {single}; versus vector env against {vector}")
-    r = play_pairing("ghost", "ghost-safety", "eight_ball", n_racks=2, seed=0, max_shots=60)
-    assert r.n == 4, r
-    print(f"ok  match: ghost vs ghost-safety, {r.n} games of 8-ball, {r.shots.sum()} shots")
-    r = play_pairing("ladder-3", "ghost", "nine_ball", n_racks=1, seed=0, max_shots=60)  # the shipped weights load
-    assert r.n == 2, r
-    print(f"ok  match: ladder-3 vs ghost, {r.n} games of 9-ball (the package's ladder weights)")
+    shipped = [g for g in GAMES if ladder_names(g)]  # the games with learned agents in the package
+    assert shipped, "the package ships no ladder weights (bots/learned/ladder/<game>/)"
+    for game in shipped:
+        rung = ladder_names(game)[-1]
+        r = play_pairing(rung, "ghost-safety", game, n_racks=1, seed=0, max_shots=60)
+        assert r.n == 2, r
+        print(f"ok  match: {rung} vs ghost-safety, {r.n} games of {game_words(game)}, {r.shots.sum()} shots "
+              f"(the package's ladder weights)")
     env = RecordReplay(gym.make("Billiards-PotOne-v1", render_mode="rgb_array"), out, name_prefix="smoke")
     env.reset(seed=0)
     done = False

@@ -157,7 +157,7 @@ def test_config_yaml_and_overrides(tmp_path):
     for task in ("pot_one", "run_out", "nine_ball"):
         cfg = TaskConfig.from_yaml(CONFIG_DIR / f"{task}.yaml")
         assert cfg == TaskConfig.from_dict(BUILTIN_DEFAULTS[task]) == TaskConfig.default(task)
-        assert cfg.version == 1 and cfg.solver == "event"
+        assert cfg.version == 2 and cfg.solver == "event"  # the equipment section's layout
         assert TaskConfig.from_dict(cfg.to_dict()) == cfg
         with pytest.raises(dataclasses.FrozenInstanceError):
             cfg.n_balls = 3
@@ -167,8 +167,8 @@ def test_config_yaml_and_overrides(tmp_path):
         TaskConfig.from_dict(BUILTIN_DEFAULTS["run_out"], reward={"pocket_bonus": 2})
     with pytest.raises(ValueError, match="unknown effects"):
         TaskConfig.from_dict(BUILTIN_DEFAULTS["run_out"], effects={"magnus": True})
-    with pytest.raises(ValueError, match="version"):
-        TaskConfig.from_dict(BUILTIN_DEFAULTS["run_out"], version=2)
+    with pytest.raises(ValueError, match="version 3 is not supported"):
+        TaskConfig.from_dict(BUILTIN_DEFAULTS["run_out"], version=3)
     with pytest.raises(ValueError, match="dt"):
         TaskConfig.from_dict(BUILTIN_DEFAULTS["run_out"], solver="step")
     p = tmp_path / "bad.yaml"

@@ -1,17 +1,21 @@
 """A sixth game added through the registry alone: one rules module (here, this
-test module: 3-ball, 9-ball's rules on three balls) and one ``register_game``
-call, nothing else edited. The single-agent env, the vector entry point and
-the PettingZoo AEC env are generated from the entry; they pass Gymnasium's
-and PettingZoo's checks, play random games to the end, hand bots their
-views and speak the game's own words."""
+test module: 3-ball, 9-ball's rules on three balls), its default
+configuration (``tests/envs/games/three_ball.yaml``, named by the spec's
+``config_path``) and one ``register_game`` call, nothing else edited. The
+single-agent env, the vector entry point and the PettingZoo AEC env are
+generated from the entry; they pass Gymnasium's and PettingZoo's checks,
+play random games to the end, hand bots their views and speak the game's
+own words."""
 from __future__ import annotations
+
+from pathlib import Path
 
 import numpy as np
 import pytest
 from gymnasium.utils.env_checker import check_env
 
 from billiards_env.physics.state import _triangle
-from billiards_env.rules import GAMES, GameSpec, GameWords, register_game
+from billiards_env.rules import GAMES, GameSpec, GameWords, StudyPresets, register_game
 from billiards_env.rules.nine_ball import NineBallRules
 from billiards_env.rules.placement import FOOT_SPOT
 
@@ -36,8 +40,12 @@ def three_ball_rack(table, R: float, u: np.ndarray) -> np.ndarray:
     return pos
 
 
+# the benchmark's games section times it: a quick run's games spot the 3 on the break, two games a table
+TOY_PRESETS = StudyPresets(benchmarked=True, quick_rules=(("spot_break_nine", True),), games_per_table=2)
 SPEC = GameSpec(TOY, "3-ball", ThreeBallRules, three_ball_rack, 1, "ghost", "ThreeBall", "ThreeBall",
-                "3-ball (9-ball's rules on three balls, a toy game of the tests)", GameWords(call=""))
+                "3-ball (9-ball's rules on three balls, a toy game of the tests)", GameWords(call=""),
+                presets=TOY_PRESETS,
+                config_path=str(Path(__file__).parent / "games" / f"{TOY}.yaml"))
 
 
 @pytest.fixture(scope="module")
@@ -103,3 +111,59 @@ def test_pettingzoo_api(toy):
 def test_the_games_own_words(toy):
     from billiards_env.rendering.game_words import call_words, game_words
     assert game_words(TOY) == "3-ball" and call_words(TOY) == "call the shot"
+
+
+def test_the_play_server_offers_it_and_plays_it(toy):
+    """The lobby's game list and bots, a new game's request and a game played through a session: from the
+    registry (no own_bots: the pool bots; the bots written for other games refused)."""
+    from billiards_env.play.app import POOL_BOTS, bot_problem, game_bots, new_request
+    from billiards_env.play.session import HUMAN, Session
+    assert game_bots(TOY) == ["ghost"] + [b for b in POOL_BOTS if b != "ghost"]  # no ladder shipped for it
+    assert new_request({"game": TOY, "seed": 1})["players"] == [HUMAN, "ghost"]
+    assert bot_problem("search16", TOY) is None
+    assert bot_problem("carom", TOY) == "the carom bot plays three-cushion only, not 3-ball"
+    assert "plays snooker only" in bot_problem("snooker", TOY)
+    s = Session("toy", TOY, [HUMAN, "ghost"], 1)
+    assert s.state()["title"] == "3-ball" and s.state()["hint_bot"] == "ghost"
+    for turn in range(4):  # the person plays the hint (its default bot's shot), the bot its own
+        if s.state()["over"]:
+            break
+        if s.state()["to_move"] == 0:
+            s.human_shot({**s.hint(), "player": 0})
+        else:
+            s.bot_shot(turn)
+    assert s.turn >= 2 and s.n_shots() == s.turn
+
+
+def test_recorded_rulings_read_its_balls(toy):
+    """A recorded 3-ball game's states and rulings (``rendering.game_replay``): no groups (its rules' ``groups``),
+    games won, the balls by number."""
+    from billiards_env.bots import make_bot
+    from billiards_env.envs.games import GameConfig, GameCore
+    from billiards_env.envs.games.play import play_round
+    from billiards_env.rendering.game_replay import GameRecorder
+    core = GameCore(GameConfig(game=TOY, noise="tournament", max_shots=20), 1, record=True)
+    core.streams.seed([0], [2])
+    core.reset_tables([0])
+    rec = GameRecorder(core, [0])
+    bots = [make_bot("ghost", 0), make_bot("ghost", 1)]
+    for _ in range(20):
+        out = play_round(core, bots, np.arange(1), {"bots": 0.0})
+        if out["terminated"][0] or out["truncated"][0]:
+            break
+    shots = [s["info"]["game"] for rep in rec.games(0) for s in rep.data["shots"]]
+    assert shots and all(s["after"]["groups"] is None and s["after"]["score_of"] == "games won" for s in shots)
+    assert any("pots the " in s["ruling"] for s in shots), [s["ruling"] for s in shots]
+
+
+def test_the_studies_play_it_from_its_spec(toy):
+    """The break study reads its game ball from its rules (the 3); the games benchmark times it (its presets:
+    benchmarked, a quick run's rule settings, games per table) between its default bots."""
+    from billiards_env.studies import games_bench
+    from billiards_env.studies.breaks import break_outcomes
+    out = break_outcomes(TOY, n_racks=8, noise="tournament")
+    assert out["racks"] == 8 and 0 <= out["game ball down"]["rate"] <= out["pockets a ball"]["rate"]
+    assert TOY in games_bench.benchmarked_games()
+    games, steps = games_bench.rows((TOY,), n_tables=4, n_games=100, n_steps=2, quick=True)
+    assert games["policies"] == ["ghost", "ghost"] and games["rule_options"] == {"spot_break_nine": True}
+    assert 8 <= games["games"] < 100 and steps["steps"] == 2

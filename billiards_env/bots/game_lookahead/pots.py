@@ -15,6 +15,7 @@ import numba
 import numpy as np
 
 from ...contract.pockets import CORNER_ACCEPT_DEG, SIDE_ACCEPT_DEG
+from ...rules import get_game
 from ..geometry.lines import blocked, ghost_ball
 
 _jit = numba.njit(cache=True, nogil=True)
@@ -124,11 +125,13 @@ def position_value(ease: np.ndarray, v_none: float = V_NONE, v_full: float = V_F
 
 def balls_left(game: str, on: np.ndarray, targets: np.ndarray) -> np.ndarray:
     """[n] the object balls the next shooter still has to pocket, the game's ball included: every object ball
-    on the table in rotation games; in 8-ball the legal targets on the table, plus the 8 while it is not one."""
-    tg = (targets & on)[:, 1:]
-    if game != "eight_ball":
+    on the table in rotation games; in a game of groups (8-ball) the legal targets on the table, plus the game's
+    ball while it is not one."""
+    rules = get_game(game).rules
+    if not rules.groups:
         return on[:, 1:].sum(axis=1)
-    return tg.sum(axis=1) + ~tg[:, 7]
+    tg = (targets & on)[:, 1:]
+    return tg.sum(axis=1) + ~tg[:, rules.game_ball - 1]
 
 
 class PotArrays(NamedTuple):

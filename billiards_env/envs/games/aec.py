@@ -7,7 +7,7 @@ from typing import Any
 import numpy as np
 from pettingzoo import AECEnv
 
-from ...rules import GAMES, get_game
+from ...rules import DEFAULT_GAME, GAMES, get_game
 from .core import GameCore
 from .spaces import OBSERVATION_DOC, action_space, game_doc, info_row, make_config, observation_space
 
@@ -29,7 +29,7 @@ class GameAECEnv(AECEnv):
 
     metadata = {"render_modes": [], "name": "billiards_game_v0", "is_parallelizable": False}
     render_mode = None  # no render modes (PettingZoo's wrappers read the attribute)
-    game = "nine_ball"
+    game = DEFAULT_GAME
 
     def __init__(self, config=None, **overrides: Any):
         super().__init__()

@@ -44,69 +44,113 @@ components the constraints do not use are ignored.
 from __future__ import annotations
 
 import dataclasses
+import inspect
 import math
 import time
+from importlib import resources
+from pathlib import Path
 
 import numpy as np
 
 from ...contract.codec import ACTION_DIM, ActionCodec, ShotContext, _context, placement_to_actions
 from ...contract.turn import Equipment, play_turn
 from ...contract.view import GameView
-from ...physics import BallState, Effects, Models, PhysicsParams, Table
+from ...physics import BallState
 from ...physics.strike import Shots
-from ...rules import GAMES, GameState, get_game, get_rules
+from ...physics.validation import check_keys
+from ...rules import DEFAULT_GAME, GAMES, GameState, get_game, get_rules
 from ...rules import records as R
-from ...physics.noise import NoiseLevel
-from ..config import _number
 from ..core import _observe
+from ..equipment import (CONFIG_VERSION, KEYS, SECTION, EquipmentConfig, Equipped, check_config_keys, read_yaml,
+                         upgrade, with_overrides)
 from ..streams import TableStreams
 from ...rules.placement import FOOT_SPOT, HEAD_STRING
 from .setup import RACKS, loosen
 
 EXTRA_OBS = 13  # observation entries after the one-player layout (see ``observation_doc``)
 BREAK_NINE = ("wins", "spotted")  # 9-ball: the 9 pocketed on a legal break wins, or is spotted (some pro events)
+BREAK_OPTION = "spot_break_nine"  # the rules' setting "spotted" stands for (NineBallRules); a game without it: "wins"
 
 
-@dataclasses.dataclass(frozen=True)
-class GameConfig:
-    """A two-player game instance: ``game`` (``nine_ball``, ``eight_ball``,
-    ``ten_ball``, ``three_cushion`` or ``snooker``), the table (``table_size_ft``;
-    three-cushion: the carom match table; snooker: the 12 ft snooker table),
-    ``physics`` preset ("standard": the game's own equipment, carom balls and
-    cloth in three-cushion, snooker balls in snooker),
-    ``rule_options`` (the ruleset's own settings, ``rules.get_rules(game,
-    **rule_options)``: three-cushion's ``target``, ``max_innings``,
-    ``equal_innings``),
-    ``solver`` (and ``dt``), ``min_draw`` (m, the draw at a1 = -1),
-    ``max_shots`` (a game not over after this many shots is truncated, a
-    draw), ``noise`` (a ``physics.noise.NoiseLevel`` or its name:
-    ``none``, ``tournament``, ``high`` = 5x tournament, ``variable`` =
-    tournament times a factor uniform in [0, 5] drawn per game; or a
-    ``NoiseConfig`` / mapping, the level ``custom``), ``effects`` and ``models``;
-    ``rack`` (the pool games): ``realistic`` (seeded gaps and offsets between
-    the balls, ``setup.loosen``) or ``perfect`` (every ball frozen, as before;
-    snooker's reds are always racked frozen);
-    ``break_nine`` (9-ball): ``wins`` (the 9 pocketed on a legal break wins)
-    or ``spotted`` (it is respotted and the breaker shoots on)."""
+# The built-in games' default configurations are package data, so an installed wheel finds them.
+GAME_CONFIG_DIR = Path(str(resources.files("billiards_env.envs.games") / "defaults"))
 
-    game: str = "nine_ball"
-    table_size_ft: int = 9
-    physics: str = "standard"
-    solver: str = "event"
-    dt: float | None = None
-    min_draw: float = 0.01
-    max_shots: int = 200
-    noise: NoiseLevel = "none"  # a NoiseLevel, a level's name, a NoiseConfig or a mapping: NoiseLevel.of
-    effects: Effects = dataclasses.field(default_factory=Effects)
-    models: Models = dataclasses.field(default_factory=Models)
-    rule_options: dict = dataclasses.field(default_factory=dict)
-    rack: str = "realistic"
-    break_nine: str = "wins"
 
-    def __post_init__(self):
-        if self.game not in GAMES:
+def game_config_path(game: str) -> Path:
+    """The YAML file of a game's defaults: its ``GameSpec.config_path``, or
+    ``billiards_env/envs/games/defaults/<game>.yaml``."""
+    spec = get_game(game)
+    return Path(spec.config_path) if spec.config_path is not None else GAME_CONFIG_DIR / f"{game}.yaml"
+
+
+@dataclasses.dataclass(frozen=True, init=False)
+class GameConfig(Equipped):
+    """A two-player game instance; its defaults are the game's YAML file
+    (``billiards_env/envs/games/defaults/<game>.yaml``, ``game_config_path``),
+    the single source of them.
+
+    - ``game``: a registered game (``nine_ball``, ``eight_ball``,
+      ``ten_ball``, ``three_cushion``, ``snooker``: ``rules.games``);
+    - ``version``: of the layout (``CONFIG_VERSION``, the tasks' one);
+    - ``equipment``: the tasks' section (``EquipmentConfig``,
+      docs/configuration.md): the table (the rules' ``table_style``: the
+      carom match table in three-cushion, the 12 ft snooker table in snooker;
+      ``table_size_ft`` for pool), ``physics`` (``standard`` stands for the
+      game's own preset where its rules name one, ``Rules.physics``: carom
+      balls and cloth in three-cushion, snooker balls in snooker), ``solver``
+      and ``dt``, ``min_draw``, ``effects``, ``models`` and ``noise`` (a
+      ``NoiseLevel``: ``none``, ``tournament``, ``high`` = 5x tournament,
+      ``variable`` = tournament times a factor uniform in [0, 5] drawn per
+      game; or the deviations, the level ``custom``); its keys read flat
+      (``cfg.noise``);
+    - ``max_shots``: a game not over after this many shots is truncated, a draw;
+    - ``rack`` (the pool games): ``realistic`` (seeded gaps and offsets
+      between the balls, ``setup.loosen``) or ``perfect`` (every ball
+      frozen; snooker's reds are always racked frozen, three-cushion's balls
+      start on their spots);
+    - ``break_nine`` (9-ball): ``wins`` (the 9 pocketed on a legal break wins)
+      or ``spotted`` (it is respotted and the breaker shoots on);
+    - ``rule_options``: the ruleset's own settings (``rules.get_rules(game,
+      **rule_options)``: three-cushion's ``target``, ``max_innings``,
+      ``equal_innings``).
+
+    ``GameConfig(game, **keys)``: the game's defaults with ``keys`` over
+    them: any key, the equipment's keys flat (``noise="tournament"``) or
+    ``equipment=`` (a mapping over the section, or an ``EquipmentConfig``).
+    ``GameConfig.from_dict`` / ``from_yaml`` read a saved configuration the
+    same way (a partial one keeps the game's defaults for what it leaves out)."""
+
+    game: str
+    version: int
+    equipment: EquipmentConfig
+    max_shots: int
+    rack: str
+    break_nine: str
+    rule_options: dict
+
+    def __init__(self, game: str = DEFAULT_GAME, **keys):
+        if game not in GAMES:
             raise ValueError(f"game must be one of {tuple(GAMES)} (the games' registry, rules.games), "
-                             f"got {self.game!r}")
+                             f"got {game!r}")
+        d = with_overrides(_defaults(game), keys)
+        check_config_keys(type(self), {**d, "game": game}, "game config")
+        equipment = d[SECTION] if isinstance(d[SECTION], EquipmentConfig) else EquipmentConfig.from_dict(d[SECTION])
+        own = get_game(game).rules.physics
+        if equipment.physics == "standard" and own:  # "standard" has always stood for the game's own balls here
+            equipment = dataclasses.replace(equipment, physics=own)
+        for f in dataclasses.fields(self):
+            object.__setattr__(self, f.name, game if f.name == "game" else equipment if f.name == SECTION
+                               else d[f.name])
+        self._validate()
+
+    def _validate(self) -> None:
+        if self.version != CONFIG_VERSION:
+            raise ValueError(f"config version {self.version!r} is not supported (expected {CONFIG_VERSION}; "
+                             f"GameConfig.from_dict converts a version-1 mapping)")
+        style = get_game(self.game).rules.table_style
+        if self.equipment.table != style:
+            raise ValueError(f"{self.game} is played on the {style!r} table (its rules' table_style), "
+                             f"got table={self.equipment.table!r}")
         if not isinstance(self.rule_options, dict):
             raise TypeError(f"rule_options must be a dict, got {type(self.rule_options).__name__}")
         if self.rule_options:
@@ -115,20 +159,50 @@ class GameConfig:
             raise ValueError(f"rack must be one of {RACKS}, got {self.rack!r}")
         if self.break_nine not in BREAK_NINE:
             raise ValueError(f"break_nine must be one of {BREAK_NINE}, got {self.break_nine!r}")
-        if self.break_nine != "wins" and self.game != "nine_ball":
-            raise ValueError(f"break_nine={self.break_nine!r} is a 9-ball option (10-ball always spots the 10 "
-                             f"on the break, 8-ball the 8), got game={self.game!r}")
-        if self.solver not in ("event", "step") or (self.solver == "step" and not self.dt):
-            raise ValueError(f"solver must be 'event' or 'step' (with a positive dt), "
-                             f"got {self.solver!r}, dt={self.dt}")
+        takes = BREAK_OPTION in inspect.signature(get_game(self.game).rules).parameters
+        if self.break_nine != "wins" and not takes:
+            raise ValueError(f"break_nine={self.break_nine!r} is a 9-ball option, of the rules that take "
+                             f"{BREAK_OPTION} (10-ball always spots the 10 on the break, 8-ball the 8), "
+                             f"got game={self.game!r}")
         if isinstance(self.max_shots, bool) or not isinstance(self.max_shots, int) or self.max_shots < 1:
             raise ValueError(f"max_shots must be a positive integer, got {self.max_shots!r}")
-        object.__setattr__(self, "min_draw", _number(self.min_draw, "min_draw"))
-        if isinstance(self.effects, dict):
-            object.__setattr__(self, "effects", Effects.from_dict(self.effects))
-        if isinstance(self.models, dict):
-            object.__setattr__(self, "models", Models.from_dict(self.models))
-        object.__setattr__(self, "noise", NoiseLevel.of(self.noise))
+
+    @classmethod
+    def from_dict(cls, d: dict, **overrides) -> "GameConfig":
+        """From a mapping such as a YAML file's (a version-1 one converted; it
+        names its ``game``), over the game's defaults, with ``overrides`` over it."""
+        d = with_overrides(upgrade(d, "game config"), overrides)
+        if "game" not in d:
+            raise ValueError("game config needs a 'game' key")
+        return cls(**d)
+
+    @classmethod
+    def default(cls, game: str, **overrides) -> "GameConfig":
+        """The game's shipped configuration (its YAML file), with ``overrides``: ``GameConfig(game, **overrides)``."""
+        return cls(game, **overrides)
+
+
+def _defaults(game: str) -> dict:
+    """The game's default configuration, read from its YAML file: every key given (it is their only source)."""
+    path = game_config_path(game)
+    if not path.exists():
+        raise FileNotFoundError(
+            f"no default configuration for game {game!r}: {path} does not exist. A built-in game's YAML is package "
+            f"data in billiards_env/envs/games/defaults/; a game of your own names its file with "
+            f"GameSpec.config_path")
+    try:
+        d = upgrade(read_yaml(path), "game config")
+        check_keys(GameConfig, d, "game config")
+        missing = [f.name for f in dataclasses.fields(GameConfig) if f.name not in d]
+        section = d.get(SECTION)
+        missing += [f"{SECTION}.{k}" for k in KEYS if not isinstance(section, dict) or k not in section]
+        if missing:
+            raise ValueError(f"missing key(s) {missing}: a game's default configuration gives every key")
+        if d["game"] != game:
+            raise ValueError(f"the file is game {d['game']!r}'s configuration, not {game!r}'s")
+    except ValueError as exc:
+        raise ValueError(f"{path}: {exc}") from exc
+    return d
 
 
 class GameCore:
@@ -138,14 +212,11 @@ class GameCore:
         if not isinstance(n_envs, (int, np.integer)) or n_envs < 1:
             raise ValueError(f"num_envs must be a positive integer, got {n_envs!r}")
         self.config = cfg
-        rules_options = {"spot_break_nine": True} if cfg.break_nine == "spotted" else {}
+        rules_options = {BREAK_OPTION: True} if cfg.break_nine == "spotted" else {}
         self.rules = get_rules(cfg.game, **rules_options, **cfg.rule_options)
         self.n_envs = int(n_envs)
-        style = self.rules.table_style
-        self.table = (Table.carom() if style == "carom" else Table.snooker() if style == "snooker"
-                      else Table.pool(cfg.table_size_ft))
-        self.params = PhysicsParams.preset(self.rules.physics if cfg.physics == "standard" and self.rules.physics
-                                           else cfg.physics)
+        self.table = cfg.make_table()  # the rules' table style (GameConfig checks it)
+        self.params = cfg.params()
         self.effects, self.models, self.record = cfg.effects, cfg.models, record
         self.n_balls = self.rules.n_balls + 1
         self.action_dim = ACTION_DIM + int(self.rules.calls_ball)  # a8: the called ball (10-ball)

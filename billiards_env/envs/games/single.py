@@ -7,7 +7,7 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from ...rules import GAMES, get_game
+from ...rules import DEFAULT_GAME, GAMES, get_game
 from .core import GameCore
 from .spaces import OBSERVATION_DOC, action_space, game_doc, info_row, make_config, observation_space
 from .versus import AGENT, check_opponent, make_opponent, new_games, opponent_turns
@@ -40,7 +40,7 @@ class GameEnv(gym.Env):
     """ + OBSERVATION_DOC
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": 4}
-    game = "nine_ball"
+    game = DEFAULT_GAME
     AGENT = AGENT
 
     def __init__(self, opponent="ghost", config=None, opponent_seed: int = 0, render_mode: str | None = None,

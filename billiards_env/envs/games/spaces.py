@@ -1,6 +1,9 @@
 """Spaces, the observation table and the info layout shared by the game envs."""
 from __future__ import annotations
 
+import dataclasses
+import os
+
 import numpy as np
 from gymnasium import spaces
 
@@ -37,14 +40,18 @@ OBSERVATION_DOC = """
 
 
 def make_config(config, overrides: dict, game: str | None = None) -> GameConfig:
+    """The env's ``GameConfig``: ``config`` (None: the game's defaults; a
+    ``GameConfig``; or the path of a YAML file) with ``overrides`` (keywords:
+    any key, the equipment's flat) over it."""
     if config is None:
         return GameConfig(**({"game": game} if game else {}), **overrides)
+    if isinstance(config, (str, os.PathLike)):
+        config, overrides = GameConfig.from_yaml(config, **overrides), {}
     if not isinstance(config, GameConfig):
-        raise TypeError(f"config must be a GameConfig, got {type(config).__name__}")
+        raise TypeError(f"config must be a GameConfig or the path of a YAML file, got {type(config).__name__}")
     if game is not None and config.game != game:
         raise ValueError(f"config is for {config.game!r}, this env plays {game!r}")
     if overrides:
-        import dataclasses
         return dataclasses.replace(config, **overrides)
     return config
 

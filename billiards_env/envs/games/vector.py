@@ -7,7 +7,7 @@ from typing import Any
 import numpy as np
 from gymnasium.vector import AutoresetMode
 
-from ...rules import GAMES, get_game
+from ...rules import DEFAULT_GAME, GAMES, get_game
 from ..streams import seed_vector_env
 from .batched import GameTables
 from .spaces import OBSERVATION_DOC
@@ -44,11 +44,10 @@ class GameVectorEnv(GameTables):
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": 4, "autoreset_mode": AutoresetMode.NEXT_STEP}
 
-    def __init__(self, num_envs: int = 1, game: str = "nine_ball", config=None, **overrides: Any):
+    def __init__(self, num_envs: int = 1, game: str = DEFAULT_GAME, config=None, **overrides: Any):
         super().__init__(num_envs, game, config, overrides)
 
     def reset(self, *, seed=None, options: dict | None = None):
-        N = self.num_envs
         seed_vector_env(self, self.core.streams, seed)
         idx, breaker = self._reset_rows(options)
         self.core.reset_tables(idx, breaker)
@@ -58,7 +57,7 @@ class GameVectorEnv(GameTables):
     def step(self, actions):
         if not self._seeded:
             raise RuntimeError("call reset() before step()")
-        N, B = self.num_envs, self.core.n_balls
+        N = self.num_envs
         a = self.core.validate_actions(actions, N)
         done_prev = self._autoreset_envs
         act = np.nonzero(~done_prev)[0]
@@ -92,7 +91,7 @@ class GameVectorEnv(GameTables):
         return self.core.observe(), reward, terminated, truncated, info
 
 
-def game_vector(num_envs: int = 1, game: str = "nine_ball", opponent=None, **kwargs):
+def game_vector(num_envs: int = 1, game: str = DEFAULT_GAME, opponent=None, **kwargs):
     """The vector entry point of a game id: the agent against ``opponent``
     (``versus.GameVersusVectorEnv``, the batched ``GameEnv``) when one is
     named, else self-play (``GameVectorEnv``)."""

@@ -17,6 +17,7 @@ from ..billiards import _autoreset_mode
 from ..streams import seed_vector_env
 from .batched import GameTables
 from ...bots import BOT_NAMES, is_bot_name, make_bot
+from ...rules import DEFAULT_GAME
 from .core import GameCore
 from .play import bot_actions
 from .spaces import OBSERVATION_DOC
@@ -114,7 +115,7 @@ class GameVersusVectorEnv(GameTables):
 
     metadata = {"render_modes": ["rgb_array"], "render_fps": 4, "autoreset_mode": AutoresetMode.NEXT_STEP}
 
-    def __init__(self, num_envs: int = 1, game: str = "nine_ball", opponent="ghost", opponent_seed: int = 0,
+    def __init__(self, num_envs: int = 1, game: str = DEFAULT_GAME, opponent="ghost", opponent_seed: int = 0,
                  config=None, autoreset_mode: str | AutoresetMode = AutoresetMode.NEXT_STEP, **overrides: Any):
         mode = _autoreset_mode(autoreset_mode)
         if mode == AutoresetMode.DISABLED:

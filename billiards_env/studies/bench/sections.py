@@ -212,11 +212,11 @@ def rllib_rows(opts: RunOptions) -> list[dict]:
 def games_markdown(opts: RunOptions) -> str:
     """The two-player games' table (``studies.games_bench``): games/s of
     ``opts.batch`` tables over ``3 * batch`` games, and the vector env's
-    steps/s, for 9-ball, 10-ball and three-cushion (with its ``carom`` bot),
-    then three-cushion's shots/s per thread and cost per event beside the
-    pool scenes (``games_bench.carom_shots``)."""
+    steps/s, for the games whose specs' presets are benchmarked (``games_bench.benchmarked_games``: 9-ball,
+    10-ball and three-cushion, each between its default bots), then three-cushion's shots/s per thread and
+    cost per event beside the pool scenes (``games_bench.carom_shots``)."""
     from billiards_env.studies import games_bench
-    table = games_bench.markdown(games_bench.rows(("nine_ball", "ten_ball", "three_cushion"), opts.batch,
+    table = games_bench.markdown(games_bench.rows(games_bench.benchmarked_games(), opts.batch,
                                                   3 * opts.batch, quick=opts.quick))
     return table + "\n" + games_bench.carom_markdown(games_bench.carom_shots(opts.batch, opts.repeats))
 
