@@ -107,7 +107,9 @@ _COMMON_DOC = """
     (Phi = 0 in terminal states). Weights: ``RewardConfig``.
 
     **Info**: ``pocketed`` (balls pocketed by this shot), ``n_pocketed``,
-    ``first_contact`` (-1 none), ``legal_target`` (before the shot), ``foul``,
+    ``first_contact`` (-1 none), ``legal_target`` (before the shot), ``foul``
+    (bool: the task's ruling, a wrong first contact or none; the two-player
+    games' ``info["foul"]`` is a foul code instead, docs/games.md),
     ``scratch``, ``success``, ``n_events``, ``sim_time`` (s), ``sim_truncated``,
     ``action_clipped``, ``shot``, ``reward_terms``.
 

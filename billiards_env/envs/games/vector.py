@@ -31,7 +31,9 @@ class GameVectorEnv(GameTables):
     ``options["breaker"]`` names it: 0, 1 or an array [N]) and the shot
     noise of each table come from its own stream.
 
-    **Info**: the shot record (``legal``, ``foul``, ``turn_over``,
+    **Info**: the shot record (``legal``, ``foul``: the foul's code,
+    ``rules.records.FOUL_NAMES``, 0 none, where the one-player tasks'
+    ``foul`` is a bool; ``turn_over``,
     ``game_over``, ``winner``, ``end``, ``push_out``, ``passed``,
     ``shooter``, ``respotted``, ``option``: 10-ball, the shot pocketed a
     ball illegally), ``pocketed``, ``first_contact``, ``called_pocket``,
