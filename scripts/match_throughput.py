@@ -38,7 +38,10 @@ from billiards_env.studies import match_report  # noqa: E402
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--game", choices=("nine_ball", "eight_ball"), default="nine_ball")
+    from billiards_env.rules import DEFAULT_GAME, GAMES
+    laddered = [g for g in GAMES if L.ladder_names(g)]  # the games with shipped ladder agents
+    ap.add_argument("--game", choices=laddered, default=DEFAULT_GAME,
+                    help="a game with shipped ladder agents (bots/learned/ladder/<game>/)")
     ap.add_argument("--entrants", nargs="+", default=None, help="default: the game's ladder, ghost, ghost-safety, search64")
     ap.add_argument("--racks", type=int, default=8, help="racks per pairing (each played twice)")
     ap.add_argument("--chunk-racks", type=int, default=4)
