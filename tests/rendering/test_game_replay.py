@@ -241,6 +241,28 @@ def test_browser_shows_the_game_in_words(browser, game_page, scripted):
     assert "push out" in browser.find_element(By.ID, "gamestate").text
 
 
+def test_browser_raw_action_and_metadata_behind_a_toggle(browser, game_page, scripted):
+    """The panel tells a shot in words; the action vector as recorded and the page's metadata are behind a closed
+    details toggle, and opened it shows them exactly (the shot's action, the replay's meta)."""
+    import json
+
+    from selenium.webdriver.common.by import By
+
+    rep = scripted[1].games(0)[0]
+    _open(browser, game_page)
+    api = "window.billiardsReplay"
+    k = 1
+    browser.execute_script(f"{api}.seek(arguments[0], {api}.duration(arguments[0]))", k)
+    box, raw = browser.find_element(By.ID, "rawbox"), browser.find_element(By.ID, "raw")
+    assert box.get_attribute("open") is None and not raw.is_displayed()
+    box.find_element(By.TAG_NAME, "summary").click()
+    assert raw.is_displayed()
+    shown = json.loads(raw.text)
+    assert shown["action"] == pytest.approx(list(rep.shots[k]["info"]["action"]), abs=0), shown
+    assert shown["meta"] == rep.data.get("meta", {}), shown
+    box.find_element(By.TAG_NAME, "summary").click()  # closed again for the tests that read the panel's words
+
+
 def test_browser_link_opens_at_that_moment(browser, tmp_path):
     """#shot=2&t=<time of the n-th event of shot 2>: the page opens there and
     its balls stand where the simulator stopped after n events."""
