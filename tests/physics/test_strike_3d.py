@@ -238,3 +238,22 @@ def test_elevated_strikes_keep_the_invariants(solver, seed):
                         r * np.cos(ang), r * np.sin(ang), params, theta=rng.uniform(0, MAX_ELEVATION, n))
         _, violations = run_batch(struck, table, params, solver)
         assert not any(violations), [v for v in violations if v][:3]
+
+
+def test_fuzz_elevated_script_quick(tmp_path):
+    """scripts/fuzz_elevated.py (docs/physics.md names it) at a tiny size, both solvers: runs, strikes with the cue
+    elevated, finds nothing, and its summary says so."""
+    import json
+    import pathlib
+    import subprocess
+    import sys
+    root = pathlib.Path(__file__).resolve().parents[2]
+    for solver in ("event", "step"):
+        out = subprocess.run([sys.executable, str(root / "scripts" / "fuzz_elevated.py"), "--shots", "64", "--batch",
+                              "32", "--seed", "5", "--solver", solver, "--summary", str(tmp_path / f"{solver}.json"),
+                              "--regressions", str(tmp_path / "reg")], capture_output=True, text=True, timeout=900,
+                             cwd=root)
+        assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
+        s = json.loads((tmp_path / f"{solver}.json").read_text())
+        assert s["solver"] == solver and s["shots"] == 64 and s["shots_with_violations"] == 0 and s["events"] > 64
+        assert s["theta_max"] > 0
