@@ -20,8 +20,8 @@ import numpy as np
 from ..bots.registry import default_bot, make_bot
 from ..envs.games import GameConfig, GameCore
 from ..envs.games.play import bot_actions
-from ..rendering.game_replay import GameRecorder, state_words
-from ..rendering.game_words import game_words, pocket_names, words_of
+from ..rendering.game_replay import GameRecorder, game_entry, state_words
+from ..rendering.game_words import ball_ids, game_words, pocket_names, words_of
 from ..rendering.replay import Replay
 from ..rules import records as R
 from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP, d_of
@@ -139,9 +139,7 @@ class Session:
         if recorded is not None:
             rep.data["game"] = dict(recorded.data["game"])
         else:
-            rep.data["game"] = {"name": self.game, "title": game_words(self.game), "players": self.names,
-                                "labels": ["Player 1", "Player 2"], "head_string": HEAD_STRING * c.table.length,
-                                "pocket_names": pocket_names(c.pockets), "start": self.start}
+            rep.data["game"] = game_entry(c, self.names, ["Player 1", "Player 2"], self.start)
         self.rack_entry(rep)
         rep.data["shots"].extend(self.shots())
         return rep
@@ -171,8 +169,17 @@ class Session:
                        "d": None if d_of(t) is None else d_of(t).tolist(), "kitchen_gap": KITCHEN_GAP,
                        "max_ball": int(c.n_balls - 1)},
             "pockets": c.pockets.tolist(), "hint_bot": default_bot(self.game), "pocket_names": pocket_names(c.pockets),
+            "ball_names": self.ball_names(),
         })
         return st
+
+    def ball_names(self) -> list[str]:
+        """Each ball on the table by slot (the ``pos`` rows), in the game's words (the registry's ``GameWords``):
+        'the cue ball', 'the 7'; snooker's 'the red', 'the pink'; three-cushion's 'the white' (slot 0 holds the
+        cue ball of the player to move: ``game_words.ball_ids``)."""
+        c, words = self.core, words_of(self.game)
+        ids = ball_ids(c, 0) or list(range(c.n_balls))
+        return [words.ball(i) for i in ids]
 
     def _score(self):
         rep = self.replay()

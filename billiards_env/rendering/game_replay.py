@@ -24,6 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..rules import HEAD_STRING
+from ..rules.placement import d_of
 from .game_words import (ball_ids, call_words, end_words, foul_words, game_words, group_words, in_hand_words,
                          player_labels, pocket_names, ruling_words, words_of)
 from .replay import Replay
@@ -42,7 +43,28 @@ def state_words(core, k: int, score) -> dict:
             "shots": int(g.shots[k]), "over": bool(g.over[k]), "winner": int(g.winner[k]),
             "score": [int(x) for x in (g.score[k] if core.rules.to_points else score)],
             "score_of": "points" if core.rules.to_points else "games won",
-            "call": call_words(core.config.game) if c.call_needed[k] else None}
+            "call": call_words(core.config.game) if c.call_needed[k] else None,
+            **({"ball_ids": ball_ids(core, k, int(c.shooter[k]))} if core.rules.own_cue_balls else {})}
+
+
+def game_entry(core, players, labels, start, pockets_named=None) -> dict:
+    """A game replay's top-level ``game`` entry: the game's name and title, the players and their labels, the
+    head string, the pockets' names and the game state before the break (``start``); and, where the game's words
+    or its table have them, ``ball_names`` (each ball's name by ball number, from the registry's ``GameWords``:
+    snooker's colours, the carom balls; absent for numbered pool balls), ``pockets: false`` (a carom game: no
+    pockets) and ``d`` ([cx, cy, r] m: the D, where a ball in hand "in the D" goes)."""
+    t, words = core.table, words_of(core.config.game)
+    out = {"name": core.config.game, "title": game_words(core.config.game), "players": list(players),
+           "labels": list(labels), "head_string": HEAD_STRING * t.length,
+           "pocket_names": pocket_names(core.pockets) if pockets_named is None else pockets_named, "start": start}
+    if words.balls:
+        out["ball_names"] = list(words.balls)
+    if not words.pockets:
+        out["pockets"] = False
+    d = d_of(t)
+    if d is not None:
+        out["d"] = [float(x) for x in d]
+    return out
 
 
 class GameRecorder:
@@ -96,10 +118,8 @@ class GameRecorder:
         meta = {"title": f"{game_words(core.config.game)}: {vs}",
                 **self.meta, "game": core.config.game, "players": self.players, "game_number": len(self._games[k])}
         rep = Replay.for_table(t, core.params, core.effects, n_balls=core.n_balls, meta=meta)
-        rep.data["game"] = {"name": core.config.game, "title": game_words(core.config.game),
-                            "players": self.players, "labels": self.labels, "head_string": HEAD_STRING * t.length,
-                            "pocket_names": self._pocket_names,
-                            "start": state_words(core, k, self._score[k])}
+        rep.data["game"] = game_entry(core, self.players, self.labels, state_words(core, k, self._score[k]),
+                                      self._pocket_names)
         self._games[k].append(rep)
         self._open[k] = True
         self._last_log[k] = core.last_events[k]  # a log from before this game is not this game's

@@ -84,7 +84,8 @@ def test_a_snooker_nomination_reads_as_a_nomination(server, browser, tmp_path):
     person.click_at(person.px(*state["pos"][PINK]))  # a tap on the pink: nominated (the aim stays)
     assert browser.execute_script("return window.billiardsPlay.choice.ball;") == PINK
     info = text(browser, "pl-info")
-    assert "nominated: " in info and "tap a ball" not in info and "called" not in info, info
+    assert "nominated: the pink" in info and "tap a ball" not in info and "called" not in info, info
+    assert "ball 20" not in info and state["ball_names"][PINK] == "the pink" and state["ball_names"][1] == "the red"
     browser.execute_script("window.billiardsPlay.opts.speed = 16;")
     person.set_speed(1.2, state["limits"])
     person.click("pl-shoot")
@@ -105,6 +106,7 @@ def test_a_three_cushion_point_reads_as_a_point(server, browser, tmp_path):
     person = PagePerson(browser)
     person.wait_turn()
     browser.execute_script("window.billiardsPlay.opts.speed = 16;")
+    assert person.wait_turn()["ball_names"] == ["the white", "the yellow", "the red"]
     person.hint()  # seed 1: the hint's shot scores
     person.click("pl-shoot")
     settled(browser, 2)
@@ -119,6 +121,7 @@ def test_a_three_cushion_point_reads_as_a_point(server, browser, tmp_path):
     settled(browser, 3)
     state = person.wait_turn()
     assert state["points"] == [1, 0] and state["to_move"] == 1, state
+    assert state["ball_names"] == ["the yellow", "the white", "the red"], state["ball_names"]  # slot 0: the mover's
     missed = rulings(browser)[0]
     assert "no point" in missed and "pots" not in missed, missed
     assert "no point" in text(browser, "ruling") and "points 1" in text(browser, "players")  # the live page's viewer

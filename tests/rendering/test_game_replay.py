@@ -401,3 +401,128 @@ def test_game_states_show_points_and_calls_in_the_games_words(game, policy):
     assert None not in calls and len(calls) <= 1
     if game in ("snooker", "ten_ball"):
         assert calls == {{"snooker": "nominate the colour", "ten_ball": "call the ball and its pocket"}[game]}
+
+
+# ------------------------------------------- snooker and three-cushion in their own words --
+def _bot_game(game, policy, seed=5, max_shots=14):
+    core = GameCore(GameConfig(game=game, noise="tournament", max_shots=max_shots), 1, record=True)
+    core.streams.seed([0], [seed])
+    core.reset_tables([0], [0])
+    rec = GameRecorder(core)
+    bots = [make_bot(policy, 1), make_bot(policy, 2)]
+    for _ in range(max_shots):
+        out = core.step(bot_actions(core, bots[int(core.constraints().shooter[0])], [0]), [0])
+        if out["terminated"][0] or out["truncated"][0]:
+            break
+    return core, rec.games(0)[-1]
+
+
+@pytest.fixture(scope="module")
+def named_pages(tmp_path_factory):
+    """A snooker frame (snooker bots) and a three-cushion game (carom8), 14 shots each, and their pages."""
+    out = {}
+    for game, policy in (("snooker", "snooker"), ("three_cushion", "carom8")):
+        core, rep = _bot_game(game, policy)
+        out[game] = (core, rep, save_replay_html(rep, tmp_path_factory.mktemp(game) / f"{game}.html"))
+    return out
+
+
+NUMBERED = re.compile(r"\bball \d+")  # a ball by number: "ball 7" (lists of numbers: the rows' tests)
+SNOOKER_NAMES = {"red", "yellow", "green", "brown", "blue", "pink", "black"}
+
+
+def _rows(browser, table_id):
+    return dict(browser.execute_script(
+        "return Array.from(document.getElementById(arguments[0]).rows).map(function (r) "
+        "{ return [r.cells[0].textContent, r.cells[1].textContent]; });", table_id))
+
+
+def test_game_entry_names_the_balls_and_the_d(named_pages):
+    core, rep, _ = named_pages["snooker"]
+    g = rep.data["game"]
+    assert g["ball_names"][0] == "cue ball" and g["ball_names"][1:16] == ["red"] * 15
+    assert g["ball_names"][16:] == ["yellow", "green", "brown", "blue", "pink", "black"]
+    m = core.table.marks
+    assert g["d"] == [m.d_centre[0], m.d_centre[1], m.d_radius] and "pockets" not in g
+    g3 = named_pages["three_cushion"][1].data["game"]
+    assert g3["ball_names"] == ["white", "yellow", "red"] and g3["pockets"] is False and "d" not in g3
+    for sh in named_pages["three_cushion"][1].shots:  # each state says its frame: slot 0 the player to move's ball
+        for st in (sh["info"]["game"]["before"], sh["info"]["game"]["after"]):
+            assert st["ball_ids"] == ([0, 1, 2] if st["to_move"] == 0 else [1, 0, 2]), st
+    pool = _scripted_game(max_shots=2)[1].games(0)[0].data["game"]  # pool games: numbers, no new entries
+    assert not {"ball_names", "pockets", "d"} & set(pool)
+
+
+def test_browser_snooker_names_balls_by_colour_and_shades_the_d(browser, named_pages):
+    core, rep, page = named_pages["snooker"]
+    _open(browser, page)
+    api = "window.billiardsReplay"
+    seen = set()
+    for k, sh in enumerate(rep.shots):
+        browser.execute_script(f"{api}.seek(arguments[0], {api}.duration(arguments[0]))", k)
+        aside = browser.find_element("tag name", "aside").text
+        assert not NUMBERED.search(aside), (k, aside)
+        gm, info, state = sh["info"]["game"], _rows(browser, "info"), _rows(browser, "gamestate")
+        targets = state.get("legal targets", "none")
+        assert not re.search(r"\d", targets), targets
+        if len(gm["after"]["targets"]) > 1 and all(1 <= b <= 15 for b in gm["after"]["targets"]):
+            assert targets == "reds", targets
+        if gm.get("nominated"):
+            assert info["nominated"] in SNOOKER_NAMES - {"red"}, info
+            seen.add("nominated")
+        if sh["info"]["pocketed"]:
+            assert not re.search(r"\b\d+\b", info["pocketed"]), info["pocketed"]
+            seen.add("pocketed")
+        if gm["respotted"]:
+            assert state["respotted"] in SNOOKER_NAMES, state
+            seen.add("respotted")
+        fc = sh["info"]["first_contact"]
+        if fc > 0:
+            assert info["first contact"] == ("a red" if fc <= 15 else f"the {rep.data['game']['ball_names'][fc]}")
+    assert seen == {"nominated", "pocketed", "respotted"}, seen
+    labels = browser.execute_script("return Array.from(document.querySelectorAll('#shot option')).map("
+                                    "function (o) { return o.text; });")
+    assert any("pots a red" in t for t in labels) and not any(re.search(r"pots \d", t) for t in labels), labels
+    # the break: the cue ball in hand in the D, which is shaded (in baulk outside the D, and beyond it, is not)
+    browser.execute_script(f"{api}.seek(0, 0)")
+    assert "in the D" in _rows(browser, "gamestate")["ball in hand"]
+    cx, cy, r = rep.data["game"]["d"]
+    felt = browser.execute_script(
+        "const V = window.billiardsReplay, c = document.getElementById('table'), x = c.getContext('2d'), "
+        "k = c.width / c.getBoundingClientRect().width; return arguments[0].map(function (p) { const q = V.toPx(p[0], "
+        "p[1]); return Array.from(x.getImageData(Math.round(q[0] * k), Math.round(q[1] * k), 1, 1).data); });",
+        [[cx - 0.4 * r, cy - 0.5 * r], [0.2, cy - 0.3], [cx, cy + 1.0]])
+    inside, baulk, beyond = (np.array(p[:3], dtype=float) for p in felt)
+    assert np.abs(baulk - beyond).max() <= 2, (baulk, beyond)   # neither shaded
+    assert (inside - baulk).min() >= 8, (inside, baulk)          # the D lighter
+
+
+def test_browser_three_cushion_names_the_balls_and_rings_the_movers_targets(browser, named_pages):
+    """Slot 0 is the cue ball of the player to move: after a shot that hands the table over, the next player's
+    targets (the after state's slots) are the other two balls of the shot drawn, and the rings go on them, never on
+    the next player's own cue ball."""
+    _, rep, page = named_pages["three_cushion"]
+    _open(browser, page)
+    api = "window.billiardsReplay"
+    handed = 0
+    for k, sh in enumerate(rep.shots):
+        gm, ids = sh["info"]["game"], sh["info"]["ball_ids"]
+        browser.execute_script(f"{api}.seek(arguments[0], {api}.duration(arguments[0]))", k)
+        after = gm["after"]
+        if after["over"]:
+            continue
+        ringed = {ids[i] for i in browser.execute_script(f"return {api}.ringed()")}
+        want = {after["ball_ids"][b] for b in after["targets"]}
+        assert ringed == want and after["ball_ids"][0] not in ringed, (k, ringed, want)
+        handed += gm["turn_over"]
+        aside = browser.find_element("tag name", "aside").text
+        assert not NUMBERED.search(aside) and "pocketed" not in aside, (k, aside)
+        names = rep.data["game"]["ball_names"]
+        assert _rows(browser, "gamestate")["legal targets"] == ", ".join(names[i] for i in sorted(
+            want, key=lambda i: after["ball_ids"].index(i)))
+        assert _rows(browser, "info")["cue ball"] == names[ids[0]]
+        if k + 1 < len(rep.shots):  # the next shot's start rings the same balls
+            browser.execute_script(f"{api}.seek(arguments[0], 0)", k + 1)
+            nxt = rep.shots[k + 1]["info"]["ball_ids"]
+            assert {nxt[i] for i in browser.execute_script(f"return {api}.ringed()")} == want
+    assert handed >= 3
