@@ -64,8 +64,18 @@ def placement_problem(core: GameCore, xy) -> str | None:
     on = s.pocket[0, 1:] < 0
     hit = np.nonzero(on & (d < 2 * Rb + SPOT_CLEAR))[0]
     if len(hit):
-        return f"the cue ball there overlaps ball {int(hit[0]) + 1}"
+        return f"the cue ball there overlaps {ball_said(core, int(hit[0]) + 1)}"
     return "the cue ball there lies over a pocket"
+
+
+def ball_said(core: GameCore, slot: int) -> str:
+    """Ball ``slot`` of table 0 in a refusal: 'ball 3' in the pool games, by name where the game names its balls
+    (the registry's ``GameWords.balls``: 'the yellow'; three-cushion's slots through ``game_words.ball_ids``)."""
+    words = words_of(core.config.game)
+    if not words.balls:
+        return f"ball {slot}"
+    ids = ball_ids(core, 0)
+    return words.ball(ids[slot] if ids is not None and 0 <= slot < len(ids) else slot)
 
 
 class Session:
@@ -239,7 +249,7 @@ class Session:
             raise PlayError(400, f"ball {ball} cannot be called here" if c.rules.calls_ball else
                             f"{game_words(self.game)} has no called balls")
         if ball is not None and ball > 0 and c.state.pocket[0, ball] >= 0:
-            raise PlayError(400, f"ball {ball} is not on the table")
+            raise PlayError(400, f"{ball_said(c, ball)} is not on the table")
         if nominating and ball is not None:
             ball = self._nomination(ball, cons)
         elif nominating:  # none nominated: the colour hit first counts (an obvious nomination), as a bot's -1
@@ -258,9 +268,10 @@ class Session:
             raise PlayError(400, "no nomination is asked for now (only a colour after a potted red, or a free ball)")
         free = not bool(self.core.game.phase[0] == R.PHASE_COLOUR)
         if ball == 0 or (not free and ball < FIRST_COLOUR):
-            raise PlayError(400, f"ball {ball} cannot be nominated: after a red, nominate a colour "
+            raise PlayError(400, f"{ball_said(self.core, ball)} cannot be nominated: after a red, nominate a colour "
                                  f"({FIRST_COLOUR}..{self.core.n_balls - 1}: yellow .. black)" if not free else
-                            f"ball {ball} cannot be nominated as the free ball: nominate an object ball on the table")
+                            f"{ball_said(self.core, ball)} cannot be nominated as the free ball: nominate an object "
+                            f"ball on the table")
         return ball
 
     def bot_shot(self, turn: int | None = None) -> list[dict]:

@@ -129,3 +129,23 @@ def test_a_three_cushion_point_reads_as_a_point(server, browser, tmp_path):
     assert "a point" in saved[0] and "no point" in saved[1] and not any("pots" in r for r in saved), saved
     players = text(browser, "players")
     assert "points 1" in players and "games won" not in players, players
+
+
+def test_refusals_name_snooker_balls_by_colour():
+    """The server's refusals a person reads name a snooker ball by colour ('overlaps the red', 'the red cannot be
+    nominated'), as the pool games keep 'ball 3' (tests/play/test_server.py)."""
+    import pytest
+
+    from billiards_env.play.session import PlayError, Session, placement_problem
+
+    s = Session("t", "snooker", ["human", "human"], 3)
+    c = s.core
+    m = c.table.marks
+    spot = np.array([m.d_centre[0] - 0.1, m.d_centre[1] - 0.1])  # inside the D
+    c.state.pos[0, 1] = spot  # a red moved into the D
+    c._changed()
+    assert placement_problem(c, spot) == "the cue ball there overlaps the red"
+    c.game.phase[0], c.game.ball_in_hand[0], c.game.shots[0] = PHASE_COLOUR, IN_HAND_NONE, 2
+    c._changed()
+    with pytest.raises(PlayError, match="^the red cannot be nominated: after a red"):
+        s._nomination(3, c.constraints())
