@@ -21,6 +21,9 @@ games benchmark accept.
   of the game it is handed, weakest first (numpy only; no torch);
 - ``value-lookahead`` (``bots.learned.value``): ``lookahead`` ranking its leaves by the shipped learned
   value of the game it is handed (trained by ``agents.league``, docs/league.md);
+- ``exit-search`` and ``exit-fast`` (``bots.learned.proposal_bot``): the search over the shipped Expert Iteration
+  network's shot proposals, and its distilled network alone (trained by ``agents.exit``, docs/expert_iteration.md;
+  9-ball only so far);
 - ``module:factory`` (for example ``my_bots:planner``): a bot of your own;
   ``factory(seed=...)`` must return an object with ``name`` and
   ``act(view: GameView) -> ShotPlan`` (docs/bots.md);
@@ -35,7 +38,7 @@ import re
 from ..rules import get_game
 
 BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "lookahead-2026.12", "champion", "carom<K>",
-             "snooker", "ladder-<k>", "value-lookahead", "<module>:<factory>")
+             "snooker", "ladder-<k>", "value-lookahead", "exit-search", "exit-fast", "<module>:<factory>")
 DEFAULT_SEARCH_K = 64
 # ``lookahead-2026.12``: the Budget of ``lookahead`` on 2026-12-07, spelled out so later changes to the defaults
 # do not move the yardstick (bots.game_lookahead.Budget's fields; REPLY_BUDGET as it was that day)
@@ -71,7 +74,7 @@ def default_bot(game: str) -> str:
 
 
 FIXED_NAMES = ("random", "ghost", "ghost-safety", "lookahead", "lookahead-2026.12", "champion", "snooker",
-               "value-lookahead")
+               "value-lookahead", "exit-search", "exit-fast")
 COUNTED = ("search", "carom")  # name<K>: K candidates per table (no K: the bot's default)
 _NAME = re.compile(r"(?P<counted>search|carom)(?P<k>[0-9]*)|ladder-(?P<rung>[0-9]+)|(?P<module>[\w.]+):(?P<attr>\w+)")
 
@@ -143,6 +146,9 @@ def make_bot(spec, seed: int = 0):
     if family == "value-lookahead":
         from .learned.value import value_lookahead
         return value_lookahead(seed=seed)
+    if family in ("exit-search", "exit-fast"):
+        from .learned.proposal_bot import exit_fast, exit_search
+        return (exit_search if family == "exit-search" else exit_fast)(seed=seed)
     if family == "search":
         from .search import SearchBot
         return SearchBot(seed=seed, k=name.k or DEFAULT_SEARCH_K)

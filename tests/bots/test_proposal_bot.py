@@ -98,6 +98,7 @@ def test_shipped_players_load_by_name_without_torch_and_replay_identically(playe
 def test_shipped_cards_say_how_they_were_trained():
     fast, search = make_bot(FAST_NAME), make_bot(SEARCH_NAME)
     assert fast.budget is None and search.budget == PB.CARD
+    assert make_bot(PB.FAST).budget is None and make_bot(PB.SEARCH).budget == PB.CARD      # the registry's names
     net, card = PB.shipped(PB.SEARCH, DEFAULT_GAME)
     assert isinstance(search.budget_of(card), PR.SearchBudget)
     for name in (PB.FAST, PB.SEARCH):
