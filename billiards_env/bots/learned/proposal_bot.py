@@ -22,14 +22,12 @@ from pathlib import Path
 import numpy as np
 
 from ...contract.plan import ShotPlan
-from ...physics.strike import Shots
 from ...rules import GAMES as REGISTRY
 from ..game_lookahead import Budget, GameLookahead
-from ..game_lookahead.search import declarations
 from ..planner import leave as LEAVE
 from ..planner import proposals as PR
 from ..planner import shot_space as SS
-from ..planner.bot import CHUNK, HELPER, Champion
+from ..planner.bot import CHUNK, HELPER, Champion, PlanRows
 from ..planner.breaks import NOMINAL, BreakSearch
 from . import proposal_net as PN
 
@@ -108,33 +106,23 @@ class ProposalPlayer:
         if not view.table.has_pockets:
             raise ValueError(f"{self.name} pots balls: it cannot play {view.game} on a table without pockets")
         net, doc = self.network(view.game)
-        n = view.n
-        phi, speed, a, b = np.zeros(n), np.ones(n), np.zeros(n), np.zeros(n)
-        placement, declare = np.full((n, 2), np.nan), np.zeros(n, bool)
-        pocket, ball = np.zeros(n, np.int64), np.full(n, -1, np.int64)
-        value, kind = np.full(n, np.nan), np.full(n, "break", dtype=object)
+        p = PlanRows(view.n)
         brk = np.flatnonzero(view.is_break)
         if len(brk):
-            g = self.la.break_plan(view, brk, np.broadcast_to(self.break_strike(view, brk, doc), (len(brk), 4)))
-            phi[brk], speed[brk], a[brk], b[brk] = g.phi, g.speed, g.a, g.b
-            placement[brk] = g.placement
+            p.breaks(brk, self.la.break_plan(view, brk, np.broadcast_to(self.break_strike(view, brk, doc),
+                                                                        (len(brk), 4))))
         play = np.flatnonzero(~view.is_break)
         budget = self.budget_of(doc)
         for lo in range(0, len(play), CHUNK):
             rows = play[lo:lo + CHUNK]
-            c, best, val = self.decide(view, rows, net, budget)
-            phi[rows], speed[rows], a[rows], b[rows] = c["phi"][best], c["speed"][best], c["a"][best], c["b"][best]
-            placement[rows], pocket[rows], ball[rows] = c["placement"][best], c["pocket"][best], c["ball"][best]
-            value[rows] = val
-            kind[rows] = np.where(c["safe"][best], "safety", "pot")
+            p.choose(rows, *self.decide(view, rows, net, budget))
         if len(play) and budget is not None:   # push-outs and passes as lookahead declares them
-            declarations(self.la, view, play, (phi, speed, a, b), placement, declare, value, kind)
+            p.declarations(self.la, view, play)
         elif len(play):
-            pas = play[view.may_pass[play] & (value[play] < PASS_BELOW)]
-            declare[pas], kind[pas] = True, "pass"
-        self.last_value, self.last_kind = value, kind
-        return ShotPlan.of(Shots(phi, np.clip(speed, 0.05, view.params.max_speed), a, b), placement, declare,
-                           pocket, ball)
+            pas = play[view.may_pass[play] & (p.value[play] < PASS_BELOW)]
+            p.declare[pas], p.kind[pas] = True, "pass"
+        self.last_value, self.last_kind = p.value, p.kind
+        return p.plan(view)
 
     def break_strike(self, view, rows, doc) -> np.ndarray:
         """The card's break strike for the game, else a searched one (``searched_break``), else ghost's."""

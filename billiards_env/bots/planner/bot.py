@@ -53,6 +53,43 @@ class Parts:
     replies: bool = True
 
 
+class PlanRows:
+    """A batch's plan as it is filled in: every table's strike, placement, declaration, pocket and called ball,
+    and the chosen shot's value and kind ("break", "pot", "safety", "pass", ...). Champion and the Expert
+    Iteration players fill it alike: the break rows, then the chosen candidate of each row, then the declarations."""
+
+    def __init__(self, n: int):
+        self.phi, self.speed, self.a, self.b = np.zeros(n), np.ones(n), np.zeros(n), np.zeros(n)
+        self.placement, self.declare = np.full((n, 2), np.nan), np.zeros(n, bool)
+        self.pocket, self.ball = np.zeros(n, np.int64), np.full(n, -1, np.int64)
+        self.value, self.kind = np.full(n, np.nan), np.full(n, "break", dtype=object)
+
+    def breaks(self, rows, g) -> None:
+        """Rows ``rows`` break with ``g`` (``GameLookahead.break_plan``'s strike and placement)."""
+        self.phi[rows], self.speed[rows], self.a[rows], self.b[rows] = g.phi, g.speed, g.a, g.b
+        self.placement[rows] = g.placement
+
+    def choose(self, rows, c, best, value) -> None:
+        """Rows ``rows`` play candidate ``best`` of the candidates ``c`` (a dict of arrays), worth ``value``."""
+        self.phi[rows], self.speed[rows], self.a[rows], self.b[rows] = (c["phi"][best], c["speed"][best],
+                                                                        c["a"][best], c["b"][best])
+        self.placement[rows], self.pocket[rows], self.ball[rows] = c["placement"][best], c["pocket"][best], \
+            c["ball"][best]
+        self.value[rows] = value
+        self.kind[rows] = np.where(c["safe"][best], "safety", "pot")
+
+    def declarations(self, la, view, rows) -> None:
+        """Push-outs and passes on rows ``rows`` as the lookahead ``la`` declares them."""
+        declarations(la, view, rows, (self.phi, self.speed, self.a, self.b), self.placement, self.declare,
+                     self.value, self.kind)
+
+    def plan(self, view) -> ShotPlan:
+        """The plan, speeds clipped to the table's range."""
+        speed = np.clip(self.speed, 0.05, view.params.max_speed)
+        return ShotPlan.of(Shots(self.phi, speed, self.a, self.b), self.placement, self.declare, self.pocket,
+                           self.ball)
+
+
 class Champion:
     name = "champion"
 
@@ -75,33 +112,22 @@ class Champion:
     def act(self, view) -> ShotPlan:
         if not view.table.has_pockets:
             raise ValueError(f"champion pots balls: it cannot play {view.game} on a table without pockets")
-        n = view.n
-        phi, speed, a, b = np.zeros(n), np.ones(n), np.zeros(n), np.zeros(n)
-        placement, declare = np.full((n, 2), np.nan), np.zeros(n, bool)
-        pocket, ball = np.zeros(n, np.int64), np.full(n, -1, np.int64)
-        value, kind = np.full(n, np.nan), np.full(n, "break", dtype=object)
+        p = PlanRows(view.n)
         brk = np.flatnonzero(view.is_break)
         if len(brk):
             if self.breaks is not None:
                 s = self.breaks.strike(self, view, brk)
             else:
                 s = np.array([0.0, 0.0, 8.0, -0.025])
-            g = self.la.break_plan(view, brk, np.broadcast_to(s, (len(brk), 4)))
-            phi[brk], speed[brk], a[brk], b[brk] = g.phi, g.speed, g.a, g.b
-            placement[brk] = g.placement
+            p.breaks(brk, self.la.break_plan(view, brk, np.broadcast_to(s, (len(brk), 4))))
         play = np.flatnonzero(~view.is_break)
         for lo in range(0, len(play), CHUNK):
             rows = play[lo:lo + CHUNK]
-            c, best, val = self.decide(view, rows)
-            phi[rows], speed[rows], a[rows], b[rows] = c["phi"][best], c["speed"][best], c["a"][best], c["b"][best]
-            placement[rows], pocket[rows], ball[rows] = c["placement"][best], c["pocket"][best], c["ball"][best]
-            value[rows] = val
-            kind[rows] = np.where(c["safe"][best], "safety", "pot")
+            p.choose(rows, *self.decide(view, rows))
         if len(play):  # push-outs and passes as lookahead declares them
-            declarations(self.la, view, play, (phi, speed, a, b), placement, declare, value, kind)
-        self.last_value, self.last_kind = value, kind
-        speed = np.clip(speed, 0.05, view.params.max_speed)
-        return ShotPlan.of(Shots(phi, speed, a, b), placement, declare, pocket, ball)
+            p.declarations(self.la, view, play)
+        self.last_value, self.last_kind = p.value, p.kind
+        return p.plan(view)
 
     # --- the search ---------------------------------------------------------------------------------------------
     def candidates(self, view, rows):
