@@ -103,15 +103,13 @@ def score_unit(algo: str, task: Task, seed: int, run_dir: Path, budget: int, qui
     return doc
 
 
-def run(algos, tasks, seeds, work: Path, out: Path, quick: bool = False) -> list:
-    """Every unit not done yet, then the table; the results documents."""
-    docs = []
+def run(algos, tasks, seeds, work: Path, out: Path, quick: bool = False) -> None:
+    """Train and score every unit not done yet (``collect`` reads them all back for the table)."""
     units = [(a, t, s) for a in algos for t in tasks for s in seeds]
     for i, (algo, task, seed) in enumerate(units):
         path = out / algo / task.name / f"seed{seed}.json"
         key = f"{algo}/{task.name}/seed{seed}"
         if path.exists():
-            docs.append(check_results(json.loads(path.read_text())))
             continue
         print(f"[{i + 1}/{len(units)}] {key}: training", flush=True)
         t0 = time.perf_counter()
@@ -125,8 +123,6 @@ def run(algos, tasks, seeds, work: Path, out: Path, quick: bool = False) -> list
                            "unit_score_s": round(time.perf_counter() - t1, 1)}
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(json.dumps(doc, indent=1) + "\n")
-        docs.append(doc)
-    return docs
 
 
 def _curve(run_dir: Path) -> list:
