@@ -19,6 +19,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from agents.league import LeagueConfig, run_league, ship  # noqa: E402
+from agents.league.league import GAMES  # noqa: E402
 
 QUICK = dict(generations=1, racks=1, opponents=["ghost"], noises=["tournament"], max_shots=12,
              fit=dict(hidden=[8], epochs=2))
@@ -27,7 +28,8 @@ QUICK = dict(generations=1, racks=1, opponents=["ghost"], noises=["tournament"],
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--config", type=Path, default=None, help="default configs/league_<game>.yaml")
-    ap.add_argument("--game", choices=("nine_ball", "eight_ball"), default=None, help="the config's game if not given")
+    ap.add_argument("--game", choices=GAMES, default=None,
+                    help="the game (default: the config's); the league trains the lookahead's value, so the pool games")
     ap.add_argument("--run", type=Path, required=True, help="the run directory (state, samples, snapshots)")
     ap.add_argument("--resume", action="store_true", help="continue the run in --run from its league.json")
     ap.add_argument("--generations", type=int, default=None, help="train until this many generations are done")
@@ -41,6 +43,8 @@ def main(argv=None) -> int:
     cfg = None
     if not args.resume:
         path = args.config or ROOT / "configs" / f"league_{args.game or 'nine_ball'}.yaml"
+        if not path.exists():  # a game without a config of its own: the 9-ball league's settings for it
+            path = ROOT / "configs" / "league_nine_ball.yaml"
         cfg = LeagueConfig.load(path, game=args.game)
         if args.quick:
             d = cfg.to_dict()

@@ -34,6 +34,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
+from billiards_env.rules.games import GAMES as GAME_SPECS
 from billiards_env.bots.learned.value import VALUE_DIR, load_value, mirror_features, n_balls_of
 
 from ..evaluation.distributed import MatchJob
@@ -42,7 +43,7 @@ from .fit import FitConfig, fit_value
 
 STATE = "league.json"
 STATE_VERSION = 1
-GAMES = ("nine_ball", "eight_ball")
+GAMES = tuple(name for name in GAME_SPECS if not GAME_SPECS[name].own_bots)  # the pool games (the lookahead's)
 GAME_ID = 100_000   # a sample's game id: job seed * GAME_ID + its table in the job (jobs have fewer tables)
 
 

@@ -31,7 +31,7 @@ class Task:
     whose score is normalized to 1 (``baseline``'s to 0); ``noise``: the env's noise preset at evaluation;
     ``episodes``: held tables per run; ``since``: the first protocol version whose evaluation of the task is
     this one (its id, opponent, noise, episodes and seeds): a bot's score from that version on still counts,
-    while a trained agent's row counts only under the version whose budget it trained for."""
+    and a trained agent's too when its budgets are this protocol's (``Protocol.budgets_since``)."""
 
     env_id: str
     kind: str
@@ -69,6 +69,8 @@ class Protocol:
     tasks: tuple
     eval_seeds: tuple
     batch_size: int = 500
+    budgets_since: int = 1  # the first protocol version with these training budgets: an agent trained under an
+    #                         older one is trained again (score.check_results)
 
     @property
     def runs(self) -> int:
@@ -93,6 +95,9 @@ class Protocol:
         return dataclasses.replace(self, tasks=tasks, eval_seeds=self.eval_seeds[:2])
 
 
+# Protocol 3 (from 2): Billiards-ThreeCushion-v3 and Billiards-Snooker-v2 (their observations say when the balls
+# may be replaced and when the cue ball lies touching a ball; the carom and snooker bots, their opponents, use the
+# replace choice); the other tasks, the budgets and the evaluation are protocol 2's.
 # Protocol 2 (from 1): the budgets only, chosen so the reference agents' whole table (PPO and SAC, five seeds,
 # every task: python -m agents.evaluation.reference --jobs 2) regenerates in under three hours on 2 cores
 # (docs/benchmark.md, "Reference agents"); protocol 1's 0.5-10 M steps would have taken 3-16 hours per algorithm.
@@ -103,7 +108,8 @@ QUICK_EPISODES = 12
 QUICK_GAMES = 4
 
 PROTOCOL = Protocol(
-    version=2,
+    version=3,
+    budgets_since=2,
     tasks=(
         # one player, success rate; 1 = lookahead (pots that leave a next shot), the strongest one-player bot
         Task("Billiards-PotOne-v1", "task", budget=300_000, reference="lookahead", episodes=EPISODES),
@@ -118,9 +124,9 @@ PROTOCOL = Protocol(
         Task("Billiards-TenBall-v1", "game", budget=500_000, reference="ghost", episodes=GAMES,
              opponent="ghost"),
         # no pockets / its own rules: against the game's own bot
-        Task("Billiards-ThreeCushion-v2", "game", budget=500_000, reference="carom", episodes=GAMES, since=2,
+        Task("Billiards-ThreeCushion-v3", "game", budget=500_000, reference="carom", episodes=GAMES, since=3,
              opponent="carom"),
-        Task("Billiards-Snooker-v1", "game", budget=500_000, reference="snooker", episodes=GAMES,
+        Task("Billiards-Snooker-v2", "game", budget=500_000, reference="snooker", episodes=GAMES, since=3,
              opponent="snooker"),
     ),
     eval_seeds=EVAL_SEEDS,

@@ -104,7 +104,7 @@ def check_results(doc: dict) -> dict:
         if version < spec.since:
             raise ValueError(f"{task}: scored under protocol {version}; its evaluation changed in protocol "
                              f"{spec.since}: score it again")
-        if doc.get("budget") is not None and version != PROTOCOL.version:
+        if doc.get("budget") is not None and version < PROTOCOL.budgets_since:
             raise ValueError(f"{task}: a trained agent's row of protocol {version}, whose budgets differ from "
                              f"protocol {PROTOCOL.version}'s: train it again at this protocol's budget")
         if not t.get("runs") or any("score" not in r for r in t["runs"]):

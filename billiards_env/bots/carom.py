@@ -11,6 +11,11 @@ before the second, else those with the most cushions) are played again
 most often is chosen (ties: the one found first). With noise off the
 estimate is the exact outcome. Everything is one batched ``preview`` call
 per stage over all the view's tables.
+
+With the cue ball touching a ball (``GameView.may_replace``) the same
+search runs on the starting position the balls would be replaced on, and
+the bot has them replaced (``ShotPlan.replace``) where the best point found
+there is likelier than from where the balls lie.
 """
 from __future__ import annotations
 
@@ -33,12 +38,14 @@ SIDE, HEIGHT = 0.4, 0.3  # largest side / height tip offsets searched (units of 
 class CaromBot:
     """Three-cushion bot (module docstring); ``k`` candidates per table."""
 
-    def __init__(self, seed: int | None = 0, k: int = DEFAULT_K, top: int = TOP, samples: int = SAMPLES):
+    def __init__(self, seed: int | None = 0, k: int = DEFAULT_K, top: int = TOP, samples: int = SAMPLES,
+                 replace: bool = True):
         if k < 1 or top < 1 or samples < 1:
             raise ValueError(f"carom bot: k, top and samples must be positive, got {k}, {top}, {samples}")
         self.rng = np.random.default_rng(seed)
         self.k, self.top, self.samples = int(k), int(min(top, k)), int(samples)
         self.name = f"carom{self.k}"
+        self.replace = bool(replace)  # with the cue ball touching a ball: search the starting position too
         self.last_estimate: np.ndarray | None = None  # [n] the chosen shots' estimated point probability
 
     def _candidates(self, n: int, max_speed: float) -> Shots:
@@ -50,6 +57,21 @@ class CaromBot:
     def act(self, view) -> ShotPlan:
         if view.game not in bot_games(FAMILY):
             raise ValueError(f"the carom bot plays {' and '.join(bot_games(FAMILY))} only, not {view.game!r}")
+        shots, prob = self._search(view)
+        replace = np.zeros(view.n, dtype=bool)
+        if self.replace and view.may_replace is not None and view.may_replace.any():
+            # balls in contact: the same search from the starting position the replace would give; replaced where
+            # its best point is the likelier
+            r = np.nonzero(view.may_replace)[0]
+            pv = view.preview(ShotPlan.of(Shots(0.0, 0.0, 0.0, 0.0), replace=np.ones(len(r), dtype=bool)), r)
+            _, p_start = self._search(view.after(pv, np.arange(len(r)), r))
+            replace[r] = p_start > prob[r]
+            prob[r] = np.maximum(prob[r], p_start)
+        self.last_estimate = prob
+        return ShotPlan.of(shots, replace=replace)
+
+    def _search(self, view) -> tuple[Shots, np.ndarray]:
+        """The chosen strike per view row and its estimated point probability [n]."""
         n, k, top, m = view.n, self.k, self.top, self.samples
         shots = self._candidates(n, view.params.max_speed)
         rows = np.repeat(np.arange(n), k)
@@ -71,8 +93,7 @@ class CaromBot:
             prob = (pre.record.points[pick] > 0).reshape(n, top).astype(float)
         j = np.argmax(prob, axis=1)
         chosen = np.arange(n) * top + j
-        self.last_estimate = prob[np.arange(n), j]
-        return ShotPlan.of(Shots(*(np.asarray(v)[chosen] for v in cand)))
+        return Shots(*(np.asarray(v)[chosen] for v in cand)), prob[np.arange(n), j]
 
 
 def reached_both(contacts: np.ndarray, n_contacts: np.ndarray) -> np.ndarray:

@@ -14,6 +14,10 @@
 - The break-off: ``break_k`` candidates from the D at the side of the reds,
   previewed and scored as safeties (the cue ball back towards baulk).
 
+- After the opponent's foul and a miss (``GameView.may_replace``): where it
+  has no pot it has the balls replaced (``ShotPlan.replace``), so the
+  offender must try the escape again; where it has a pot it plays on.
+
 It never puts the offender back in after a foul.
 """
 from __future__ import annotations
@@ -40,9 +44,10 @@ class SnookerBot(GhostBot):
 
     name = "snooker"
 
-    def __init__(self, seed: int = 0, safety_k: int = 24, break_k: int = 24):
+    def __init__(self, seed: int = 0, safety_k: int = 24, break_k: int = 24, replace: bool = True):
         super().__init__(seed=seed, safety=False, safety_k=safety_k)
         self.break_k = int(break_k)
+        self.replace = bool(replace)  # have the balls replaced after a foul and a miss, where no pot is on
         self.name = "snooker"
 
     def d_spots(self, table) -> np.ndarray:
@@ -140,4 +145,9 @@ class SnookerBot(GhostBot):
         speed = np.clip(speed, 0.05, p.max_speed)
         # a nomination only where the rules ask for one (a colour after a red, a free ball)
         ball = np.where(view.call_needed, ball, R.CALL_NONE)
-        return ShotPlan.of(Shots(phi, speed, a, b), placement, np.zeros(n, dtype=bool), np.full(n, -1), ball)
+        replace = np.zeros(n, dtype=bool)
+        if self.replace and view.may_replace is not None:
+            replace = view.may_replace & (mode == "safety")
+            mode[replace] = "replace"
+        return ShotPlan.of(Shots(phi, speed, a, b), placement, np.zeros(n, dtype=bool), np.full(n, -1), ball,
+                           replace=replace)

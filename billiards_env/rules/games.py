@@ -172,11 +172,11 @@ for _spec in (
     GameSpec("three_cushion", "three-cushion", ThreeCushionRules, three_cushion_spots, 1, "carom", "ThreeCushion",
              "ThreeCushion", "three-cushion", GameWords(balls=CAROM_BALLS, colours=True, points=True,
                                                          pockets=False),
-             own_bots=("carom",), presets=THREE_CUSHION_PRESETS, version=2),
+             own_bots=("carom",), presets=THREE_CUSHION_PRESETS, version=3),
     GameSpec("snooker", "snooker", SnookerRules, snooker_opening, 0, "snooker", "Snooker", "Snooker",
              "a frame of snooker (WPBSA rules, docs/rules.md) on the 12 ft table (a 9-component action: a8 the "
              "nominated ball; the reward is the frame's result: +1 won, -1 lost)",
              GameWords(balls=SNOOKER_BALLS, colours=True, call="nominate the colour", nominates=True,
-                       points=True), own_bots=("snooker",)),
+                       points=True), own_bots=("snooker",), version=2),
 ):
     register_game(_spec)

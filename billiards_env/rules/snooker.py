@@ -270,7 +270,7 @@ class SnookerRules(Rules):
     reads_position = True
     table_style = "snooker"   # Table.snooker()
     physics = "snooker"       # PhysicsParams.snooker(): snooker balls
-    extra_obs = 4             # observation: both scores, the points left, a free ball (``observe_extra``)
+    extra_obs = 6             # observation: both scores, the points left, a free ball, replace, touching (``observe_extra``)
 
     def __init__(self, R: float = SNOOKER_R):
         self.R = R
@@ -288,17 +288,20 @@ class SnookerRules(Rules):
         return g
 
     def observe_extra(self, game: GameState, pocket=None, constraints=None) -> np.ndarray:
-        """[E, 4] in [0, 1]: the shooter's score, the opponent's, the face value of the balls on the
-        table (each / SCORE_SCALE, clipped), and 1 where a free ball may be nominated."""
+        """[E, 6] in [0, 1]: the shooter's score, the opponent's, the face value of the balls on the
+        table (each / SCORE_SCALE, clipped), 1 where a free ball may be nominated, 1 where the balls may be
+        replaced (after the opponent's foul and a miss) and 1 where the cue ball lies touching a ball."""
         E = game.n
         ar = np.arange(E)
-        out = np.zeros((E, 4), dtype=np.float32)
+        out = np.zeros((E, self.extra_obs), dtype=np.float32)
         out[:, 0] = np.minimum(game.score[ar, game.shooter] / SCORE_SCALE, 1.0)
         out[:, 1] = np.minimum(game.score[ar, 1 - game.shooter] / SCORE_SCALE, 1.0)
         if pocket is not None:
             out[:, 2] = np.minimum(((np.asarray(pocket) < 0) * VALUE[None, :]).sum(axis=1) / SCORE_SCALE, 1.0)
         if constraints is not None:
             out[:, 3] = constraints.call_needed & constraints.may_pass  # a nomination right after a foul
+            out[:, 4] = constraints.may_replace
+            out[:, 5] = constraints.touching.any(axis=1)
         return out
 
     def free_ball(self, game: GameState, pos: np.ndarray | None, before: np.ndarray) -> np.ndarray:

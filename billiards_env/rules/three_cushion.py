@@ -98,7 +98,7 @@ class ThreeCushionRules(Rules):
     physics = "carom"
     contacts = CONTACTS_KEPT
     own_cue_balls = True
-    extra_obs = 4
+    extra_obs = 5
     to_points = True
     reads_position = True  # the balls in contact are read from where they lie (``touching``)
     replaces = True        # a frozen cue ball's balls may be replaced on the starting position (a6 in (0, 0.5])
@@ -118,12 +118,14 @@ class ThreeCushionRules(Rules):
     the second) keeps the player at the table; the game is to ``target``
     points (``rule_options``), ends after ``max_innings`` innings each, the
     equal-innings rule optional. The observation is the one above (B = 3)
-    and four more entries:
+    and five more entries:
 
     ==============  ===========================================================
     4*B + 14, 15    the shooter's score / target, the opponent's
     4*B + 16        the shooter's innings / max_innings
     4*B + 17        1 in the equal-innings last inning
+    4*B + 18        1 where the cue ball lies touching a ball (the balls may
+                    be replaced: ``may_replace``, a6 above)
     ==============  ===========================================================
 
     **Info** adds ``points`` (the shot's points), ``score`` [2] and
@@ -221,11 +223,13 @@ class ThreeCushionRules(Rules):
 
     def observe_extra(self, game: GameState, pocket=None, constraints=None) -> np.ndarray:
         """The shooter's and the opponent's score / target, the shooter's
-        innings / max_innings, and 1 in the equal-innings last inning
-        (``pocket`` and ``constraints``, which the envs hand to games that
-        read positions, are not needed)."""
+        innings / max_innings, 1 in the equal-innings last inning and 1 where
+        the cue ball lies touching a ball (``constraints.may_replace``; 0
+        without constraints; ``pocket`` is not needed)."""
         ar, s = np.arange(game.n), game.shooter
-        x = np.zeros((game.n, 4), dtype=np.float32)
+        x = np.zeros((game.n, self.extra_obs), dtype=np.float32)
+        if constraints is not None:
+            x[:, 4] = constraints.may_replace
         x[:, 0] = np.minimum(game.score[ar, s] / self.target, 1.0)
         x[:, 1] = np.minimum(game.score[ar, 1 - s] / self.target, 1.0)
         x[:, 2] = np.minimum(game.innings[ar, s] / self.max_innings, 1.0)

@@ -3,7 +3,7 @@
 shot records), bot frames played to their end, rules that read contacts
 played through the simulator on constructed positions, the bot, the match
 script. PettingZoo's api_test, check_env and vector = singles for
-Billiards-Snooker-v1: tests/envs/test_games.py."""
+Billiards-Snooker-v2: tests/envs/test_games.py."""
 import math
 import subprocess
 import sys
@@ -244,6 +244,26 @@ def test_sim_foul_and_a_miss_the_balls_replaced():
     assert out["record"].miss[0] and core.game.score[0].tolist() == [0, 8] and core.constraints().may_replace[0]
 
 
+def test_the_observation_and_the_bot_after_a_miss():
+    """After a foul and a miss the incoming player's observation says the balls may be replaced (obs
+    4*B + 18); the ``snooker`` bot has them replaced where it has no pot (the only red frozen to the top
+    cushion) and plays on where it has one (the red in the open)."""
+    for red, replaces in (((0.889, 3.541), True), ((0.9, 2.0), False)):
+        core = game_table("snooker", {0: (0.9, 1.0), 1: red, BLACK: (1.5, 2.5)})
+        assert core.observe()[0, -2] == 0.0
+        assert shoot(core, math.pi, 0.6)["record"].miss[0]  # away from the red: a foul and a miss
+        obs = core.observe()[0]
+        assert obs[4 * core.n_balls + 18] == 1.0 and obs[4 * core.n_balls + 19] == 0.0, obs[-6:]
+        bot = make_bot("snooker")
+        plan = bot.act(core.view([0]))
+        assert plan.replace[0] == replaces and bot.last_mode[0] == ("replace" if replaces else "pot")
+        out = core.step(core.actions_of(plan, [0]), [0])
+        assert out["record"].replaced[0] == replaces and out["record"].shooter[0] == 1
+        assert (out["info"]["n_events"][0] == 0) == replaces  # a replace plays no shot
+        if replaces:
+            assert core.game.shooter[0] == 0  # the offender plays again, from where the miss was played
+
+
 def test_sim_no_miss_when_partly_snookered():
     """The same stroke with the black covering one edge of the red: a foul but no miss; a replace
     declaration is then ignored and player 1 plays the stroke (here one that hits the red)."""
@@ -267,6 +287,7 @@ def test_sim_the_touching_ball():
     core = game_table("snooker", {0: tuple(cue), 1: tuple(red), BLACK: (0.9, 3.245)})
     c = core.constraints()
     assert c.touching[0, 1] and c.touching[0].sum() == 1
+    assert core.observe()[0, -1] == 1.0 and core.observe()[0, -2] == 0.0  # the observation says it touches
     out = shoot(core, -math.pi / 2, 0.5)               # straight away, towards the bottom cushion
     rec = out["record"]
     assert out["info"]["first_contact"][0] == -1 and rec.legal[0] and rec.foul[0] == R.FOUL_NONE

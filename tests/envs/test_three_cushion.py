@@ -1,4 +1,4 @@
-"""Three-cushion environments: Billiards-ThreeCushion-v2 (gym.make and make_vec), the self-play vector env,
+"""Three-cushion environments: Billiards-ThreeCushion-v3 (gym.make and make_vec), the self-play vector env,
 the PettingZoo AEC env; thousands of random games; the opening, each player's own ball, balls in contact."""
 import gymnasium as gym
 import numpy as np
@@ -15,7 +15,7 @@ from billiards_env.rules import records as R
 from billiards_env.rules.three_cushion import OPENING_OFFSET
 from billiards_env.testing.positions import game_table
 
-ID = "Billiards-ThreeCushion-v2"
+ID = "Billiards-ThreeCushion-v3"
 SHORT = {"max_innings": 6}  # short games keep the tests fast
 
 
@@ -35,7 +35,7 @@ def test_single_agent_check_env_and_make_vec():
     env = gym.make(ID, max_shots=30, opponent="random", rule_options=SHORT)
     check_env(env.unwrapped, skip_render_check=True)
     obs, _ = env.reset(seed=3)
-    assert env.observation_space.contains(obs) and env.action_space.shape == (8,) and obs.shape == (4 * 3 + 18,)
+    assert env.observation_space.contains(obs) and env.action_space.shape == (8,) and obs.shape == (4 * 3 + 19,)
     assert env.unwrapped.core.table.style == "carom" and env.unwrapped.core.params.R == 0.03075
     v = gym.make_vec(ID, num_envs=3, vectorization_mode="vector_entry_point")
     assert isinstance(v, GameVectorEnv) and v.single_action_space.shape == (8,)

@@ -11,7 +11,7 @@ from .core import GameConfig
 
 OBSERVATION_DOC = """
     **Observation** (``Box(0, 1, (4*B + 14,), float32)``, B = 10 balls in
-    9-ball, 16 in 8-ball, 11 in 10-ball; snooker ``(4*B + 18,)``, B = 22;
+    9-ball, 16 in 8-ball, 11 in 10-ball; snooker ``(4*B + 20,)``, B = 22;
     ball 0 the cue ball):
 
     ==============  ===========================================================
@@ -32,6 +32,9 @@ OBSERVATION_DOC = """
     4*B + 14..17    snooker only (B = 22): the shooter's score, the
                     opponent's, the points of the balls on the table (each
                     / 147, clipped to 1), 1 if a free ball may be nominated
+    4*B + 18, 19    snooker only: 1 if the balls may be replaced (after
+                    the opponent's foul and a miss: a6 in (0, 0.5]), 1 if
+                    the cue ball lies touching a ball
     ==============  ===========================================================
 
     Snooker reads "behind the head string" as "in the D" and its "call
