@@ -11,7 +11,8 @@
 For each game (9-ball, 8-ball) and noise level (``none``, ``tournament``,
 ``high``, ``variable``) every pairing of the game's ladder agents
 (``billiards_env.bots.learned.ladder``) and ``--bots`` (default ``ghost``,
-``ghost-safety``, ``search64``, ``lookahead``, ``value-lookahead``) plays ``--racks`` paired racks
+``ghost-safety``, ``search64``, ``lookahead``, ``lookahead-2026.12``, ``value-lookahead``, ``champion``,
+``champion-fast`` and ``exit-search``, each where it has a player for the game) plays ``--racks`` paired racks
 (each rack twice, each side breaking once; ``studies.matches``), and
 Bradley-Terry ratings with 95% bootstrap intervals are fitted. Writes
 ``<out>/<game>_<noise>.json/.md/.png`` (every pairing and the ratings),
@@ -44,9 +45,22 @@ from billiards_env.bots.learned import ladder as L  # noqa: E402
 from billiards_env.studies import match_report  # noqa: E402
 
 GAMES = ("nine_ball", "eight_ball")
-BOTS = ("ghost", "ghost-safety", "search64", "lookahead", "value-lookahead")
+BOTS = ("ghost", "ghost-safety", "search64", "lookahead", "lookahead-2026.12", "value-lookahead", "champion",
+        "champion-fast", "exit-search")
 DOC = ROOT / "docs" / "ladder.md"
 BEGIN, END = "<!-- ladder-table:begin -->", "<!-- ladder-table:end -->"
+
+
+def plays(bot: str, game: str) -> bool:
+    """Whether the built-in bot ``bot`` has a player for ``game`` (the Expert Iteration networks are shipped per
+    game; ``champion-fast`` names one per game in the registry); the others play every pool game."""
+    from billiards_env.bots.learned.proposal_bot import shipped_games
+    from billiards_env.rules import get_game
+    if bot in ("exit-search", "exit-fast"):
+        return game in shipped_games(bot)
+    if bot == "champion-fast":
+        return get_game(game).champion_fast is not None
+    return True
 
 
 def cards_table(games) -> str:
@@ -132,7 +146,7 @@ def main(argv=None) -> int:
         rungs = L.ladder_names(game)[:1] if args.quick else L.ladder_names(game)
         if not rungs:
             raise SystemExit(f"no ladder agents shipped for {game} (scripts/export_ladder.py writes them)")
-        names = rungs + list(args.bots)
+        names = rungs + [b for b in args.bots if plays(b, game)]
         for noise in args.noise:
             t0 = time.perf_counter()
             results, table = tournament(names, game, args.racks, args.seed, noise, args.address, args.chunk_racks,

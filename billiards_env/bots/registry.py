@@ -24,6 +24,8 @@ games benchmark accept.
 - ``exit-search`` and ``exit-fast`` (``bots.learned.proposal_bot``): the search over the shipped Expert Iteration
   network's shot proposals, and its distilled network alone (trained by ``agents.exit``, docs/expert_iteration.md;
   9-ball only so far);
+- ``champion-fast`` (``bots.champion_fast``): the strongest player without search of the game it is handed,
+  by measurement (the game's registry entry names it, ``GameSpec.champion_fast``; docs/ladder.md#champion-fast);
 - ``module:factory`` (for example ``my_bots:planner``): a bot of your own;
   ``factory(seed=...)`` must return an object with ``name`` and
   ``act(view: GameView) -> ShotPlan`` (docs/bots.md);
@@ -38,7 +40,7 @@ import re
 from ..rules import get_game
 
 BOT_NAMES = ("random", "ghost", "ghost-safety", "search<K>", "lookahead", "lookahead-2026.12", "champion", "carom<K>",
-             "snooker", "ladder-<k>", "value-lookahead", "exit-search", "exit-fast", "<module>:<factory>")
+             "snooker", "ladder-<k>", "value-lookahead", "exit-search", "exit-fast", "champion-fast", "<module>:<factory>")
 DEFAULT_SEARCH_K = 64
 # ``lookahead-2026.12``: the Budget of ``lookahead`` on 2026-12-07, spelled out so later changes to the defaults
 # do not move the yardstick (bots.game_lookahead.Budget's fields; REPLY_BUDGET as it was that day)
@@ -74,7 +76,7 @@ def default_bot(game: str) -> str:
 
 
 FIXED_NAMES = ("random", "ghost", "ghost-safety", "lookahead", "lookahead-2026.12", "champion", "snooker",
-               "value-lookahead", "exit-search", "exit-fast")
+               "value-lookahead", "exit-search", "exit-fast", "champion-fast")
 COUNTED = ("search", "carom")  # name<K>: K candidates per table (no K: the bot's default)
 _NAME = re.compile(r"(?P<counted>search|carom)(?P<k>[0-9]*)|ladder-(?P<rung>[0-9]+)|(?P<module>[\w.]+):(?P<attr>\w+)")
 
@@ -149,6 +151,9 @@ def make_bot(spec, seed: int = 0):
     if family in ("exit-search", "exit-fast"):
         from .learned.proposal_bot import exit_fast, exit_search
         return (exit_search if family == "exit-search" else exit_fast)(seed=seed)
+    if family == "champion-fast":
+        from .champion_fast import ChampionFast
+        return ChampionFast(make_bot, seed=seed)
     if family == "search":
         from .search import SearchBot
         return SearchBot(seed=seed, k=name.k or DEFAULT_SEARCH_K)

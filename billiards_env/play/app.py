@@ -57,16 +57,19 @@ OFFERED_BOTS = tuple(sorted((f"search{DEFAULT_SEARCH_K}" if n == "search<K>" els
                              if "<" not in n or n == "search<K>"), key=lambda n: n != "ghost"))  # ghost first
 # the bots that play the pool games (the games without bots of their own: the registry's own_bots, rules.games)
 POOL_BOTS = ("ghost", "ghost-safety", f"search{DEFAULT_SEARCH_K}", "lookahead", "random")
+# and the strongest players, where the game has them (bot_problem): the search within 50 ms a shot, the Expert
+# Iteration players, the strongest without search
+STRONG_BOTS = ("champion", "exit-search", "exit-fast", "champion-fast")
 HERE = Path(__file__).resolve().parent
 
 
 def game_bots(game: str) -> list[str]:
-    """The opponents the lobby offers for ``game``: its default bot first, then the pool bots on the pool
-    games (a game with bots of its own, its spec's ``own_bots``: snooker or three-cushion, adds them and
-    ``random`` only), then the game's shipped ladder rungs (``ladder-1``..: 9-ball and 8-ball)."""
+    """The opponents the lobby offers for ``game``: its default bot first, then the pool bots and the strongest
+    players that can play it on the pool games (a game with bots of its own, its spec's ``own_bots``: snooker or
+    three-cushion, adds them and ``random`` only), then the game's shipped ladder rungs (``ladder-1``..)."""
     own, spec = default_bot(game), get_game(game)
-    rest = spec.own_bots + ("random",) if spec.own_bots else POOL_BOTS
-    return [own] + [b for b in rest if b != own] + ladder_names(game)
+    rest = spec.own_bots + ("random",) if spec.own_bots else POOL_BOTS + STRONG_BOTS
+    return [own] + [b for b in rest if b != own and bot_problem(b, game) is None] + ladder_names(game)
 DECLARATIONS = ("push_out", "pass")
 SHOT_FIELDS = {"turn", "player", "aim", "speed", "side", "height", "placement", "declare", "pocket", "ball"}
 NEW_FIELDS = {"game", "opponent", "players", "seed", "breaker", "noise"}
@@ -222,6 +225,7 @@ def _value_network_games() -> list[str]:
 
 def bot_problem(name: str, game: str) -> str | None:
     """Why the built-in bot ``name`` cannot play ``game`` on this server (None: it can)."""
+    from ..bots.learned.proposal_bot import shipped_games
     family, title = _bot_family(name), game_words(game)
     problem = budget_problem(name)
     if problem:
@@ -236,7 +240,14 @@ def bot_problem(name: str, game: str) -> str | None:
         return f"no {name} is shipped for {title} (its rungs: {', '.join(ladder_names(game)) or 'none'})"
     if family == "value-lookahead" and game not in _value_network_games():
         return f"value-lookahead has no value network for {title} (it plays {', '.join(_value_network_games())})"
+    if family in ("exit-search", "exit-fast") and game not in shipped_games(family):
+        shipped = shipped_games(family)
+        return (f"{name} has no trained network for {title} (it plays "
+                f"{', '.join(game_words(g) for g in shipped) or 'no game yet'})")
+    if family == "champion-fast" and spec.champion_fast is None:
+        return f"champion-fast has no player for {title} (no player without search is measured for it)"
     return None
+
 
 
 def create_app(max_games: int = MAX_GAMES, extra_bots=(), allowed_hosts=None, idle_s: float = GAME_IDLE_S,

@@ -91,10 +91,11 @@ class GameSpec:
     and the single-agent class ``<id_stem>Env``), ``class_prefix`` (the
     PettingZoo class ``<class_prefix>AECEnv``), ``summary`` (one sentence: the
     env classes' docstrings open with it), ``words`` (``GameWords``),
-    ``version`` (of the id: bumped whenever a change can change a result) and
+    ``version`` (of the id: bumped whenever a change can change a result),
     ``config_path`` (the game's default configuration, a YAML file that
     ``envs.games.GameConfig`` reads; None: ``billiards_env/envs/games/defaults/<name>.yaml``,
-    package data)."""
+    package data) and ``champion_fast`` (the bot name ``champion-fast`` plays
+    the game with: its strongest player without search, as measured)."""
 
     name: str
     title: str
@@ -110,6 +111,8 @@ class GameSpec:
     presets: StudyPresets = StudyPresets()
     version: int = 1  # the Gymnasium id's version: bumped whenever a change can change a result (docs/versions.md)
     config_path: str | None = None  # the default configuration's YAML (None: the package's envs/games/defaults/)
+    champion_fast: str | None = None  # the bot ``champion-fast`` plays it with: the strongest without search, by
+    #                                   measurement (docs/ladder.md#champion-fast); None: no such player yet
 
     @property
     def env_id(self) -> str:
@@ -163,12 +166,13 @@ def bot_games(family: str) -> tuple[str, ...]:
 
 for _spec in (
     GameSpec("nine_ball", "9-ball", NineBallRules, nine_ball_rack, 7, "ghost", "NineBall2P", "NineBall",
-             "9-ball", presets=StudyPresets(benchmarked=True)),
+             "9-ball", presets=StudyPresets(benchmarked=True), champion_fast="exit-fast"),
     GameSpec("eight_ball", "8-ball", EightBallRules, eight_ball_rack, 14, "ghost", "EightBall", "EightBall",
-             "8-ball", GameWords(call="call a pocket for the 8")),
+             "8-ball", GameWords(call="call a pocket for the 8"), champion_fast="ladder-4"),
     GameSpec("ten_ball", "10-ball", TenBallRules, ten_ball_rack, 8, "ghost", "TenBall", "TenBall",
              "10-ball (a 9-component action: a8 the called ball)",
-             GameWords(call="call the ball and its pocket"), presets=StudyPresets(benchmarked=True)),
+             GameWords(call="call the ball and its pocket"), presets=StudyPresets(benchmarked=True),
+             champion_fast="ghost"),
     GameSpec("three_cushion", "three-cushion", ThreeCushionRules, three_cushion_spots, 1, "carom", "ThreeCushion",
              "ThreeCushion", "three-cushion", GameWords(balls=CAROM_BALLS, colours=True, points=True,
                                                          pockets=False),

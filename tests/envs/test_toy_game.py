@@ -118,7 +118,9 @@ def test_the_play_server_offers_it_and_plays_it(toy):
     registry (no own_bots: the pool bots; the bots written for other games refused)."""
     from billiards_env.play.app import POOL_BOTS, bot_problem, game_bots, new_request
     from billiards_env.play.session import HUMAN, Session
-    assert game_bots(TOY) == ["ghost"] + [b for b in POOL_BOTS if b != "ghost"]  # no ladder shipped for it
+    offered = game_bots(TOY)  # no ladder shipped for it, no Expert Iteration network, no champion-fast measured
+    assert offered == ["ghost"] + [b for b in POOL_BOTS if b != "ghost"] + ["champion"], offered
+    assert "champion-fast has no player for 3-ball" in bot_problem("champion-fast", TOY)
     assert new_request({"game": TOY, "seed": 1})["players"] == [HUMAN, "ghost"]
     assert bot_problem("search16", TOY) is None
     assert bot_problem("carom", TOY) == "the carom bot plays three-cushion only, not 3-ball"
@@ -126,6 +128,15 @@ def test_the_play_server_offers_it_and_plays_it(toy):
     s = Session("toy", TOY, [HUMAN, "ghost"], 1)
     assert s.state()["title"] == "3-ball" and s.state()["hint_bot"] == "ghost"
     for turn in range(4):  # the person plays the hint (its default bot's shot), the bot its own
+        if s.state()["over"]:
+            break
+        if s.state()["to_move"] == 0:
+            s.human_shot({**s.hint(), "player": 0})
+        else:
+            s.bot_shot(turn)
+    assert s.turn >= 2 and s.n_shots() == s.turn
+    s = Session("toy2", TOY, [HUMAN, "champion"], 2)  # the strongest bot it offers plays it too
+    for turn in range(4):
         if s.state()["over"]:
             break
         if s.state()["to_move"] == 0:

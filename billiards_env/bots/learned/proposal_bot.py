@@ -52,6 +52,11 @@ def missing(name: str, game: str, root=CARD_DIR) -> str:
             f"with: {TRAIN.format(game=game)}")
 
 
+def shipped_games(name: str, root=CARD_DIR) -> list[str]:
+    """The games with a shipped network ``name`` (``exit-search``, ``exit-fast``): the games it plays."""
+    return [g for g in games() if (Path(root) / g / f"{name}.json").exists()]
+
+
 @lru_cache(maxsize=None)
 def shipped(name: str, game: str, root: str = str(CARD_DIR)) -> tuple:
     """(network, card) of ``name`` for ``game`` from the package (read once per process)."""
