@@ -29,12 +29,3 @@ def no_halving(seed: int = 0) -> Champion:
 def one_ply(seed: int = 0) -> Champion:
     """Without lookahead's reply search on the best survivors."""
     return _named(Champion(seed=seed, parts=Parts(replies=False)), "champion-one-ply")
-
-
-def chain(seed: int = 0, depth: int = 3) -> Champion:
-    """The leave looking ``depth`` pots ahead (``leave.chain_value``) instead of one."""
-    return _named(Champion(seed=seed, parts=Parts(leave_depth=depth)), f"champion-chain{depth}")
-
-
-def chain2(seed: int = 0) -> Champion:
-    return chain(seed, 2)

@@ -51,7 +51,6 @@ class Parts:
     searched_break: bool = True
     own_leave: bool = True
     replies: bool = True
-    leave_depth: int = 1  # pots the leave looks ahead (leave.chain_value; 1: the one-ply leave)
 
 
 class PlanRows:
@@ -104,7 +103,7 @@ class Champion:
         self.throw, self.windows, self.rounds = parts.throw, parts.windows, tuple(rounds)
         self.first_pots, self.first_safe = first_pots, first_safe
         self.breaks = BreakSearch() if parts.searched_break else None
-        self.own_leave, self.leave_depth = parts.own_leave, parts.leave_depth
+        self.own_leave = parts.own_leave
         self.variants = dict(variants or {})   # the pots' speed factors, tip heights and sides (candidates.pots)
         self.sims = 0
         self.last_value = self.last_kind = None
@@ -157,7 +156,7 @@ class Champion:
 
     def values(self, view, pv):
         """The mover's one-ply value of previewed shots: the planner's leave (``leave``), or lookahead's."""
-        return LEAVE.values(view, pv, self.leave_depth) if self.own_leave else self.la.values(view, pv)
+        return LEAVE.values(view, pv) if self.own_leave else self.la.values(view, pv)
 
     def plan(self, c, idx):
         return ShotPlan.of(Shots(c["phi"][idx], c["speed"][idx], c["a"][idx], c["b"][idx]),
