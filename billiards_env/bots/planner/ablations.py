@@ -29,3 +29,23 @@ def no_halving(seed: int = 0) -> Champion:
 def one_ply(seed: int = 0) -> Champion:
     """Without lookahead's reply search on the best survivors."""
     return _named(Champion(seed=seed, parts=Parts(replies=False)), "champion-one-ply")
+
+
+def one_exact(seed: int = 0) -> Champion:
+    """Without noise, only the shot itself searched exactly (its one-ply leave), not the next shooter's shot."""
+    return _named(Champion(seed=seed, exact_plies=1), "champion-one-exact")
+
+
+def exact12(seed: int = 0) -> Champion:
+    """Without noise, the next shot searched from the 12 best candidates' outcomes (the default 6)."""
+    return _named(Champion(seed=seed, exact_k=12), "champion-exact12")
+
+
+def exact3(seed: int = 0) -> Champion:
+    """Without noise, two more shots searched exactly from the 4 best candidates' outcomes at each level."""
+    return _named(Champion(seed=seed, exact_plies=3, exact_k=4), "champion-exact3")
+
+
+def no_exact_break(seed: int = 0) -> Champion:
+    """Without noise, the searched break as under noise, not searched again on each rack."""
+    return _named(Champion(seed=seed, exact_breaks=0), "champion-no-exact-break")

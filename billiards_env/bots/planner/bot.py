@@ -23,6 +23,7 @@ from ...physics.strike import Shots
 from ..game_lookahead import Budget, GameLookahead
 from ..game_lookahead.search import declarations
 from . import candidates as CAND
+from . import breaks as BR
 from . import leave as LEAVE
 from .breaks import BreakSearch
 from .halving import ROUNDS, halve
@@ -37,6 +38,8 @@ HELPER = dict(reply_eval=0, n_safe=16, n_kick=8, n_bank=16, n_push=24, hand_pots
 # with ``replies``: lookahead's two plies on the best survivors (the opponent's reply searched from the leaves
 # where the turn passes, ``GameLookahead.replies``): that many per table, of them kept for safeties, samples
 REPLY = dict(reply_eval=6, reply_safe=3, reply_samples=8)
+EXACT_K = 6                # without noise: candidates of a table whose next shot is searched too (``exact``)
+EXACT_BREAKS = 64          # without noise: break strikes previewed on the rack itself (``exact_break``)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -94,7 +97,8 @@ class Champion:
     name = "champion"
 
     def __init__(self, seed: int = 0, parts: Parts = Parts(), rounds=ROUNDS, first_pots: int = FIRST_POTS,
-                 first_safe: int = FIRST_SAFE, variants: dict | None = None, reply: dict = REPLY):
+                 first_safe: int = FIRST_SAFE, variants: dict | None = None, reply: dict = REPLY,
+                 exact_plies: int = 2, exact_k: int = EXACT_K, exact_breaks: int = EXACT_BREAKS):
         self.rng = np.random.default_rng(seed)
         self.reply = dict(reply)
         helper = dict(HELPER, **(self.reply if parts.replies else {}))
@@ -105,6 +109,8 @@ class Champion:
         self.breaks = BreakSearch() if parts.searched_break else None
         self.own_leave = parts.own_leave
         self.variants = dict(variants or {})   # the pots' speed factors, tip heights and sides (candidates.pots)
+        self.exact_plies, self.exact_k = int(exact_plies), int(exact_k)  # without noise: plies searched exactly
+        self.exact_breaks = int(exact_breaks)  # without noise: break strikes tried on each rack itself
         self.sims = 0
         self.last_value = self.last_kind = None
 
@@ -119,7 +125,10 @@ class Champion:
                 s = self.breaks.strike(self, view, brk)
             else:
                 s = np.array([0.0, 0.0, 8.0, -0.025])
-            p.breaks(brk, self.la.break_plan(view, brk, np.broadcast_to(s, (len(brk), 4))))
+            if view.noise.enabled or self.exact_breaks < 1:
+                p.breaks(brk, self.la.break_plan(view, brk, np.broadcast_to(s, (len(brk), 4))))
+            else:
+                p.breaks(brk, self.exact_break(view, brk, s))
         play = np.flatnonzero(~view.is_break)
         for lo in range(0, len(play), CHUNK):
             rows = play[lo:lo + CHUNK]
@@ -162,8 +171,9 @@ class Champion:
         return ShotPlan.of(Shots(c["phi"][idx], c["speed"][idx], c["a"][idx], c["b"][idx]),
                            placement=c["placement"][idx], pocket=c["pocket"][idx], ball=c["ball"][idx])
 
-    def decide(self, view, rows):
-        """(candidates, the chosen candidate of each row [n], its value [n]) for view rows ``rows``."""
+    def decide(self, view, rows, plies: int | None = None):
+        """(candidates, the chosen candidate of each row [n], its value [n]) for view rows ``rows``; ``plies``
+        (without noise; default ``exact_plies``): the shots searched exactly, this one included (``exact``)."""
         c = self.candidates(view, rows)
         n = len(rows)
         local = np.searchsorted(rows, c["row"])
@@ -186,6 +196,9 @@ class Champion:
 
         if not view.noise.enabled:
             # the env strikes every shot exactly as planned: the noise-free preview is the outcome itself
+            plies = self.exact_plies if plies is None else plies
+            if plies > 1:
+                v0 = self.exact(view, c, local, n, pv, v0, plies)
             score = v0 + 1e-6 * prior
             o = np.lexsort((-score, local))
             best = o[np.searchsorted(local[o], np.arange(n))]
@@ -200,6 +213,46 @@ class Champion:
         val = np.where(np.isfinite(score[best]), mean[best], v0[best])
         return c, best, val
 
+
+    def exact_break(self, view, rows, strike):
+        """Without noise, the break of each rack in ``rows`` searched on that rack: the searched break ``strike``
+        [4] and ``exact_breaks`` - 1 strikes drawn over its ranges (``breaks``), each previewed exactly and
+        valued as any shot, the best few by the shot after them (``exact``); the best strike's plan."""
+        m, K = len(rows), self.exact_breaks
+        lo, hi = np.array(BR.STRIKE_LOW), np.array(BR.STRIKE_HIGH)
+        cand = self.rng.uniform(lo, hi, (m, K, 4))
+        cand[:, 0] = strike
+        r = np.repeat(rows, K)
+        plan = self.la.break_plan(view, r, cand.reshape(-1, 4))
+        pv = view.preview(plan, r)
+        self.sims += len(r)
+        v = self.values(view, pv)
+        local = np.repeat(np.arange(m), K)
+        if self.exact_plies > 1:
+            v = self.exact(view, {"row": r}, local, m, pv, v, self.exact_plies)
+        best = np.arange(m) * K + np.argmax(v.reshape(m, K), axis=1)  # ties: the searched break first
+        return plan.take(best)
+
+    def exact(self, view, c, local, n, pv, v0, plies):
+        """Without noise: the ``exact_k`` best candidates of each row by ``v0`` whose game goes on are valued by
+        the next shooter's best shot, searched the same way from the exact outcome (``plies`` - 1 more shots):
+        the mover's value is that shot's if the mover shoots again, else 1 minus it. Returns the values [k]: a
+        candidate that ends the game keeps its exact value, one not searched so is out of the choice (-inf)."""
+        live = ~pv.record.game_over
+        pick = np.flatnonzero((_rank(-v0, local, n, live) < self.exact_k) & live)
+        if not len(pick):
+            return v0
+        after = view.after(pv, pick, c["row"][pick])
+        v = np.empty(len(pick))
+        for lo in range(0, len(pick), CHUNK):
+            sub = np.arange(lo, min(lo + CHUNK, len(pick)))
+            brk = after.is_break[sub]
+            _, _, val = self.decide(after, sub, plies - 1)
+            v[sub] = np.where(brk, v0[pick[sub]], val)
+        same = pv.next.shooter[pick] == pv.record.shooter[pick]
+        out = np.where(live, -np.inf, v0)
+        out[pick] = np.where(same, v, 1.0 - v)
+        return out
 
     def two_plies(self, view, c, local, n, mean, count, noise):
         """Scores [k] after lookahead's reply search on the best sampled candidates of each row (``REPLY``):

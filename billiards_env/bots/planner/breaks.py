@@ -23,6 +23,8 @@ AIM_OFF = 0.6                     # the aim's offset across the front ball, up t
 SPEED = (6.0, 9.0)                # m/s: the strike's speed range
 HEIGHT = (-0.5, 0.2)              # tip height range (units of R): draw to follow
 NOMINAL = (0.0, 0.0, 8.0, -0.025)  # ghost's standard break, always a candidate
+STRIKE_LOW = (-CUE_X, -AIM_OFF, SPEED[0], HEIGHT[0])   # the strikes' ranges, low and high ends
+STRIKE_HIGH = (CUE_X, AIM_OFF, SPEED[1], HEIGHT[1])
 
 
 class BreakSearch:
