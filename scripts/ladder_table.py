@@ -8,7 +8,7 @@
     python scripts/ladder_table.py --collect                           # the CSV, summary and docs of every part
     python scripts/ladder_table.py --racks 50 --address local --chunk-racks 10   # the matches as Ray tasks
 
-For each game (9-ball, 8-ball) and noise level (``none``, ``tournament``,
+For each game with a shipped ladder (9-ball, 8-ball) and noise level (``none``, ``tournament``,
 ``high``, ``variable``) every pairing of the game's ladder agents
 (``billiards_env.bots.learned.ladder``) and ``--bots`` (default ``ghost``,
 ``ghost-safety``, ``search64``, ``lookahead``, ``lookahead-2026.12``, ``value-lookahead``, ``champion``,
@@ -44,7 +44,8 @@ from agents.evaluation.distributed import tournament  # noqa: E402
 from billiards_env.bots.learned import ladder as L  # noqa: E402
 from billiards_env.studies import match_report  # noqa: E402
 
-GAMES = ("nine_ball", "eight_ball")
+from billiards_env.rules import GAMES as REGISTRY  # noqa: E402
+GAMES = tuple(g for g in REGISTRY if L.ladder_names(g))  # the games with a shipped ladder
 BOTS = ("ghost", "ghost-safety", "search64", "lookahead", "lookahead-2026.12", "value-lookahead", "champion",
         "champion-fast", "exit-search")
 DOC = ROOT / "docs" / "ladder.md"
