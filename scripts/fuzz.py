@@ -11,7 +11,6 @@ JSON regression cases (replayed by tests/physics/test_regressions.py).
 from __future__ import annotations
 
 import argparse
-import json
 import pathlib
 import time
 
@@ -20,7 +19,7 @@ from tqdm import tqdm
 
 from billiards_env.physics import Effects, Models
 from billiards_env.testing import CAROM_LAYOUTS, LAYOUTS, case_dict, random_batch, run_batch, save_case
-from billiards_env.testing.fuzzing import SNOOKER_LAYOUTS
+from billiards_env.testing.fuzzing import SNOOKER_LAYOUTS, report
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
@@ -106,10 +105,7 @@ def main(argv=None):
                    violations_per_effect_set=failures_per_set)
     if args.models:  # runs with the default models keep their summary's keys
         summary["models"] = models.to_dict()
-    print(json.dumps(summary, indent=1))
-    if args.summary:
-        args.summary.parent.mkdir(parents=True, exist_ok=True)
-        args.summary.write_text(json.dumps(summary, indent=1) + "\n")
+    report(summary, args.summary)
     return 1 if failures else 0
 
 

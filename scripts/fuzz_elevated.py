@@ -11,7 +11,6 @@ overlap, no ball off the table). Failing shots are saved as regression cases
 from __future__ import annotations
 
 import argparse
-import json
 import pathlib
 import time
 
@@ -20,6 +19,7 @@ import numpy as np
 from billiards_env.physics import strike
 from billiards_env.physics.strike import MAX_ELEVATION
 from billiards_env.testing import LAYOUTS, case_dict, random_batch, run_batch, save_case
+from billiards_env.testing.fuzzing import report
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
@@ -61,10 +61,7 @@ def main(argv=None):
         done += n
     summary = {"solver": args.solver, "shots": done, "shots_with_violations": failing, "events": events,
                "theta_max": args.theta_max, "seed": args.seed, "wall_s": round(time.perf_counter() - t0, 1)}
-    print(json.dumps(summary, indent=1))
-    if args.summary:
-        args.summary.parent.mkdir(parents=True, exist_ok=True)
-        args.summary.write_text(json.dumps(summary, indent=1) + "\n")
+    report(summary, args.summary)
     return 1 if failing else 0
 
 

@@ -53,15 +53,10 @@ BEGIN, END = "<!-- ladder-table:begin -->", "<!-- ladder-table:end -->"
 
 
 def plays(bot: str, game: str) -> bool:
-    """Whether the built-in bot ``bot`` has a player for ``game`` (the Expert Iteration networks are shipped per
-    game; ``champion-fast`` names one per game in the registry); the others play every pool game."""
-    from billiards_env.bots.learned.proposal_bot import shipped_games
-    from billiards_env.rules import get_game
-    if bot in ("exit-search", "exit-fast"):
-        return game in shipped_games(bot)
-    if bot == "champion-fast":
-        return get_game(game).champion_fast is not None
-    return True
+    """Whether the built-in bot ``bot`` can play ``game`` (the play server's test, ``bot_problem``: a network or a
+    measured player shipped for the game, bots written for other games refused)."""
+    from billiards_env.play.app import bot_problem
+    return bot_problem(bot, game) is None
 
 
 def cards_table(games) -> str:

@@ -167,3 +167,13 @@ def load_case(path):
     s = BallState(np.array(c["pos"])[None], np.array(c["vel"])[None], np.array(c["omega"])[None],
                   np.array(c["pocket"], dtype=np.int64)[None])
     return c, s, table, params
+
+
+def report(summary: dict, path=None) -> None:
+    """Print a fuzz run's ``summary`` as JSON, and write it to ``path`` (its folder made) when one is given."""
+    text = json.dumps(summary, indent=1)
+    print(text)
+    if path:
+        path = pathlib.Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text + "\n")

@@ -127,16 +127,14 @@ def test_the_play_server_offers_it_and_plays_it(toy):
     assert "plays snooker only" in bot_problem("snooker", TOY)
     s = Session("toy", TOY, [HUMAN, "ghost"], 1)
     assert s.state()["title"] == "3-ball" and s.state()["hint_bot"] == "ghost"
-    for turn in range(4):  # the person plays the hint (its default bot's shot), the bot its own
-        if s.state()["over"]:
-            break
-        if s.state()["to_move"] == 0:
-            s.human_shot({**s.hint(), "player": 0})
-        else:
-            s.bot_shot(turn)
-    assert s.turn >= 2 and s.n_shots() == s.turn
-    s = Session("toy2", TOY, [HUMAN, "champion"], 2)  # the strongest bot it offers plays it too
-    for turn in range(4):
+    _play_turns(s)
+    _play_turns(Session("toy2", TOY, [HUMAN, "champion"], 2))  # the strongest bot it offers plays it too
+
+
+def _play_turns(s, turns: int = 4) -> None:
+    """Up to ``turns`` turns of session ``s``: the person plays the hint (its default bot's shot), the bot its own;
+    at least two are played and recorded."""
+    for turn in range(turns):
         if s.state()["over"]:
             break
         if s.state()["to_move"] == 0:

@@ -61,6 +61,12 @@ def _frame(phi, theta):
     return d, s, z, ct * d - st * z, st * d + ct * z
 
 
+def _contact(a, b, s, u, f, R):
+    """[n, 3] the tip's contact point from the ball's centre: offsets a (along s) and b (along u) in the cue's
+    frame, on the side of the ball facing the cue (against f)."""
+    return R * (a[:, None] * s + b[:, None] * u - np.sqrt(1 - a ** 2 - b ** 2)[:, None] * f)
+
+
 def test_level_cue_is_todays_strike_bit_for_bit(params):
     """theta = 0 (omitted, a scalar 0, an array of zeros, or cue_strike_3d
     itself) gives the same bits as the strike before the elevation existed,
@@ -112,8 +118,7 @@ def test_impulse_gives_momentum_and_angular_momentum(params):
     m, R, I = params.m, params.R, params.inertia
     v, w = cue_strike_3d(phi, speed, a, b, theta, R)
     d, s, z, f, u = _frame(phi, theta)
-    c = np.sqrt(1 - a ** 2 - b ** 2)[:, None]
-    r = R * (a[:, None] * s + b[:, None] * u - c * f)
+    r = _contact(a, b, s, u, f, R)
     J = (m * speed)[:, None] * f
     np.testing.assert_allclose(m * v, J, rtol=0, atol=1e-13)
     np.testing.assert_allclose(I * w, np.cross(r, J), rtol=0, atol=1e-13 * R)
@@ -131,7 +136,7 @@ def test_kinetic_energy_is_the_work_of_the_impulse(params):
     m, R, I = params.m, params.R, params.inertia
     v, w = cue_strike_3d(phi, speed, a, b, theta, R)
     d, s, z, f, u = _frame(phi, theta)
-    r = R * (a[:, None] * s + b[:, None] * u - np.sqrt(1 - a ** 2 - b ** 2)[:, None] * f)
+    r = _contact(a, b, s, u, f, R)
     ke = 0.5 * m * np.sum(v * v, 1) + 0.5 * I * np.sum(w * w, 1)
     work = 0.5 * np.einsum("ij,ij->i", (m * speed)[:, None] * f, v + np.cross(w, r))
     np.testing.assert_allclose(ke, work, rtol=1e-12, atol=1e-15)
