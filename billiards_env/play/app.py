@@ -240,8 +240,8 @@ def bot_problem(name: str, game: str) -> str | None:
         return f"no {name} is shipped for {title} (its rungs: {', '.join(ladder_names(game)) or 'none'})"
     if family == "value-lookahead" and game not in _value_network_games():
         return f"value-lookahead has no value network for {title} (it plays {', '.join(_value_network_games())})"
-    if family in ("exit-search", "exit-fast") and game not in shipped_games(family):
-        shipped = shipped_games(family)
+    shipped = shipped_games(family) if family in ("exit-search", "exit-fast") else None
+    if shipped is not None and game not in shipped:
         return (f"{name} has no trained network for {title} (it plays "
                 f"{', '.join(game_words(g) for g in shipped) or 'no game yet'})")
     if family == "champion-fast" and spec.champion_fast is None:

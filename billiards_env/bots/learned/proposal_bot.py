@@ -46,21 +46,26 @@ def games() -> tuple:
     return tuple(name for name, spec in REGISTRY.items() if spec.words.pockets and not spec.own_bots)
 
 
+def card_stem(name: str, game: str, root=CARD_DIR) -> Path:
+    """Where the network ``name`` of ``game`` is shipped: ``<stem>.npz`` and its card ``<stem>.json``."""
+    return Path(root) / game / name
+
+
 def missing(name: str, game: str, root=CARD_DIR) -> str:
     """The message of a name without a trained network for ``game``."""
-    return (f"{name}: no trained network for {game} (no {Path(root) / game / name}.npz / .json). Train and ship it "
-            f"with: {TRAIN.format(game=game)}")
+    return (f"{name}: no trained network for {game} (no {card_stem(name, game, root)}.npz / .json). Train and ship "
+            f"it with: {TRAIN.format(game=game)}")
 
 
 def shipped_games(name: str, root=CARD_DIR) -> list[str]:
     """The games with a shipped network ``name`` (``exit-search``, ``exit-fast``): the games it plays."""
-    return [g for g in games() if (Path(root) / g / f"{name}.json").exists()]
+    return [g for g in games() if card_stem(name, g, root).with_suffix(".json").exists()]
 
 
 @lru_cache(maxsize=None)
 def shipped(name: str, game: str, root: str = str(CARD_DIR)) -> tuple:
     """(network, card) of ``name`` for ``game`` from the package (read once per process)."""
-    stem = Path(root) / game / name
+    stem = card_stem(name, game, root)
     if not stem.with_suffix(".json").exists():
         raise ValueError(missing(name, game, root))
     return PN.load(stem)
@@ -167,7 +172,7 @@ def _leaf_value(net, view, pv) -> np.ndarray:
 
 def _shipped_player(name: str, seed: int, **kw) -> ProposalPlayer:
     """``name`` with the shipped cards; a ValueError naming the training command if no game has one."""
-    if not any((CARD_DIR / g / f"{name}.json").exists() for g in games()):
+    if not shipped_games(name):
         raise ValueError(f"{name}: no trained network is shipped for any game. Train and ship one per game with: "
                          + TRAIN.format(game="<game>") + f" (<game>: {', '.join(games())})")
     return ProposalPlayer(name, seed, **kw)
