@@ -63,7 +63,18 @@ STATIONARY = 0
 SPINNING = 1   # no translation, spin about the vertical axis only
 SLIDING = 2
 ROLLING = 3
-POCKETED = 4
+POCKETED = 4     # off the slate for good: in a pocket, or off the table (``pocket`` tells which)
+AIRBORNE = 5     # in flight above the slate (Effects(airborne)): height and vertical velocity in ``Balls.air``
+
+# --- where a ball went (BallState.pocket) ---------------------------------
+# -1: on the table; 0 .. K-1: in pocket k; OFF_TABLE and above: it left the
+# table over a cushion (Effects(airborne) only). Codes, not pockets: they
+# never index the table's pocket arrays, and ``pocket >= 0`` still means
+# "no longer in play" everywhere.
+ON_TABLE = -1
+OFF_TABLE = 100
+OFF_RAIL = 100   # came down on the rail top, beyond the cushion: off the table
+OFF_FLOOR = 101  # cleared the rail and fell to the floor
 
 # --- event kinds (event log) ----------------------------------------------
 EV_START = 0
@@ -74,8 +85,10 @@ EV_POCKET = 4
 EV_SLIDE_ROLL = 5
 EV_ROLL_STOP = 6
 EV_SPIN_STOP = 7
+EV_SLATE = 8        # an airborne ball meets the slate (a bounce, or it settles)
+EV_OFF_TABLE = 9    # an airborne ball passes over a cushion's nose and leaves the table
 EVENT_NAMES = ("start", "ball-ball", "cushion", "jaw-tip", "pocket",
-               "slide-roll", "roll-stop", "spin-stop")
+               "slide-roll", "roll-stop", "spin-stop", "slate", "off-table")
 
 # --- parameter vector layout (PhysicsParams.as_array) -----------------------
 P_M, P_R, P_G, P_MU_S, P_MU_R, P_MU_SP, P_MU_B, P_E_B, P_E_C, P_F_C, P_H_C, P_KT_KN = range(12)
