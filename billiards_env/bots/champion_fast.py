@@ -8,6 +8,7 @@ three-cushion, whose own bots search) is refused, naming the games it plays.
 from __future__ import annotations
 
 from ..rules import GAMES, get_game
+from .serial import serial_act
 
 
 class ChampionFast:
@@ -29,5 +30,6 @@ class ChampionFast:
             self.players[game] = self.make(name, seed=self.seed)
         return self.players[game]
 
+    @serial_act
     def act(self, view):
         return self.player(view.game).act(view)

@@ -1,4 +1,6 @@
 """The two-player ``lookahead`` (bots.game_lookahead): position play, safeties, legal plans, determinism."""
+import json
+
 import numpy as np
 import pytest
 
@@ -162,11 +164,19 @@ def test_searched_break_is_legal_deterministic_and_better_than_the_standard_brea
 
 
 def test_cost_script_quick(capsys, load_script):
-    """scripts/lookahead_cost.py's quick mode: a timed decision on a few tables and a two-rack budget match."""
+    """scripts/lookahead_cost.py's quick mode: a timed decision on a few tables, the one-table decisions of
+    champion, champion-fast and lookahead-2026.12 (``--single``) at both noise levels, and a two-rack budget match."""
     mod = load_script("lookahead_cost")
     assert mod.main(["--quick"]) == 0
     out = capsys.readouterr().out
     assert '"previews_per_decision"' in out and "| fast | 4 |" in out and "lost without a shot" in out
+    rows = [json.loads(line) for line in out.splitlines() if line.startswith('{"game"') and '"player"' in line]
+    assert [(r["noise"], r["player"]) for r in rows] == [(noise, player) for noise in ("tournament", "none")
+                                                          for player in ("champion", "champion-fast",
+                                                                         "lookahead-2026.12")]
+    assert all(r["decisions"] > 0 and r["cpu_ms_per_decision"] > 0 for r in rows)
+    assert [r["cpu_over_lookahead"] for r in rows if r["player"] == "lookahead-2026.12"] == [1.0, 1.0]
+    assert "| tournament | champion |" in out and "load average" in out
 
 
 def test_cost_script_budgets_by_name(load_script):

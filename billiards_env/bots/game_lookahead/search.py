@@ -8,6 +8,7 @@ import numpy as np
 from ...contract.plan import ShotPlan
 from ...physics.strike import Shots
 from ..ghost import GhostBot
+from ..serial import serial_act
 from .breaks import Breaks
 from .budget import BUDGETS, CHUNK, REPLY_BUDGET, Budget
 from .candidates import Candidates
@@ -51,6 +52,7 @@ class GameLookahead(Valuation, Candidates, Breaks):
         self.last_value = None  # [n] the value of the played shot at the last decision (diagnostics)
         self.last_kind = None   # [n] what it is: "break", "pot", "safety" (safeties and kicks), "push", "pass"
 
+    @serial_act
     def act(self, view) -> ShotPlan:
         if not view.table.has_pockets:
             raise ValueError(f"the lookahead bot pots balls: it cannot play {view.game} on a table without pockets "

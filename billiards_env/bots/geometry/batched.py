@@ -186,9 +186,11 @@ def kick_shots(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, R: flo
     ar = np.arange(E)
     cue, obj = pos[:, 0], pos[ar, target]
     lines = ((0, R), (0, width - R), (1, R), (1, length - R))
+    pk = np.asarray(pockets, dtype=np.float64)
     phi = np.empty((E, 4))
     path = np.empty((E, 4))
     blocked = np.zeros((E, 4), dtype=bool)
+    hits, ends = np.empty((E, 4, 2)), np.empty((E, 4, 2))
     for k, (axis, c) in enumerate(lines):
         image = obj.copy()
         image[:, axis] = 2 * c - obj[:, axis]
@@ -203,16 +205,17 @@ def kick_shots(pos: np.ndarray, on_table: np.ndarray, target: np.ndarray, R: flo
         other_axis = 1 - axis
         span = width if other_axis == 0 else length
         bad = (lam <= 0.0) | (lam >= 1.0) | (hit[:, other_axis] < R) | (hit[:, other_axis] > span - R)
-        for cx, cy, r in np.asarray(pockets, dtype=np.float64):
-            bad |= np.hypot(hit[:, 0] - cx, hit[:, 1] - cy) < r + KICK_POCKET_CLEAR
+        if len(pk):   # near a pocket's capture circle
+            bad |= (np.hypot(hit[:, 0, None] - pk[:, 0], hit[:, 1, None] - pk[:, 1])
+                    < pk[:, 2] + KICK_POCKET_CLEAR).any(axis=1)
         # the second leg ends 2R short of the target's centre
         leg2 = obj - hit
         n2 = np.maximum(np.linalg.norm(leg2, axis=1), 1e-12)
-        end = obj - 2 * R * leg2 / n2[:, None]
-        bad = bad[:, None].copy()
-        _paths_blocked(pos, on_table, target, cue[:, None], hit[:, None], R, bad)
-        _paths_blocked(pos, on_table, target, hit[:, None], end[:, None], R, bad)
-        blocked[:, k] = bad[:, 0]
+        hits[:, k], ends[:, k] = hit, obj - 2 * R * leg2 / n2[:, None]
+        blocked[:, k] = bad
+    # both legs of the four kicks in two calls (a leg already bad is not tested again)
+    _paths_blocked(pos, on_table, target, np.broadcast_to(cue[:, None], hits.shape), hits, R, blocked)
+    _paths_blocked(pos, on_table, target, hits, ends, R, blocked)
     return phi, path, blocked
 
 

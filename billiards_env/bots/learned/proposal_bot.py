@@ -29,6 +29,7 @@ from ..planner import proposals as PR
 from ..planner import shot_space as SS
 from ..planner.bot import CHUNK, HELPER, Champion, PlanRows
 from ..planner.breaks import NOMINAL, BreakSearch
+from ..serial import serial_act
 from . import proposal_net as PN
 
 CARD_DIR = Path(__file__).with_name("ladder")
@@ -112,6 +113,7 @@ class ProposalPlayer:
         return LEAVE.values(view, pv)
 
     # --- acting -------------------------------------------------------------------------------------------------
+    @serial_act
     def act(self, view) -> ShotPlan:
         if not view.table.has_pockets:
             raise ValueError(f"{self.name} pots balls: it cannot play {view.game} on a table without pockets")

@@ -22,6 +22,7 @@ from ...contract.plan import ShotPlan
 from ...physics.strike import Shots
 from ..game_lookahead import Budget, GameLookahead
 from ..game_lookahead.search import declarations
+from ..serial import serial_act
 from . import candidates as CAND
 from . import breaks as BR
 from . import leave as LEAVE
@@ -115,6 +116,7 @@ class Champion:
         self.last_value = self.last_kind = None
 
     # --- acting -------------------------------------------------------------------------------------------------
+    @serial_act
     def act(self, view) -> ShotPlan:
         if not view.table.has_pockets:
             raise ValueError(f"champion pots balls: it cannot play {view.game} on a table without pockets")

@@ -40,9 +40,11 @@ def _paths_open(pos, on, srow, ball, cue, ghost, aimpt, d2, out):
                       or blocked(pos[e], on[e], b, -1, pos[e, b, 0], pos[e, b, 1], aimpt[k, 0], aimpt[k, 1], d2))
 
 
-def pot_options(view, pos, on, tg, cue, aim_sigma):
+def pot_options(view, pos, on, tg, cue, aim_sigma, aims=None):
     """Every open pot of the legal balls from cue balls ``cue`` [S, 2] on tables ``pos`` [S, B, 2]: dict of flat
-    arrays (start, ball, pocket, want (the object ball's direction), phi0 (ghost-ball aim), prob, dcg, dop, cut)."""
+    arrays (start, ball, pocket, want (the object ball's direction), phi0 (ghost-ball aim), prob, dcg, dop, cut).
+    ``aims``: the windows' aims (``Windows.aim``: direction, half-width, aim point, distance) of every ball into
+    every pocket, [S, B, P] (the point [S, B, P, 2]), when the caller has them already."""
     R = view.params.R
     w = windows_of(view)
     S, B = pos.shape[:2]
@@ -51,7 +53,7 @@ def pot_options(view, pos, on, tg, cue, aim_sigma):
     keep = b_i > 0
     s_i, b_i, p_i = s_i[keep], b_i[keep], p_i[keep]
     obj = pos[s_i, b_i]
-    th, half, aimpt, dop = w.aim(p_i, obj)
+    th, half, aimpt, dop = w.aim(p_i, obj) if aims is None else (x[s_i, b_i, p_i] for x in aims)
     u = np.column_stack([np.cos(th), np.sin(th)])
     ghost = obj - 2 * R * u
     v = ghost - cue[s_i]

@@ -133,7 +133,10 @@ class Layout:
         aim_sigma = max(math.radians(view.noise.aim_deg), MIN_AIM_SIGMA)
         li, b, p = (x.ravel() for x in np.meshgrid(np.arange(n), np.arange(1, O + 1), np.arange(P), indexing="ij"))
         obj = view.pos[rows[li], b]
-        th, half, _, dop = w.aim(p, obj)
+        th, half, aimpt, dop = w.aim(p, obj)
+        # the same aims per (table, ball, pocket), ball 0 unused: pot_options' from where the cue ball lies
+        aims = [np.concatenate([np.zeros((n, 1, P) + x.shape[1:]), x.reshape((n, O, P) + x.shape[1:])], axis=1)
+                for x in (th, half, aimpt, dop)]
         slot = sp.pot_slot(b, p)
         self.half[li, slot] = half[:, None]
         self.dop[li, slot] = dop[:, None]
@@ -164,7 +167,7 @@ class Layout:
             pos[:, 0] = cue
             on = view.on_table[rows[srow]].copy()
             on[:, 0] = True
-            o = pot_options(view, pos, on, tg, cue, aim_sigma)
+            o = pot_options(view, pos, on, tg, cue, aim_sigma, aims=None if where else [x[srow] for x in aims])
             if where is None:
                 li_o, s_o, t_o = srow[o["start"]], sp.pot_slot(o["ball"], o["pocket"]), np.full(len(o["start"]), CENTRE)
                 keep = np.ones(len(li_o), bool)

@@ -38,8 +38,8 @@ class Windows:
         linearly interpolated on the angle grid; half 0 outside it."""
         rel = (theta - self.base[p] + np.pi) % (2 * np.pi) - np.pi
         x = (rel - ANGLES[0]) / (ANGLES[1] - ANGLES[0])
-        i = np.clip(np.floor(x).astype(np.int64), 0, len(ANGLES) - 2)
-        f = np.clip(x - i, 0.0, 1.0)
+        i = np.minimum(np.maximum(np.floor(x).astype(np.int64), 0), len(ANGLES) - 2)   # np.clip, without its
+        f = np.minimum(np.maximum(x - i, 0.0), 1.0)                                     # wrapper's overhead
         c = (1 - f) * self.centre[p, i] + f * self.centre[p, i + 1]
         h = np.minimum(self.half[p, i], self.half[p, i + 1])
         h = np.where((x < 0) | (x > len(ANGLES) - 1), 0.0, h)
