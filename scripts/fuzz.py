@@ -18,8 +18,8 @@ import numpy as np
 from tqdm import tqdm
 
 from billiards_env.physics import Effects, Models
-from billiards_env.testing import CAROM_LAYOUTS, LAYOUTS, case_dict, random_batch, run_batch, save_case
-from billiards_env.testing.fuzzing import SNOOKER_LAYOUTS, report
+from billiards_env.testing import case_dict, random_batch, run_batch, save_case
+from billiards_env.testing.fuzzing import TABLE_KINDS, report, table_layout
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
@@ -35,7 +35,7 @@ def main(argv=None):
     ap.add_argument("--models", nargs="*", default=[], metavar="KEY=VALUE",
                     help="model choices, e.g. ball_ball_friction=alciatore cushion=mathavan2010 "
                          "(keys and names: billiards_env.physics.models.REGISTRIES; default: Models())")
-    ap.add_argument("--table", choices=("pool", "carom", "snooker"), default="pool",
+    ap.add_argument("--table", choices=TABLE_KINDS, default="pool",
                     help="pool: 9-ball and 8-ball racks and random balls on the 9 ft table (standard and seed "
                          "physics); carom: three balls on the carom match table with carom equipment, frozen "
                          "to each other or to a cushion, extreme spin (testing.fuzzing.carom_batch); snooker: "
@@ -69,15 +69,9 @@ def main(argv=None):
                 stopped_early = True
                 break
             n = min(args.batch, args.shots - done)
-            if args.table == "snooker":
-                layout, preset = SNOOKER_LAYOUTS[int(rng.integers(len(SNOOKER_LAYOUTS)))], "snooker"
-            else:
-                layouts = CAROM_LAYOUTS if args.table == "carom" else LAYOUTS
-                layout = layouts[int(rng.integers(len(layouts)))]
-                preset = "seed" if rng.random() < 0.2 else "standard"
+            layout, preset, table_name, case_table = table_layout(rng, args.table)
             name = names[int(rng.integers(len(names)))] if len(names) > 1 else names[0]
             effects = effect_sets[name]
-            table_name = "snooker" if args.table == "snooker" else "pool9"  # carom: its layout picks the table
             state, table, params = random_batch(rng, n, layout, preset, pockets=effects.pockets, table_name=table_name)
             res, viol = run_batch(state, table, params, args.solver, dt=args.dt, effects=effects,
                                   models=models)
@@ -91,7 +85,7 @@ def main(argv=None):
                     failures_per_set[name] = failures_per_set.get(name, 0) + 1
                     if failures <= 50:
                         save_case(case_dict(state, e, params, args.solver, args.dt, v, effects, models,
-                                            "snooker" if args.table == "snooker" else None),
+                                            case_table),
                                   args.regressions, tag="fuzz")
             done += n
             bar.update(n)

@@ -1,11 +1,14 @@
 """Airborne motion: flight, ball-slate impacts and the bounces of a jumped
-ball until it settles on the slate (issue 46, item 2, its first part).
+ball until it settles on the slate (issue 46, item 2).
 
-The solvers do not call these functions yet (``Effects(airborne=True)`` is
-refused by ``simulate``): they are the model, closed forms and one resolve
-function each, tested against their closed forms (tests/physics/
-test_airborne.py) before they enter a kernel. Scalars in, tuples out, so a
-kernel can call them as they are (numba helpers, as ``motion``).
+The event solver simulates them with ``Effects(airborne=True)``
+(``event_solver``: a ball in flight is in the motion state
+``constants.AIRBORNE``, its height and vertical velocity in ``Balls.air``);
+its contacts in flight are ``ball_ball.flight`` (with another ball) and
+``cushion.rail`` (with a cushion, a pocket, and over the rail off the
+table). Scalars in, tuples out for the closed forms, tested against them
+(tests/physics/test_airborne.py); ``fly`` and ``land`` are the kernel's
+evolve and resolve of a ball in flight.
 
 Frame: x, y on the slate, z up; a ball's centre at height z (z = R: on the
 slate). Velocity v = (vx, vy, vz), spin w = (wx, wy, wz), m the mass, R the
@@ -71,8 +74,9 @@ the solver of every other contact): a jumped ball clears a ball it passes
 over exactly when this has no root before it lands. Passing straight over
 the resting ball at the apex of its flight, it clears it when the apex is
 at least 2R above the resting ball's centre (if vh^2 > g h, the apex is the
-nearest point of the pass). Resolving that impact in 3D (the struck ball
-pressed into the slate) is not modelled yet.
+nearest point of the pass). The kernels track the height of the ball's
+lowest point, h = z - R (0 on the slate), so that a ball on the slate is at
+h = 0 exactly; ``drop_time`` is ``landing_time`` in h.
 
 Constants. e = ``SLATE_RESTITUTION`` = 0.5, Alciatore's ball-table
 coefficient of restitution ("physical properties" of pool equipment, the
@@ -112,12 +116,79 @@ def landing_time(z, vz, R, g):
     reaches the slate (its centre at R, descending); 0 for a ball on the
     slate moving into it (or resting on it: the caller settles such a
     ball instead of flying it)."""
-    dz = max(z - R, 0.0)  # a ball is never below the slate
+    return drop_time(max(z - R, 0.0), vz, g)  # a ball is never below the slate
+
+
+@njit
+def drop_time(dz, vz, g):
+    """Time until a body ``dz`` >= 0 above a level, moving up at ``vz``,
+    comes down to that level (the later root of dz + vz t - g t^2 / 2 = 0;
+    0 for dz = 0 and vz <= 0)."""
     root = math.sqrt(vz * vz + 2.0 * g * dz)
     if vz <= 0.0:
         den = root - vz
         return 0.0 if den == 0.0 else 2.0 * dz / den
     return (vz + root) / g
+
+
+@njit
+def fly(balls, e, i, dt, g):
+    """Advance ball i of ``balls`` (layout.Balls), in flight, by dt: the
+    parabola above, the spin unchanged; never below the slate (a flight
+    ends at its landing time, where rounding may leave h a hair below 0)."""
+    if dt <= 0.0:
+        return
+    pos, vel, air = balls.pos, balls.vel, balls.air
+    pos[e, i, 0] += vel[e, i, 0] * dt
+    pos[e, i, 1] += vel[e, i, 1] * dt
+    vz = air[e, i, 1]
+    air[e, i, 0] = max(air[e, i, 0] + vz * dt - 0.5 * g * dt * dt, 0.0)
+    air[e, i, 1] = vz - g * dt
+
+
+@njit
+def land(balls, e, i, p):
+    """The resolve of a slate event: ball i of ``balls`` meets the slate
+    (h = 0, vz <= 0): ``slate_impact``, and the bounces end when the rebound
+    would rise less than ``SETTLE_HEIGHT`` (vz = 0: the caller gives the
+    ball its motion state on the felt). Returns True if it flies on."""
+    vel, om, air = balls.vel, balls.om, balls.air
+    R = p[C.P_R]
+    air[e, i, 0] = 0.0
+    vx, vy, vz, wx, wy, wz = slate_impact(vel[e, i, 0], vel[e, i, 1], min(air[e, i, 1], 0.0),
+                                          om[e, i, 0], om[e, i, 1], om[e, i, 2], R, SLATE_RESTITUTION,
+                                          p[C.P_MU_S])
+    vel[e, i, 0] = vx; vel[e, i, 1] = vy
+    om[e, i, 0] = wx; om[e, i, 1] = wy; om[e, i, 2] = wz
+    if settles(vz, p[C.P_G], SETTLE_HEIGHT):
+        air[e, i, 1] = 0.0
+        return False
+    air[e, i, 1] = vz
+    return True
+
+
+@njit
+def leaves_slate(balls, e, i):
+    """True if ball i (on the table) starts in flight or moving off or into
+    the slate: it is given the motion state AIRBORNE (a ball struck into
+    the slate meets it at once)."""
+    return balls.air[e, i, 0] > 0.0 or balls.air[e, i, 1] != 0.0
+
+
+@njit
+def landing_now(balls, e, i, t_land, t):
+    """True if ball i is in flight and meets the slate at this instant
+    (``t_land``, its transition time, is now): its pairs wait for the
+    bounce, which comes first and changes its vertical velocity."""
+    return balls.st[e, i] == C.AIRBORNE and t_land <= t
+
+
+@njit
+def flight_energy(balls, e, i, p):
+    """The energy of ball i's height and vertical motion (J), m g h +
+    m vz^2 / 2, which the planar energy (``motion.energy``) leaves out."""
+    h, vz = balls.air[e, i, 0], balls.air[e, i, 1]
+    return p[C.P_M] * (p[C.P_G] * h + 0.5 * vz * vz)
 
 
 @njit

@@ -25,7 +25,7 @@ BOX_SLACK = 1e-9
 
 @njit
 def _moving(s):
-    return s == C.SLIDING or s == C.ROLLING
+    return s == C.SLIDING or s == C.ROLLING or s == C.AIRBORNE
 
 
 @njit
@@ -64,6 +64,14 @@ def sweep_path(pos, vel, st, e, i, ax, ay, H, paths):
     else:
         paths[e, i, 2] = -math.inf; paths[e, i, 3] = math.inf
         paths[e, i, 4] = -math.inf; paths[e, i, 5] = math.inf
+
+
+@njit
+def paths_apart(paths, e, i, j, gap):
+    """The broad phase: the boxes swept by balls i and j (``sweep_path``)
+    stay more than ``gap`` (+ BOX_SLACK) apart in x or in y."""
+    return (_apart(paths[e, i, 2], paths[e, i, 3], paths[e, j, 2], paths[e, j, 3], gap + BOX_SLACK)
+            or _apart(paths[e, i, 4], paths[e, i, 5], paths[e, j, 4], paths[e, j, 5], gap + BOX_SLACK))
 
 
 @njit_inline

@@ -7,6 +7,7 @@ import math
 
 from . import constants as C
 from ._jit import njit
+from .airborne import flight_energy
 from .motion import energy
 
 
@@ -22,8 +23,11 @@ def start(balls, geo, e, p, diag):
 @njit
 def check_geometry(balls, geo, e, p, diag):
     """Smallest pair gap (diag[e, 2]) and worst excursion off the table
-    (diag[e, 3]) of table e now."""
+    (diag[e, 3]) of table e now; balls in flight (a kernel with
+    ``Balls.air``) are apart in 3D, and a ball below the slate is an
+    excursion by its depth."""
     pos, st, pockets = balls.pos, balls.st, geo.pockets
+    air_on = balls.air.shape[0] > 0
     width, length = geo.width, geo.length
     R = p[C.P_R]
     B = pos.shape[1]
@@ -33,11 +37,16 @@ def check_geometry(balls, geo, e, p, diag):
         for j in range(i + 1, B):
             if st[e, j] == C.POCKETED:
                 continue
-            gap = math.hypot(pos[e, i, 0] - pos[e, j, 0], pos[e, i, 1] - pos[e, j, 1]) - 2.0 * R
+            d = math.hypot(pos[e, i, 0] - pos[e, j, 0], pos[e, i, 1] - pos[e, j, 1])
+            if air_on:
+                d = math.hypot(d, balls.air[e, i, 0] - balls.air[e, j, 0])
+            gap = d - 2.0 * R
             if gap < diag[e, 2]:
                 diag[e, 2] = gap
         x, y = pos[e, i, 0], pos[e, i, 1]
         out = max(R - x, x - (width - R), R - y, y - (length - R), 0.0)
+        if air_on and -balls.air[e, i, 0] > diag[e, 3]:
+            diag[e, 3] = -balls.air[e, i, 0]
         if out > C.OFF_TABLE_TOL:
             near = False
             for k in range(pockets.shape[0]):
@@ -51,8 +60,11 @@ def check_geometry(balls, geo, e, p, diag):
 def total_energy(balls, e, p):
     """Kinetic plus rotational energy of every ball of table e (J)."""
     en = 0.0
+    air_on = balls.air.shape[0] > 0
     for i in range(balls.vel.shape[1]):
         en += energy(balls.vel, balls.om, balls.st, e, i, p)
+        if air_on and balls.st[e, i] != C.POCKETED:
+            en += flight_energy(balls, e, i, p)
     return en
 
 

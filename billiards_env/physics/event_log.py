@@ -8,7 +8,9 @@ from ._jit import njit
 def record(log, balls, e, t, kind, i, j):
     """Append event ``kind`` at time t of ball i (and ball j of a ball-ball
     event; else j is a cushion, tip or pocket index, or -1) to table e's log,
-    with the involved balls' states after it."""
+    with the involved balls' states after it: (x, y, vx, vy, wx, wy, wz,
+    motion state, h, vz), the last two (height above the slate, vertical
+    velocity) zero but in a kernel of balls in flight."""
     n = log.n[e]
     if n >= log.t.shape[1]:
         log.n[e] = n + 1  # counts overflow; the wrapper reports it
@@ -28,6 +30,8 @@ def record(log, balls, e, t, kind, i, j):
         rec[e, n, s, 2] = vel[e, b, 0]; rec[e, n, s, 3] = vel[e, b, 1]
         rec[e, n, s, 4] = om[e, b, 0]; rec[e, n, s, 5] = om[e, b, 1]
         rec[e, n, s, 6] = om[e, b, 2]; rec[e, n, s, 7] = st[e, b]
+        if balls.air.shape[0] > 0:
+            rec[e, n, s, 8] = balls.air[e, b, 0]; rec[e, n, s, 9] = balls.air[e, b, 1]
     log.n[e] = n + 1
 
 

@@ -20,10 +20,13 @@ import math
 import numba
 import numpy as np
 
+from . import airborne
 from . import constants as C
 from . import diagnostics, event_log
 from ._jit import njit, njit_inline, variant_njit
-from .detection import boundary_time, pair_time, sweep_path
+from .ball_ball import flight
+from .cushion import rail
+from .detection import boundary_time, pair_time, paths_apart, sweep_path
 from .layout import ChunkScratch, impact_scratch
 from .motion import acceleration, apply_transition, classify, evolve, transition_time
 from .vec import norm
@@ -39,12 +42,15 @@ MIN_CHUNKS = 16
 
 
 @njit_inline
-def refresh(balls, scr, geo, e, i, t, p):
+def refresh(balls, scr, geo, e, i, t, p, air_on):
     """Recompute every event time that involves ball i (absolute times),
     and ball i's entry in ``scr.paths``: its acceleration and the box its
     path sweeps until its next transition or boundary event. Both hold until
     that event refreshes the ball again, so pair checks read them instead
-    of recomputing them for the other ball of every pair.
+    of recomputing them for the other ball of every pair. With ``air_on``
+    (a compile-time constant) a ball in flight has its landing as its
+    transition, ``cushion.rail``'s boundaries, and its pairs are checked in
+    3D (``ball_ball.flight``).
 
     Inlined at its one call site, the event loop: a call passes the named
     structures (~200 machine words), more than a pair check costs; an
@@ -58,10 +64,16 @@ def refresh(balls, scr, geo, e, i, t, p):
         for j in range(B):
             tpair[e, i, j] = math.inf; tpair[e, j, i] = math.inf
         return
-    tt[e, i] = t + transition_time(vel, om, st, e, i, p)
-    h = tt[e, i] - t
-    ax, ay = acceleration(vel, om, st, e, i, p)
-    tb_rel, k, idx = boundary_time(balls, e, i, ax, ay, h, p, geo, False)
+    if air_on and st[e, i] == C.AIRBORNE:
+        tt[e, i] = t + airborne.drop_time(balls.air[e, i, 0], balls.air[e, i, 1], p[C.P_G])
+        h = tt[e, i] - t
+        ax, ay = 0.0, 0.0
+        tb_rel, k, idx = rail.boundary_time(balls, e, i, h, p, geo)
+    else:
+        tt[e, i] = t + transition_time(vel, om, st, e, i, p)
+        h = tt[e, i] - t
+        ax, ay = acceleration(vel, om, st, e, i, p)
+        tb_rel, k, idx = boundary_time(balls, e, i, ax, ay, h, p, geo, False)
     tb[e, i] = t + tb_rel; scr.bkind[e, i] = k; scr.bidx[e, i] = idx
     # A pair needs looking at only until the first known event of either
     # ball (transition or boundary): that event refreshes the ball and so
@@ -72,7 +84,17 @@ def refresh(balls, scr, geo, e, i, t, p):
         if j == i:
             continue
         hj = min(next_i, tt[e, j], tb[e, j]) - t
-        tij = t + pair_time(pos, vel, st, paths, e, i, j, hj, p, t - tlast[e, j])
+        if air_on and (st[e, i] == C.AIRBORNE or st[e, j] == C.AIRBORNE):
+            # a ball meeting the slate now (its landing: the earliest event
+            # of this instant's) has its pairs checked once it has bounced
+            if (st[e, j] == C.POCKETED or airborne.landing_now(balls, e, i, tt[e, i], t)
+                    or airborne.landing_now(balls, e, j, tt[e, j], t)
+                    or paths_apart(paths, e, i, j, 2.0 * p[C.P_R])):
+                tij = math.inf
+            else:
+                tij = t + flight.contact_time(balls, paths, e, i, j, hj, p, t - tlast[e, j])
+        else:
+            tij = t + pair_time(pos, vel, st, paths, e, i, j, hj, p, t - tlast[e, j])
         tpair[e, i, j] = tij; tpair[e, j, i] = tij
 
 
@@ -86,7 +108,7 @@ def break_collapse(balls, e, p, stuck, rounds, spin_on):
     R = p[C.P_R]
     limit = C.ZENO_FREEZE_SPEED * 2.0 ** rounds
     for i in range(vel.shape[1]):
-        if not stuck[i] or st[e, i] == C.POCKETED:
+        if not stuck[i] or st[e, i] == C.POCKETED or st[e, i] == C.AIRBORNE:
             continue
         contact = norm(vel[e, i, 0], vel[e, i, 1]) + R * norm(om[e, i, 0], om[e, i, 1])
         if contact < limit:
@@ -96,9 +118,12 @@ def break_collapse(balls, e, p, stuck, rounds, spin_on):
 
 
 @njit_inline
-def catch_up(balls, tlast, e, i, t, p, zspin_on, spin_on):
+def catch_up(balls, tlast, e, i, t, p, zspin_on, spin_on, air_on):
     """Bring ball i's state from its last event to time t."""
-    evolve(balls.pos, balls.vel, balls.om, balls.st, e, i, t - tlast[e, i], p, zspin_on, spin_on)
+    if air_on and balls.st[e, i] == C.AIRBORNE:
+        airborne.fly(balls, e, i, t - tlast[e, i], p[C.P_G])
+    else:
+        evolve(balls.pos, balls.vel, balls.om, balls.st, e, i, t - tlast[e, i], p, zspin_on, spin_on)
     tlast[e, i] = t
 
 
@@ -124,9 +149,11 @@ def next_event(scr, e, B):
 
 def make_run(spin_on, zspin_on, diag_on, impacts):
     """The event kernel's Python function:
-    ``run(balls, geo, p, scr, out, log, max_events)``."""
+    ``run(balls, geo, p, scr, out, log, max_events)``; with
+    ``impacts.air_on`` balls fly (``airborne``)."""
     prepare, resolve_boundary = impacts.prepare, impacts.resolve_boundary
-    resolve_impact_set = impacts.resolve_impact_set
+    resolve_impact_set, resolve_flight_impact = impacts.resolve_impact_set, impacts.resolve_flight_impact
+    settle, air_on = impacts.settle, impacts.air_on
 
     @variant_njit(__name__, spin_on, zspin_on, diag_on, *impacts.choices)
     def table(balls, geo, p, scr, out, log, max_events, e, work):
@@ -160,7 +187,7 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
                 n_todo = 0
                 for i in range(B):
                     if stuck[i]:
-                        catch_up(balls, tlast, e, i, t, p, zspin_on, spin_on)
+                        catch_up(balls, tlast, e, i, t, p, zspin_on, spin_on, air_on)
                         todo[n_todo] = i; n_todo += 1
                 break_collapse(balls, e, p, stuck, rounds, spin_on)
                 n_stuck = 0
@@ -168,7 +195,7 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
             # the balls the last event changed (the one call site of
             # ``refresh``: inlined)
             for q in range(n_todo):
-                refresh(balls, scr, geo, e, todo[q], t, p)
+                refresh(balls, scr, geo, e, todo[q], t, p, air_on)
             n_todo = 0
             if nev == 0:
                 if diag_on:
@@ -194,9 +221,18 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
             t = tmin
             if diag_on:
                 for i in range(B):
-                    catch_up(balls, tlast, e, i, t, p, zspin_on, spin_on)
+                    catch_up(balls, tlast, e, i, t, p, zspin_on, spin_on, air_on)
             nev += 1
-            if kind == C.EV_BALL_BALL:
+            if air_on and kind == C.EV_BALL_BALL and (st[e, a] == C.AIRBORNE or st[e, b] == C.AIRBORNE):
+                # a ball in flight: this pair alone, in 3D (a simultaneous
+                # contact follows at the same time)
+                catch_up(balls, tlast, e, a, t, p, zspin_on, spin_on, air_on)
+                catch_up(balls, tlast, e, b, t, p, zspin_on, spin_on, air_on)
+                resolve_flight_impact(balls, e, t, a, b, p, out, log)
+                stuck[a] = True; stuck[b] = True
+                todo[0] = a; todo[1] = b
+                n_todo = 2
+            elif kind == C.EV_BALL_BALL:
                 # gather simultaneous impacts
                 ns = 0
                 for i in range(B):
@@ -204,8 +240,8 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
                         if tpair[e, i, j] <= tmin + C.SIMULTANEOUS_TIME and ns < C.MAX_SIMULTANEOUS:
                             sim_i[ns] = i; sim_j[ns] = j; ns += 1
                 for s in range(ns):
-                    catch_up(balls, tlast, e, sim_i[s], t, p, zspin_on, spin_on)
-                    catch_up(balls, tlast, e, sim_j[s], t, p, zspin_on, spin_on)
+                    catch_up(balls, tlast, e, sim_i[s], t, p, zspin_on, spin_on, air_on)
+                    catch_up(balls, tlast, e, sim_j[s], t, p, zspin_on, spin_on, air_on)
                 nb = resolve_impact_set(balls, e, t, imp, ns, p, out, log)
                 involved = imp.balls
                 for q in range(nb):
@@ -213,8 +249,13 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
                     todo[q] = involved[q]
                 n_todo = nb
             else:
-                catch_up(balls, tlast, e, a, t, p, zspin_on, spin_on)
-                if kind == -2:
+                catch_up(balls, tlast, e, a, t, p, zspin_on, spin_on, air_on)
+                if air_on and kind == -2 and st[e, a] == C.AIRBORNE:
+                    if not airborne.land(balls, e, a, p):
+                        settle(balls, e, a, p)  # the bounces have ended: on the felt
+                    kind = C.EV_SLATE
+                    b = -1
+                elif kind == -2:
                     kind = apply_transition(vel, om, st, e, a, p)
                     b = -1
                 else:
@@ -225,7 +266,7 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
                 todo[0] = a
                 n_todo = 1
         for i in range(B):
-            catch_up(balls, tlast, e, i, t, p, zspin_on, spin_on)
+            catch_up(balls, tlast, e, i, t, p, zspin_on, spin_on, air_on)
         out.time[e] = t
         out.nev[e] = nev
 

@@ -16,21 +16,31 @@ import types
 
 import numpy as np
 
+from . import airborne
 from . import constants as C
 from . import event_log
 from ._jit import name_of, njit, variant_njit
+from .ball_ball import flight
 from .ball_ball.contact import rest_contact
+from .cushion import rail
 from .cushion.contact import make_resolve as make_cushion
 from .motion import classify, end_slide, energy
 
 
 @njit
 def pocket_ball(balls, e, i, k):
-    """Ball i drops into pocket k."""
+    """Ball i drops into pocket k (or leaves the table: k an off-table
+    code, constants.OFF_TABLE)."""
     balls.pocket[e, i] = k
     balls.st[e, i] = C.POCKETED
     balls.vel[e, i, 0] = 0.0; balls.vel[e, i, 1] = 0.0
     balls.om[e, i, 0] = 0.0; balls.om[e, i, 1] = 0.0; balls.om[e, i, 2] = 0.0
+
+
+@njit
+def ground(balls, e, i):
+    """Ball i is out of play: no height, no vertical velocity."""
+    balls.air[e, i, 0] = 0.0; balls.air[e, i, 1] = 0.0
 
 
 @njit
@@ -68,7 +78,7 @@ def _impact_sums(balls, e, imp, nb, p):
     """Energy and momentum / m of the balls of an impact set."""
     en = 0.0; px = 0.0; py = 0.0
     for q in range(nb):
-        en += energy(balls.vel, balls.om, balls.st, e, imp.balls[q], p)
+        en += energy(balls.vel, balls.om, balls.st, e, imp.balls[q], p)  # planar impacts: no ball in flight
         px += balls.vel[e, imp.balls[q], 0]; py += balls.vel[e, imp.balls[q], 1]
     return en, px, py
 
@@ -84,14 +94,18 @@ def note_contact(out, e, kind, index):
     out.norder[e] = n + 1
 
 
-def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion, order_on=False):
+def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion, order_on=False, air_on=False):
     """The impact functions for one effect set, with ball-ball model
     ``ball_ball`` and cushion model ``cushion`` (see their packages);
     ``order_on``: the cue ball's contacts are noted in order (``note_contact``;
-    a compile-time constant, so a kernel without it has none of that code)."""
+    a compile-time constant, so a kernel without it has none of that code);
+    ``air_on``: balls fly (``Effects.airborne``: the contacts of a ball in
+    flight, ``ball_ball.flight`` and ``cushion.rail``)."""
     choices = (spin_on, slide_on, zspin_on, diag_on, name_of(ball_ball), name_of(cushion))
     if order_on:  # the default kernels keep their variant names
         choices = choices + ("order",)
+    if air_on:
+        choices = choices + ("airborne",)
     variant = variant_njit("impacts", *choices)
     resolve_cushion = make_cushion(cushion, spin_on)
 
@@ -109,14 +123,29 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion, order
             classify(vel, om, st, e, i, R, spin_on)
 
     @variant
+    def ball_energy(balls, e, i, p):
+        """Ball i's energy (J): with balls in flight, its height's and
+        vertical motion's too."""
+        en = energy(balls.vel, balls.om, balls.st, e, i, p)
+        if air_on:
+            en += airborne.flight_energy(balls, e, i, p)
+        return en
+
+    @variant
     def prepare(balls, e, p):
-        """Initial motion states of table e (pocketed balls stay out)."""
+        """Initial motion states of table e (pocketed balls stay out; with
+        ``air_on`` a ball above the slate or moving vertically flies)."""
         vel, om, st, pocket = balls.vel, balls.om, balls.st, balls.pocket
         for i in range(vel.shape[1]):
             if pocket[e, i] >= 0:
                 st[e, i] = C.POCKETED
                 vel[e, i, 0] = 0.0; vel[e, i, 1] = 0.0
                 om[e, i, 0] = 0.0; om[e, i, 1] = 0.0; om[e, i, 2] = 0.0
+                if air_on:
+                    ground(balls, e, i)
+                continue
+            if air_on and airborne.leaves_slate(balls, e, i):
+                st[e, i] = C.AIRBORNE
                 continue
             settle(balls, e, i, p)
 
@@ -126,16 +155,23 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion, order
         cushion segment b or jaw tip b."""
         if kind == C.EV_POCKET:
             pocket_ball(balls, e, a, b)
+            if air_on:
+                ground(balls, e, a)
+            return
+        if air_on and kind == C.EV_OFF_TABLE:  # over the rail: where it comes down
+            pocket_ball(balls, e, a, rail.landing_code(balls, geo, e, a, b, p))
+            ground(balls, e, a)
             return
         if kind == C.EV_CUSHION:
             nx, ny = geo.norms[b, 0], geo.norms[b, 1]
         else:  # the detector's own normal: ball centre minus jaw tip
             nx = balls.pos[e, a, 0] - geo.tips[b, 0]; ny = balls.pos[e, a, 1] - geo.tips[b, 1]
-        e0 = energy(balls.vel, balls.om, balls.st, e, a, p) if diag_on else 0.0
+        e0 = ball_energy(balls, e, a, p) if diag_on else 0.0
         resolve_cushion(balls.vel, balls.om, e, a, nx, ny, p)
-        settle(balls, e, a, p)
+        if not (air_on and balls.st[e, a] == C.AIRBORNE):  # in flight it flies on, its vertical velocity kept
+            settle(balls, e, a, p)
         if diag_on:
-            out.diag[e, 0] = max(out.diag[e, 0], energy(balls.vel, balls.om, balls.st, e, a, p) - e0)
+            out.diag[e, 0] = max(out.diag[e, 0], ball_energy(balls, e, a, p) - e0)
         out.cush[e, a] += 1
         if out.first[e] >= 0:
             out.cush_after[e, a] += 1
@@ -206,5 +242,29 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion, order
                 event_log.record(log, balls, e, t, C.EV_BALL_BALL, i, j)
         return nb
 
+    @variant
+    def resolve_flight_impact(balls, e, t, i, j, p, out, log):
+        """The impact of balls i and j, one of them in flight
+        (``ball_ball.flight``): the impulse, the ball on the slate's new
+        motion state, its diagnostics (energy), first contact, contact
+        order and event log, as ``resolve_impact_set`` for a planar set."""
+        e0 = 0.0
+        if diag_on:
+            e0 = ball_energy(balls, e, i, p) + ball_energy(balls, e, j, p)
+        flight.resolve(balls, e, i, j, p)
+        for q in (i, j):
+            if balls.st[e, q] != C.AIRBORNE:
+                settle(balls, e, q, p)
+        if diag_on:
+            out.diag[e, 0] = max(out.diag[e, 0], ball_energy(balls, e, i, p) + ball_energy(balls, e, j, p) - e0)
+        if out.first[e] == -1 and (i == 0 or j == 0):
+            out.first[e] = j if i == 0 else i
+        if order_on:
+            if i == 0 or j == 0:
+                note_contact(out, e, C.EV_BALL_BALL, j if i == 0 else i)
+        if log.on:
+            event_log.record(log, balls, e, t, C.EV_BALL_BALL, i, j)
+
     return types.SimpleNamespace(settle=settle, prepare=prepare, resolve_boundary=resolve_boundary,
-                                 resolve_impact_set=resolve_impact_set, choices=choices)
+                                 resolve_impact_set=resolve_impact_set, resolve_flight_impact=resolve_flight_impact,
+                                 choices=choices, air_on=air_on)

@@ -78,22 +78,24 @@ def make_kernel(kind: str, effects: Effects, models: Models, diagnostics: bool =
     (``forking.threads_usable``)."""
     if kind not in KINDS:
         raise ValueError(f"unknown solver {kind!r}; choose one of {KINDS}")
-    if effects.airborne:
-        raise NotImplementedError("Effects(airborne=True): the airborne model (physics.airborne: flight, "
-                                  "slate impacts, bounces) is not in the solvers yet (issue 46, "
-                                  "docs/physics.md, 'The third dimension'); simulate with airborne=False")
+    if effects.airborne and kind == "step":
+        raise NotImplementedError("Effects(airborne=True) is simulated by the event solver only; the step "
+                                  "solver has no flight yet (issue 46): simulate with solver='event'")
     n = effects.normalized()
     bb_name, cu_name = models.resolved(n)
     key = (kind, n.spin, n.sliding, n.vertical_spin, bb_name, cu_name, bool(diagnostics))
     if contacts:  # the default kernels keep their keys
         key = key + ("contacts",)
+    if n.airborne:
+        key = key + ("airborne",)
     serial = not forking.threads_usable()
     if serial:
         key = key + ("serial",)
     if key not in _kernels:
         bb = ball_ball.resolver(n.ball_friction, models.ball_ball_friction)
         cu = cushion.resolver(n.cushion_friction, models.cushion)
-        impacts = make_impacts(n.spin, n.sliding, n.vertical_spin, bool(diagnostics), bb, cu, bool(contacts))
+        impacts = make_impacts(n.spin, n.sliding, n.vertical_spin, bool(diagnostics), bb, cu, bool(contacts),
+                               n.airborne)
         solver = event_solver if kind == "event" else step_solver
         run = solver.make_run(n.spin, n.vertical_spin, bool(diagnostics), impacts)
         tag = f"{SOURCE_TAG}/{'/'.join(map(str, key))}/{_code_tag(bb, cu)}"

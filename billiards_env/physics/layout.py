@@ -12,8 +12,12 @@ from . import constants as C
 from ._jit import njit_alloc
 
 # pos [E, B, 2], vel [E, B, 2], om [E, B, 3], st [E, B] motion state
-# (constants.STATIONARY ...), pocket [E, B] pocket index or -1
-Balls = namedtuple("Balls", "pos vel om st pocket")
+# (constants.STATIONARY ...), pocket [E, B] pocket index or -1 (or an
+# off-table code, constants.OFF_TABLE); air [E, B, 2] the height of each
+# ball's lowest point above the slate (m) and its vertical velocity (m/s),
+# read only by the kernels of Effects(airborne) (the others get an empty
+# [0, 0, 2] array: they never index it)
+Balls = namedtuple("Balls", "pos vel om st pocket air")
 # segs [S, 4] cushion segments (x0, y0, x1, y1), norms [S, 2] their unit
 # normals into the table, tips [T, 2] jaw tips, pockets [K, 3] (x, y, r);
 # width, length of the bed (m); the broad phase's split of them
@@ -35,7 +39,7 @@ EventScratch = namedtuple("EventScratch", "tt tb bkind bidx tpair paths tlast")
 Outputs = namedtuple("Outputs", "time nev first cush cush_after trunc diag")
 OrderedOutputs = namedtuple("OrderedOutputs", Outputs._fields + ("order", "norder"))
 # Event log buffers: on (record at all), n [E] events so far, t [E, N],
-# kind [E, N], ij [E, N, 2], state [E, N, 2, 8] (simulate.EventLog)
+# kind [E, N], ij [E, N, 2], state [E, N, 2, 10] (simulate.EventLog)
 LogBuffers = namedtuple("LogBuffers", "on n t kind ij state")
 # One table's scratch for a set of simultaneous ball-ball impacts: pair ids
 # (i, j), approach speeds (w), distinct balls and two state copies (saved,

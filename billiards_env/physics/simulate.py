@@ -17,10 +17,11 @@ from .layout import Balls, EventScratch, Geometry, LogBuffers, OrderedOutputs, O
 from .models import Models
 from .state import BallState
 from .table import Table
-from .validation import check_arrays, check_finite, check_placement
+from .validation import check_air, check_arrays, check_finite, check_placement
 
 SOLVERS = ("event", "step")
 RECORD_CAPACITY = 4096  # events kept per table when record=True
+LOG_COLUMNS = 10  # a ball's state in the event log (EventLog.states)
 # Bytes of per-table scratch a call holds at once: larger batches run in chunks of tables (results do
 # not depend on the batch size), so 120,000 8-ball tables take ~64 MB of pair times, not ~245 MB.
 MAX_SCRATCH_BYTES = 64 * 2 ** 20
@@ -29,6 +30,9 @@ MAX_SCRATCH_BYTES = 64 * 2 ** 20
 # clear and page in fresh buffers on every call; larger calls allocate their own.
 KEEP_SCRATCH_BYTES = 8 * 2 ** 20
 _kept = threading.local()
+# ``Balls.air`` of the planar kernels, which never index it (one shared
+# array: no allocation per call).
+NO_AIR = np.zeros((0, 0, 2))
 
 
 class SimOptions(NamedTuple):
@@ -83,8 +87,10 @@ DEFAULT_OPTIONS = SimOptions()
 class EventLog:
     """Events of one table: ``time [N]``, ``kind [N]`` (constants.EV_*),
     ``balls [N, 2]`` (second id -1, or the cushion/tip/pocket index for
-    boundary events) and ``states [N, 2, 8]``: for each involved ball after the
-    event, (x, y, vx, vy, wx, wy, wz, motion state)."""
+    boundary events) and ``states [N, 2, 10]``: for each involved ball after the
+    event, (x, y, vx, vy, wx, wy, wz, motion state, h, vz): the last two, the
+    height of its lowest point above the slate and its vertical velocity,
+    are 0 but with ``Effects(airborne=True)``."""
 
     time: np.ndarray
     kind: np.ndarray
@@ -181,11 +187,16 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
     if options.validate:
         check_arrays(state)
         check_finite(state)
+        check_air(state, effects.airborne)
         check_placement(state, table, params, effects.pockets)
 
     s = state if options.inplace else state.copy()
+    air = None
+    if effects.airborne:  # a ball's height and vertical velocity: only the airborne kernels read them
+        air = np.ascontiguousarray(s.vertical(), dtype=np.float64)
     s = BallState(np.ascontiguousarray(s.pos, dtype=np.float64), np.ascontiguousarray(s.vel, dtype=np.float64),
-                  np.ascontiguousarray(s.omega, dtype=np.float64), np.ascontiguousarray(s.pocket, dtype=np.int64))
+                  np.ascontiguousarray(s.omega, dtype=np.float64), np.ascontiguousarray(s.pocket, dtype=np.int64),
+                  air)
     if (s.pos.ndim, s.vel.ndim, s.omega.ndim, s.pocket.ndim) != (3, 3, 3, 2):  # the kernels' one signature
         raise ValueError("state arrays must be pos and vel [E, B, 2], omega [E, B, 3] and pocket [E, B], got "
                          f"{s.pos.shape}, {s.vel.shape}, {s.omega.shape} and {s.pocket.shape}")
@@ -204,14 +215,13 @@ def simulate(state: BallState, table: Table, params: PhysicsParams | None = None
 
 def chunk_rows(n_balls: int, record: bool) -> int:
     """Tables per kernel call: the scratch of a chunk stays under ``MAX_SCRATCH_BYTES``."""
-    per_table = 8 * (n_balls * n_balls + 12 * n_balls) + (RECORD_CAPACITY * 152 if record else 0)
+    per_table = 8 * (n_balls * n_balls + 12 * n_balls) + (RECORD_CAPACITY * 8 * (4 + 2 * LOG_COLUMNS) if record else 0)
     return max(1, MAX_SCRATCH_BYTES // per_table)
 
 
 def _concatenate(parts: list) -> SimResult:
     cat = np.concatenate
-    st = BallState(cat([r.state.pos for r in parts]), cat([r.state.vel for r in parts]),
-                   cat([r.state.omega for r in parts]), cat([r.state.pocket for r in parts]))
+    st = BallState.stack([r.state for r in parts])
     events = None if parts[0].events is None else [e for r in parts for e in r.events]
     diag = None if parts[0].diagnostics is None else cat([r.diagnostics for r in parts])
     order = None if parts[0].contacts is None else cat([r.contacts for r in parts])
@@ -228,7 +238,8 @@ def _simulate_chunk(s: BallState, geo: Geometry, p: np.ndarray, kernel, solver: 
     ``flags``: (max_events, diagnostics, contacts kept)."""
     max_events, diagnostics, n_contacts = flags
     E, B = s.pos.shape[:2]
-    balls = Balls(s.pos, s.vel, s.omega, np.zeros((E, B), dtype=np.int64), s.pocket)
+    balls = Balls(s.pos, s.vel, s.omega, np.zeros((E, B), dtype=np.int64), s.pocket,
+                  NO_AIR if s.air is None else s.air)
     out = dict(time=np.zeros(E), nev=np.zeros(E, dtype=np.int64), first=np.full(E, -1, dtype=np.int64),
                cush=np.zeros((E, B), dtype=np.int64), cush_after=np.zeros((E, B), dtype=np.int64),
                trunc=np.zeros(E, dtype=np.bool_), diag=np.zeros((E, 4)))
@@ -239,7 +250,7 @@ def _simulate_chunk(s: BallState, geo: Geometry, p: np.ndarray, kernel, solver: 
     rows = E if record else 1
     log = LogBuffers(on=bool(record), n=np.zeros(E, dtype=np.int64), t=np.zeros((rows, cap)),
                      kind=np.zeros((rows, cap), dtype=np.int64), ij=np.zeros((rows, cap, 2), dtype=np.int64),
-                     state=np.zeros((rows, cap, 2, 8)))
+                     state=np.zeros((rows, cap, 2, LOG_COLUMNS)))
     # Waking worker threads costs more than a small batch takes: use no more
     # threads than tables (results do not depend on the thread count).
     threads = numba.get_num_threads()

@@ -3,7 +3,12 @@ random placement.
 
 ``pos [E, B, 2]`` and ``vel [E, B, 2]`` (m, m/s), ``omega [E, B, 3]`` (rad/s,
 about the table's x, y, z axes), ``pocket [E, B]`` (-1 on the table, else the
-pocket id). Ball 0 is the cue ball.
+pocket id, or an off-table code from ``constants.OFF_TABLE`` on: the ball
+left the table). Ball 0 is the cue ball. ``air [E, B, 2]`` (optional; None:
+every ball on the slate, not moving vertically): the height of each ball's
+lowest point above the slate (m) and its vertical velocity (m/s), which
+only ``Effects(airborne=True)`` simulates (an elevated cue's strike into
+the slate, a ball in flight).
 
 Placement and respotting are written once here, as numba kernels that take
 their random numbers from the caller (``place_from_candidates``: rejection
@@ -29,6 +34,7 @@ class BallState:
     vel: np.ndarray
     omega: np.ndarray
     pocket: np.ndarray
+    air: np.ndarray | None = None
 
     @property
     def n_envs(self) -> int:
@@ -43,11 +49,13 @@ class BallState:
         return self.pocket < 0
 
     def copy(self) -> "BallState":
-        return BallState(self.pos.copy(), self.vel.copy(), self.omega.copy(), self.pocket.copy())
+        return BallState(self.pos.copy(), self.vel.copy(), self.omega.copy(), self.pocket.copy(),
+                         None if self.air is None else self.air.copy())
 
     def take(self, envs) -> "BallState":
         """The sub-batch of the given environment indices."""
-        return BallState(self.pos[envs], self.vel[envs], self.omega[envs], self.pocket[envs])
+        return BallState(self.pos[envs], self.vel[envs], self.omega[envs], self.pocket[envs],
+                         None if self.air is None else self.air[envs])
 
     @classmethod
     def from_positions(cls, pos, pocket=None) -> "BallState":
@@ -64,7 +72,14 @@ class BallState:
     @classmethod
     def stack(cls, states) -> "BallState":
         states = list(states)
-        return cls(*(np.concatenate([getattr(s, f) for s in states]) for f in ("pos", "vel", "omega", "pocket")))
+        planar = [np.concatenate([getattr(s, f) for s in states]) for f in ("pos", "vel", "omega", "pocket")]
+        if all(s.air is None for s in states):
+            return cls(*planar)
+        return cls(*planar, np.concatenate([s.vertical() for s in states]))
+
+    def vertical(self) -> np.ndarray:
+        """``air``, or zeros [E, B, 2] (every ball on the slate) where it is None."""
+        return np.zeros(self.pos.shape[:2] + (2,)) if self.air is None else self.air
 
 
 def _rng(seed):

@@ -35,12 +35,13 @@ the offset) and squirt, which this model leaves out at every elevation, as
 the level strike always has.
 
 A downward cue drives the ball into the slate (v_z = -v0 sin(theta) < 0).
-The simulator's state is planar: ``strike`` and ``strike_velocity`` give the
-cue ball the horizontal part of v and all three components of omega, and
-the vertical part goes into the slate, which takes it without friction and
-without a rebound. The slate's reaction, its friction and the jump that
-follows are ``airborne.slate_impact`` and ``airborne.bounces``, which the
-solvers do not apply yet (docs/physics.md, "The third dimension").
+``strike`` and ``strike_velocity`` give the cue ball the horizontal part of v
+and all three components of omega. The vertical part goes into the state's
+``air`` (its vertical velocity) where the state has one: simulated with
+``Effects(airborne=True)``, the slate's reaction, its friction and the jump
+that follows are ``airborne.land`` at t = 0. A planar state (``air`` None)
+drops it: the planar simulator's slate takes it without friction and
+without a rebound.
 """
 from __future__ import annotations
 
@@ -164,11 +165,16 @@ def apply_strike(state: BallState, phi: np.ndarray, speed: np.ndarray, a: np.nda
     from checked float64 arrays [E] (the formulas of the module docstring):
     ``strike_velocity`` after its checks, and the envs, whose shots come from
     actions they checked once at their boundary. ``theta``: the cue's
-    elevation (None: the level cue); the velocity into the slate is dropped."""
+    elevation (None: the level cue). The velocity into the slate goes into
+    ``state.air`` where the state has it (simulated by
+    ``Effects(airborne=True)``: the slate's rebound, a jump); a planar state
+    (``air`` None) drops it, as the planar simulator's slate takes it."""
     if theta is not None:
         v, w = cue_strike_3d(phi, speed, a, b, theta, R)
         state.vel[:, 0, :] = v[:, :2]
         state.omega[:, 0, :] = w
+        if state.air is not None:
+            state.air[:, 0, 1] = v[:, 2]
         return
     dx, dy = np.cos(phi), np.sin(phi)
     state.vel[:, 0, 0] = speed * dx

@@ -58,9 +58,34 @@ def check_finite(state) -> None:
             raise ValueError(f"BallState.{name} contains NaN or infinite values (first at index {tuple(bad)})")
 
 
+def check_air(state, airborne: bool) -> None:
+    """``state.air`` (optional): [E, B, 2] float64, finite, no ball below the
+    slate; balls off the slate or moving vertically only where the effect
+    ``airborne`` is simulated."""
+    air = state.air
+    if air is None:
+        return
+    E, B = state.pos.shape[:2]
+    if not isinstance(air, np.ndarray) or air.dtype != np.float64 or air.shape != (E, B, 2):
+        raise ValueError(f"BallState.air must be a float64 array of shape ({E}, {B}, 2) (height above the slate, "
+                         f"vertical velocity), got {getattr(air, 'shape', type(air).__name__)}")
+    if not np.all(np.isfinite(air)):
+        raise ValueError("BallState.air contains NaN or infinite values")
+    on = state.pocket < 0
+    if np.any(on & (air[..., 0] < 0)):
+        e, i = np.argwhere(on & (air[..., 0] < 0))[0]
+        raise ValueError(f"ball {i} in env {e} is below the slate (height {air[e, i, 0]} m)")
+    if not airborne and np.any(on[..., None] & (air != 0)):
+        e, i = np.argwhere(on & (air != 0).any(axis=2))[0]
+        raise ValueError(f"ball {i} in env {e} is off the slate or moving vertically (BallState.air "
+                         f"{tuple(air[e, i])}); the planar simulator cannot move it: simulate with "
+                         "Effects(airborne=True)")
+
+
 def check_placement(state, table, params, pockets: bool) -> None:
-    """No two balls on the table overlap by more than OVERLAP_TOL; every ball on
-    the table lies on the playing surface."""
+    """No two balls on the table overlap by more than OVERLAP_TOL (in 3D
+    where ``state.air`` gives heights); every ball on the table lies on the
+    playing surface."""
     R = params.R
     on = state.pocket < 0
     ok = table.contains(state.pos.reshape(-1, 2), R, C.OVERLAP_TOL, pockets).reshape(on.shape)
@@ -71,6 +96,8 @@ def check_placement(state, table, params, pockets: bool) -> None:
                          f"or inside a pocket/cushion ({table.name})")
     d = state.pos[:, :, None, :] - state.pos[:, None, :, :]
     dist = np.hypot(d[..., 0], d[..., 1])
+    if state.air is not None:
+        dist = np.hypot(dist, state.air[:, :, None, 0] - state.air[:, None, :, 0])
     both = on[:, :, None] & on[:, None, :]
     B = state.pos.shape[1]
     both &= ~np.eye(B, dtype=bool)[None]

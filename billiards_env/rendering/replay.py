@@ -17,8 +17,13 @@ STATIONARY (0)     ``[0, x, y]``
 SPINNING (1)       ``[1, x, y, wz]``
 SLIDING (2)        ``[2, x, y, vx, vy, wx, wy, wz]``
 ROLLING (3)        ``[3, x, y, vx, vy, wz]``
-POCKETED (4)       ``[4, x, y]`` (where the ball dropped)
+POCKETED (4)       ``[4, x, y]`` (where the ball dropped, or left the table)
+AIRBORNE (5)       ``[5, x, y, vx, vy, wx, wy, wz, h, vz]`` (in flight)
 =================  ===========================================
+
+A ball in flight (``Effects(airborne=True)``) follows its parabola between
+records (``airborne.fly``), with h the height of its lowest point above the
+slate and vz its vertical velocity; every other record has h = vz = 0.
 
 Numbers are written with the shortest decimal that reads back as the same
 float64, so unpacking gives the event log's states bit for bit. The format,
@@ -39,6 +44,7 @@ from pathlib import Path
 import numpy as np
 
 from ..physics import constants as C
+from ..physics.airborne import drop_time
 from ..physics.effects import Effects
 from ..physics.motion import evolve, transition_time
 from ..physics.params import PhysicsParams
@@ -46,18 +52,28 @@ from ..physics.table import Table
 
 FORMAT = "billiards-replay"
 VERSION = 1
-_RECORD_LEN = {C.STATIONARY: 3, C.SPINNING: 4, C.SLIDING: 8, C.ROLLING: 6, C.POCKETED: 3}
+_RECORD_LEN = {C.STATIONARY: 3, C.SPINNING: 4, C.SLIDING: 8, C.ROLLING: 6, C.POCKETED: 3, C.AIRBORNE: 10}
+COLUMNS = 10  # a ball's state: x, y, vx, vy, wx, wy, wz, motion state, h, vz (simulate.EventLog.states)
 _INFO_KEYS = ("first_contact", "foul", "scratch", "success", "reward", "shooter", "ball_in_hand", "legal_target",
               "action")
 
 
 def evolve_state(state, dt: float, p: np.ndarray, zspin_on: bool, spin_on: bool) -> np.ndarray:
-    """State [8] (x, y, vx, vy, wx, wy, wz, motion state) of a ball ``dt``
-    seconds after ``state``, by the simulator's motion kernels; ``dt`` is
-    clamped at the ball's next motion transition, where the closed form of
-    its state ends. ``p``: ``PhysicsParams.as_array()``. The only place the
-    rendering package calls the physics kernels."""
+    """State [10] (x, y, vx, vy, wx, wy, wz, motion state, h, vz) of a ball
+    ``dt`` seconds after ``state``, by the simulator's motion kernels; ``dt``
+    is clamped at the ball's next motion transition (in flight: its
+    landing), where the closed form of its state ends. ``p``:
+    ``PhysicsParams.as_array()``. The only place the rendering package calls
+    the physics kernels."""
     s = np.asarray(state, dtype=np.float64)
+    if int(s[7]) == C.AIRBORNE:
+        g = float(p[C.P_G])
+        dt = min(float(dt), drop_time(float(s[8]), float(s[9]), g))
+        out = s.copy()
+        out[0] += s[2] * dt; out[1] += s[3] * dt
+        out[8] = max(s[8] + s[9] * dt - 0.5 * g * dt * dt, 0.0)
+        out[9] = s[9] - g * dt
+        return out
     pos = s[None, None, 0:2].copy()
     vel = s[None, None, 2:4].copy()
     om = s[None, None, 4:7].copy()
@@ -65,14 +81,17 @@ def evolve_state(state, dt: float, p: np.ndarray, zspin_on: bool, spin_on: bool)
     dt = min(float(dt), transition_time(vel, om, st, 0, 0, p))
     evolve(pos, vel, om, st, 0, 0, dt, p, bool(zspin_on), bool(spin_on))
     return np.array([pos[0, 0, 0], pos[0, 0, 1], vel[0, 0, 0], vel[0, 0, 1],
-                     om[0, 0, 0], om[0, 0, 1], om[0, 0, 2], st[0, 0]], dtype=np.float64)
+                     om[0, 0, 0], om[0, 0, 1], om[0, 0, 2], st[0, 0], 0.0, 0.0], dtype=np.float64)
 
 
 # ------------------------------------------------------------- records --
 def pack_state(s) -> list:
-    """One ball's state [8] -> its record (see the module docstring)."""
-    x, y, vx, vy, wx, wy, wz, ms = (float(v) for v in s)
+    """One ball's state [10] (or the planar [8]) -> its record (see the
+    module docstring)."""
+    x, y, vx, vy, wx, wy, wz, ms = (float(v) for v in s[:8])
     ms = int(ms)
+    if ms == C.AIRBORNE:
+        return [ms, x, y, vx, vy, wx, wy, wz, float(s[8]), float(s[9])]
     if ms == C.SLIDING:
         return [ms, x, y, vx, vy, wx, wy, wz]
     if ms == C.ROLLING:
@@ -85,13 +104,16 @@ def pack_state(s) -> list:
 
 
 def unpack_state(rec, R: float, spin_on: bool = True) -> np.ndarray:
-    """A record -> the ball's state [8] (inverse of ``pack_state``)."""
+    """A record -> the ball's state [10] (inverse of ``pack_state``)."""
     ms = int(rec[0])
     if len(rec) != _RECORD_LEN.get(ms, -1):
         raise ValueError(f"ball record {rec!r}: a state-{ms} record has {_RECORD_LEN.get(ms)} entries")
-    out = np.zeros(8)
+    out = np.zeros(COLUMNS)
     out[0], out[1], out[7] = rec[1], rec[2], ms
-    if ms == C.SLIDING:
+    if ms == C.AIRBORNE:
+        out[2:7] = rec[3:8]
+        out[8:10] = rec[8:10]
+    elif ms == C.SLIDING:
         out[2:7] = rec[3:8]
     elif ms == C.ROLLING:
         vx, vy = float(rec[3]), float(rec[4])
@@ -284,7 +306,7 @@ class Replay:
         return np.array([row[0] for row in self.shots[shot]["events"]])
 
     def _track(self, shot: int):
-        """Per ball: (record times [K], states [K, 8]) of a shot."""
+        """Per ball: (record times [K], states [K, 10]) of a shot."""
         if self._tracks[shot] is None:
             sh, R, spin = self.shots[shot], self.params.R, self.effects.spin
             times = [[0.0] for _ in range(self.n_balls)]
@@ -299,7 +321,7 @@ class Replay:
         return self._tracks[shot]
 
     def ball_state_at(self, t: float, ball: int, shot: int = 0) -> np.ndarray:
-        """State [8] of one ball at time ``t`` (s from the shot's start;
+        """State [10] of one ball at time ``t`` (s from the shot's start;
         clamped to [0, duration])."""
         times, states = self._track(shot)[ball]
         t = min(max(float(t), 0.0), self.duration(shot))
@@ -310,7 +332,7 @@ class Replay:
         return evolve_state(states[k], dt, self._p, self.effects.vertical_spin, self.effects.spin)
 
     def states_at(self, t: float, shot: int = 0) -> np.ndarray:
-        """Every ball's state [B, 8] at time ``t`` of a shot."""
+        """Every ball's state [B, 10] at time ``t`` of a shot."""
         return np.stack([self.ball_state_at(t, i, shot) for i in range(self.n_balls)])
 
     def positions_at(self, t: float, shot: int = 0):
@@ -320,12 +342,12 @@ class Replay:
 
     def event_states(self, shot: int = 0):
         """The shot's event log read back: (time [N], kind [N], balls [N, 2],
-        states [N, 2, 8]), as ``simulate(..., record=True)`` wrote it."""
+        states [N, 2, 10]), as ``simulate(..., record=True)`` wrote it."""
         sh, R, spin = self.shots[shot], self.params.R, self.effects.spin
         B = self.n_balls
         n = B + len(sh["events"])
         time, kind = np.zeros(n), np.zeros(n, dtype=np.int64)
-        balls, states = np.zeros((n, 2), dtype=np.int64), np.zeros((n, 2, 8))
+        balls, states = np.zeros((n, 2), dtype=np.int64), np.zeros((n, 2, COLUMNS))
         for i, rec in enumerate(sh["start"]):
             balls[i] = (i, -1)
             states[i, 0] = unpack_state(rec, R, spin)

@@ -117,6 +117,27 @@ def random_batch(rng, n_envs, layout, preset, n_balls=None, pockets=True, table_
     return random_strikes(s, rng, params), table, params
 
 
+TABLE_KINDS = ("pool", "carom", "snooker")
+
+
+def table_layout(rng, kind: str):
+    """A random layout for a batch on a table of ``kind`` (``TABLE_KINDS``):
+    pool, 9-ball and 8-ball racks and random balls on the 9 ft table
+    (standard physics, the seed's one time in five); carom, three balls on
+    the carom match table (``carom_batch``); snooker, the opening, random
+    balls and balls in the jaws on the 12 ft table. Returns ``random_batch``'s
+    (layout, preset, table_name) and the table's name for ``case_dict``
+    (None: picked by the equipment)."""
+    if kind not in TABLE_KINDS:
+        raise ValueError(f"unknown table kind {kind!r}; choose one of {TABLE_KINDS}")
+    if kind == "snooker":
+        return SNOOKER_LAYOUTS[int(rng.integers(len(SNOOKER_LAYOUTS)))], "snooker", "snooker", "snooker"
+    layouts = CAROM_LAYOUTS if kind == "carom" else LAYOUTS
+    layout = layouts[int(rng.integers(len(layouts)))]
+    preset = "seed" if rng.random() < 0.2 else "standard"
+    return layout, preset, "pool9", None  # carom: its layout picks the table
+
+
 def run_batch(state, table, params, solver, dt=1e-3, effects=None, models=None):
     """Simulate with diagnostics under ``effects`` (default: all) and
     ``models`` (default: ``Models()``) and check every invariant; a closed
@@ -140,6 +161,8 @@ def case_dict(state, e, params, solver, dt, violations, effects=None, models=Non
             "pos": state.pos[e].tolist(), "vel": state.vel[e].tolist(),
             "omega": state.omega[e].tolist(), "pocket": state.pocket[e].tolist(),
             "violations": violations}
+    if state.air is not None:
+        case["air"] = state.air[e].tolist()
     if models is not None and models != Models():
         case["models"] = models.to_dict()
     return case
@@ -165,7 +188,7 @@ def load_case(path):
     table = (TABLES[c["table"]]() if c["table"] in TABLES else Table.carom() if c["table"] == "carom"
              else Table.pocketless(*c.get("size", (1.27, 2.54))))
     s = BallState(np.array(c["pos"])[None], np.array(c["vel"])[None], np.array(c["omega"])[None],
-                  np.array(c["pocket"], dtype=np.int64)[None])
+                  np.array(c["pocket"], dtype=np.int64)[None], np.array(c["air"])[None] if "air" in c else None)
     return c, s, table, params
 
 

@@ -25,10 +25,14 @@ MAX_WALL_S = 20.0        # s of wall time per simulate call (after compilation)
 
 def initial_energy(state, params) -> np.ndarray:
     """Total energy per table of the balls on the table (J), by the kernels'
-    own formula (motion.kinetic_energy, on numpy arrays)."""
+    own formula (motion.kinetic_energy, on numpy arrays), with the height's
+    and the vertical motion's (airborne.flight_energy) where the state has
+    them."""
     v, w = state.vel, state.omega
     energy = getattr(kinetic_energy, "py_func", kinetic_energy)  # the plain function under NUMBA_DISABLE_JIT=1
     e = energy(v[..., 0], v[..., 1], w[..., 0], w[..., 1], w[..., 2], params.as_array())
+    if state.air is not None:
+        e = e + params.m * (params.g * state.air[..., 0] + 0.5 * state.air[..., 1] ** 2)
     return (e * (state.pocket < 0)).sum(-1)
 
 
@@ -54,6 +58,8 @@ def check_invariants(result, initial, table, params, *, max_events=None, pockets
         on = s.pocket[e] < 0
         if np.any(s.vel[e][on] != 0.0) or np.any(s.omega[e][on] != 0.0):
             bad.append("a ball on the table is not at rest at the end")
+        if s.air is not None and np.any(s.air[e][on] != 0.0):
+            bad.append("a ball on the table is not on the slate at the end")
         if diag is not None:
             d = diag[e]
             if not np.all(np.isfinite(d[[0, 1, 3]])) or np.isnan(d[2]):
