@@ -109,6 +109,41 @@ def straight_break(table: Table, params: PhysicsParams, n: int, seed=0, layout: 
                            0.0, rng.uniform(-height, height, n), params)
 
 
+def elevated_break(table: Table, params: PhysicsParams, n: int, seed=0, theta_deg=(3.0, 12.0)) -> BallState:
+    """``straight_break``'s 9-ball breaks with the cue elevated ``theta_deg``
+    (uniform, degrees) as many players break: the cue ball is driven into
+    the slate and hops on its way to the rack. The state carries ``air``
+    (``Effects(airborne=True)`` simulates the hop; the planar simulator needs
+    ``planar(state)``, which drops the vertical velocity)."""
+    rng = np.random.default_rng(seed)
+    s = rack(table, params, "nine", n, seed=rng)
+    s = BallState(s.pos, s.vel, s.omega, s.pocket, np.zeros(s.pos.shape[:2] + (2,)))
+    theta = np.radians(rng.uniform(theta_deg[0], theta_deg[1], n))
+    return strike_velocity(s, np.pi / 2 + rng.normal(0, 0.01, n), rng.normal(8.0, 0.2, n), 0.0,
+                           rng.uniform(-0.1, 0.1, n), params, theta=theta)
+
+
+def jump_over(table: Table, params: PhysicsParams, n: int, seed=0) -> BallState:
+    """Jump shots: the cue ball in x 0.3-0.9, y 0.4-0.8 m, a blocking ball
+    0.15-0.3 m straight ahead, an object ball 0.4-0.6 m beyond it; the cue
+    elevated 30-50 degrees at 3-6 m/s through the centre (a jump cue's
+    stroke). With ``air``, as ``elevated_break``."""
+    rng = np.random.default_rng(seed)
+    cue = np.column_stack([rng.uniform(0.3, 0.9, n), rng.uniform(0.4, 0.8, n)])
+    block = cue + np.column_stack([np.zeros(n), rng.uniform(0.15, 0.3, n)])
+    obj = block + np.column_stack([rng.uniform(-0.05, 0.05, n), rng.uniform(0.4, 0.6, n)])
+    s = BallState.from_positions(np.stack([cue, block, obj], axis=1))
+    s = BallState(s.pos, s.vel, s.omega, s.pocket, np.zeros((n, 3, 2)))
+    return strike_velocity(s, np.pi / 2, rng.uniform(3.0, 6.0, n), 0.0, 0.0, params,
+                           theta=np.radians(rng.uniform(30.0, 50.0, n)))
+
+
+def planar(state: BallState) -> BallState:
+    """``state`` without its ``air``: every ball on the slate, the vertical
+    velocity dropped (what the planar simulator plays of an elevated cue)."""
+    return BallState(state.pos, state.vel, state.omega, state.pocket)
+
+
 def half_ball_cut(table: Table, params: PhysicsParams, n: int, seed=0, speed=(2.0, 0.1),
                   side: float = 0.2, height: float = 0.3) -> BallState:
     """Cue ball in x 0.3-0.9, y 0.5-0.9 m, an object ball 0.5-0.8 m up the

@@ -83,6 +83,8 @@ SECTION_TABLES = {
                         "no pockets", "minimal", "µs per event or step", "speed-up vs all"],
     "models": lambda: ["9-ball break (8 m/s)", "two-ball cut (2 m/s, top+side)", *_model_labels(),
                        "speed-up vs all"],
+    "airborne": lambda: ["9-ball break (8 m/s)", "9-ball break, cue elevated 3-12 deg",
+                         "jump over a blocker (30-50 deg, 3-6 m/s)", "all (planar)", "all + airborne"],
     "cold": lambda: ["cold (empty numba cache)", "warm (numba cache on disk)"],
     "games": lambda: ["games/s, ghost vs ghost", "vector env steps/s, random actions", "nine_ball", "ten_ball",
                       "games/s, carom vs carom", "three_cushion", "three-cushion shot (carom table, contacts kept)",

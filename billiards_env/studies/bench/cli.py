@@ -13,6 +13,7 @@ when ``--out results/benchmark`` names them.
     python scripts/benchmark.py --quick         # smaller batches, fewer repeats
     python scripts/benchmark.py --only solver --against HEAD~1 --quick
     python scripts/benchmark.py --only models   # each non-default model (models.md)
+    python scripts/benchmark.py --only airborne --out results/benchmark   # what flight costs (airborne.md, physics.md)
     python scripts/benchmark.py --only rllib    # RLlib vs SB3 vs bare env (docs/distributed.md; needs [ray])
     python scripts/benchmark.py --history --out results/benchmark   # only redraw history.png there
     python scripts/benchmark.py --only games    # two-player games/s and vector-env steps/s (games.md)
@@ -43,8 +44,9 @@ def parser() -> argparse.ArgumentParser:
     ap.add_argument("--quick", action="store_true", help="batch 64, 2 repeats, 4 env steps")
     ap.add_argument("--only", nargs="*", default=list(DEFAULT_SECTIONS),
                     choices=list(SECTION_NAMES) + ["games", "snooker"],
-                    help="sections (default: all but models; models: every effect with each non-default "
-                         "model, written to models.md)")
+                    help="sections (default: all but models and airborne; models: every effect with each "
+                         "non-default model, written to models.md; airborne: the planar against the airborne "
+                         "kernel, written to airborne.md)")
     ap.add_argument("--scene", action="append", default=None,
                     help="keep only scenes (or env ids) containing this text (repeatable)")
     ap.add_argument("--out", type=Path, default=None,

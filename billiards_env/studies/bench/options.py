@@ -9,8 +9,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[3]
 
 # --only name -> the ``section`` of its rows ("games" writes its own table)
-SECTION_NAMES = {"solver": "solver", "effects": "effects", "models": "models", "env": "env", "cold": "cold start",
-                 "rllib": "rllib"}
+SECTION_NAMES = {"solver": "solver", "effects": "effects", "models": "models", "airborne": "airborne", "env": "env",
+                 "cold": "cold start", "rllib": "rllib"}
 DEFAULT_SECTIONS = ("solver", "effects", "env", "cold")
 
 

@@ -67,7 +67,7 @@ def markdown(rows: list[dict]) -> str:
     impacts = [r for r in part["models"] if "us_per_impact" in r]
     if impacts:
         lines += _impact_table(impacts)
-    for k in ("effects", "models"):
+    for k in ("effects", "models", "airborne"):
         rest = [r for r in part[k] if "us_per_impact" not in r]
         if rest:
             lines += _effects_table(rest, nt)

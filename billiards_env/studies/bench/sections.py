@@ -15,6 +15,7 @@ import numpy as np
 
 from billiards_env.physics import Effects, PhysicsParams, Table, set_num_threads, simulate
 
+from .. import scenes as _scenes
 from .impacts import impact_rows
 from .options import RunOptions
 from .scenes import SCENES, chosen_scenes
@@ -125,6 +126,39 @@ def effects_rows(opts: RunOptions, P, T, sets=None, section: str = "effects") ->
     return rows
 
 
+# the airborne section's scenes (studies.scenes): a planar break, and two
+# scenes of elevated cues that leave the slate
+AIRBORNE_SCENES = {"9-ball break (8 m/s)": lambda n, P, T, rng: _scenes.straight_break(T, P, n, rng, layout="nine"),
+                   "9-ball break, cue elevated 3-12 deg": lambda n, P, T, rng: _scenes.elevated_break(T, P, n, rng),
+                   "jump over a blocker (30-50 deg, 3-6 m/s)": lambda n, P, T, rng: _scenes.jump_over(T, P, n, rng)}
+
+
+def airborne_rows(opts: RunOptions, P, T) -> list[dict]:
+    """What flight costs (issue 46): each scene by the planar kernel (the
+    elevated cue's vertical velocity dropped, ``scenes.planar``) and by the
+    airborne kernel (``Effects(airborne=True)``), event solver, on the same
+    shots: shots/s, events per shot and the cost of one event (target: the
+    airborne kernel's per-event cost on the planar break at most 1.5x the
+    planar kernel's)."""
+    rows = []
+    for scene in chosen_scenes(opts, tuple(AIRBORNE_SCENES)):
+        s = AIRBORNE_SCENES[scene](opts.batch, P, T, np.random.default_rng(1))
+        base = None
+        for label, eff, st in (("all (planar)", Effects.all(), _scenes.planar(s)),
+                               ("all + airborne", Effects(airborne=True), s)):
+            one = st.take([0])
+            run = lambda x=st, e=eff: simulate(x, T, P, effects=e)
+            one_run = lambda x=one, e=eff: simulate(x, T, P, effects=e)
+            case = dict(section="airborne", scene=scene, solver="event", effects=label, batch=opts.batch, dt=None)
+            row, t1 = _effects_row(case, run, one_run, opts.repeats)
+            base = t1 if base is None else base
+            row["speedup_vs_all"] = base / t1
+            rows.append(row)
+            print(f"  {scene:40s} {label:16s} {row['us_per_unit']:.3f} us/event x{base / t1:5.2f} vs planar",
+                  flush=True)
+    return rows
+
+
 def _env_case(env_id: str, n: int, mode: str, opts: RunOptions) -> dict:
     """One row of ``env_rows``: ``n`` tables of ``env_id`` in autoreset ``mode``."""
     import gymnasium as gym
@@ -226,6 +260,7 @@ _SECTIONS = {
     "solver": ("solvers:", lambda o, P, T: solver_rows(o, P, T)),
     "effects": ("effects:", lambda o, P, T: effects_rows(o, P, T)),
     "models": ("models:", lambda o, P, T: impact_rows(o, P) + effects_rows(o, P, T, model_sets(), "models")),
+    "airborne": ("airborne:", lambda o, P, T: airborne_rows(o, P, T)),
     "env": ("environments:", lambda o, P, T: env_rows(o)),
     "cold": ("cold start:", lambda o, P, T: cold_start_rows(o)),
     "rllib": ("rllib:", lambda o, P, T: rllib_rows(o)),  # needs the ray extra; not in the default sections
