@@ -7,13 +7,18 @@ import dataclasses
 
 import numpy as np
 
+from ..physics.constants import OFF_TABLE
+
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class ShotOutcome:
     """What happened on one shot of each of ``n`` tables, before any rule is
     applied: arrays [n] unless noted. ``pocketed`` [n, B] marks the balls
-    pocketed by this shot (ball 0 the cue ball); ``pocket_after`` [n, B] is
-    the pocket id of every ball after it (-1 on the table);
+    this shot put in a pocket (ball 0 the cue ball), ``off_table`` [n, B]
+    those it drove off the table (``BallState.pocket`` >= ``OFF_TABLE``; only
+    with the airborne effect; None: none); ``pocket_after`` [n, B] is
+    ``BallState.pocket`` after it (-1 on the table, a pocket id, or an
+    off-table code);
     ``first_contact`` the first ball the cue ball touched (-1 none);
     ``target`` the legal target before the shot (-1 none); for a task
     with ``contacts`` set, the cue ball's contacts in order (``contacts``
@@ -25,11 +30,25 @@ class ShotOutcome:
     target: np.ndarray
     contacts: np.ndarray | None = None
     n_contacts: np.ndarray | None = None
+    off_table: np.ndarray | None = None
+
+    def __post_init__(self):
+        if self.off_table is None:
+            object.__setattr__(self, "off_table", np.zeros(np.shape(self.pocketed), dtype=bool))
+
+    @classmethod
+    def of(cls, pocket_before: np.ndarray, pocket_after: np.ndarray, **fields) -> "ShotOutcome":
+        """The outcome from ``BallState.pocket`` before and after the shot [n, B] (and the other ``fields``):
+        balls in a pocket (codes 0 .. OFF_TABLE - 1) and balls off the table (OFF_TABLE and above) told apart."""
+        was_on = np.asarray(pocket_before) < 0
+        after = np.asarray(pocket_after)
+        return cls(pocketed=(after >= 0) & (after < OFF_TABLE) & was_on, pocket_after=pocket_after,
+                   off_table=(after >= OFF_TABLE) & was_on, **fields)
 
     @property
     def scratch(self) -> np.ndarray:
-        """The cue ball was pocketed."""
-        return self.pocketed[:, 0]
+        """The cue ball was lost: pocketed, or driven off the table (WPA's "Cue Ball Scratch or off the Table")."""
+        return self.pocketed[:, 0] | self.off_table[:, 0]
 
     @property
     def n_pocketed(self) -> np.ndarray:

@@ -55,7 +55,10 @@ class Preview:
     (``physics.SimResult``'s); ``state`` the rules' ``GameState`` after the
     shots (what a bot looking past the next shooter's reply previews from,
     ``GameView.after``); ``turn``: the whole ``contract.turn.Turn``
-    (pocketed balls, where the cue ball was played from, events, ...)."""
+    (pocketed balls, where the cue ball was played from, events, ...);
+    ``off_table`` [k, B] the balls the shot drove off the table (the
+    ruling's ``FOUL_OFF_TABLE``; ``pocket`` shows them back on the table where
+    the ruling respotted them)."""
 
     record: ShotRecord
     pos: np.ndarray
@@ -70,6 +73,11 @@ class Preview:
     @property
     def on_table(self) -> np.ndarray:
         return self.pocket < 0
+
+    @property
+    def off_table(self) -> np.ndarray:
+        """[k, B] the balls the previewed shot drove off the table (``ShotInput.off_table``)."""
+        return self.turn.shot.off_table
 
 
 @dataclasses.dataclass(eq=False)
@@ -177,6 +185,6 @@ def _task_preview(view, plan, rows, noise, rng, start, draws) -> TaskPreview:
     res = play_shots(view, start, plan.shots, noise, rng, rows, draws)
     pocket = res.state.pocket
     task = view.rules
-    outcome = ShotOutcome(pocketed=(pocket >= 0) & (start.pocket < 0), pocket_after=pocket,
-                          first_contact=res.first_contact, target=task.legal_target(start.pos, start.pocket))
+    outcome = ShotOutcome.of(start.pocket, pocket, first_contact=res.first_contact,
+                             target=task.legal_target(start.pos, start.pocket))
     return TaskPreview(outcome, task.judge(outcome), res.state.pos, pocket)

@@ -49,8 +49,7 @@ from ..physics.strike import apply_strike
 from ..rules import records as R
 from ..rules.placement import d_of, legal_spots
 from ..rules.records import Constraints, GameState, ShotInput, ShotRecord
-from ..rules.respot import hand_over, respot, restart_position
-from ..rules.snooker import respot_colours
+from ..rules.respot import hand_over, restart_position
 from .plan import ShotPlan
 
 
@@ -219,7 +218,7 @@ def _put_back(rules, eq: Equipment, pos: np.ndarray, pocket: np.ndarray, rec: Sh
     inning with equal innings, and balls in contact the shooter had
     replaced)."""
     t = eq.table
-    (respot_colours if t.marks is not None else respot)(pos, pocket, rec.respot, t, eq.params.R, eq.pockets)
+    rules.respot(pos, pocket, rec.respot, t, eq.params.R, eq.pockets)
     if rules.own_cue_balls:
         hand_over(pos, rec.turn_over & ~rec.game_over)
         if rec.restart is not None:  # three-cushion: from the starting position

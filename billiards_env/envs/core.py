@@ -285,9 +285,8 @@ class BilliardsCore:
         rest = res.state  # simulate's own arrays: no copy needed
         end = BallState(rest.pos, np.zeros_like(rest.vel), np.zeros_like(rest.omega), rest.pocket)
 
-        shot = ShotOutcome(pocketed=(end.pocket >= 0) & (start.pocket < 0), pocket_after=end.pocket,
-                           first_contact=res.first_contact, target=tgt, contacts=res.contacts,
-                           n_contacts=res.n_contacts)
+        shot = ShotOutcome.of(start.pocket, end.pocket, first_contact=res.first_contact, target=tgt,
+                              contacts=res.contacts, n_contacts=res.n_contacts)
         judged = self.task.judge(shot)
         self.shots[sel] += 1
         n_shots = self.shots[sel].copy()

@@ -163,6 +163,9 @@ class GameRecorder:
                     "pocketed": np.nonzero(info["pocketed"][j])[0].astype(int).tolist(),
                     "respotted": np.nonzero(rec.respot[j])[0].astype(int).tolist(),
                     "after": state_words(core, k, self._score[k])}
+            off = np.nonzero(info["off_table"][j])[0] if "off_table" in info else ()
+            if len(off):  # balls driven off the table (a foul; only with the airborne effect)
+                game["off_table"] = off.astype(int).tolist()
             if core.rules.to_points:  # games to a score: the shot's points, the score after it
                 game["points"] = int(info["points"][j])
                 game["score"] = np.asarray(info["score"][j]).astype(int).tolist()

@@ -113,7 +113,8 @@ def player_labels(n: int = 2) -> list[str]:
 def ruling_words(shot: dict, names: list[str]) -> str:
     """One or two sentences on a recorded shot of a game (the ``game`` entry
     of a replay's shot: ``shooter``, ``before``/``after`` states, the
-    record fields and ``pocketed``, ``respotted``, ``declared``, ``called_pocket``)."""
+    record fields and ``pocketed``, ``respotted``, ``declared``, ``called_pocket``; ``off_table``, the balls
+    driven off the table, where there are any)."""
     s = int(shot["shooter"])
     who, other = names[s], names[1 - s]
     before, after = shot["before"], shot["after"]
@@ -133,6 +134,8 @@ def ruling_words(shot: dict, names: list[str]) -> str:
         pots = f": {'a point' if pts == 1 else f'{pts} points'}" if pts > 0 else ": no point"
     else:
         pots = f", pots {balls_words(shot['pocketed'], words)}" if shot["pocketed"] else ", pots nothing"
+    if shot.get("off_table"):  # balls driven off the table (only with the airborne effect)
+        pots += f", drives {balls_words(shot['off_table'], words)} off the table"
     text = lead + called + pots
     if not words.pockets and not shot.get("game_over"):
         text += f". {who} stays at the table." if not shot["turn_over"] else f". {other} to shoot."

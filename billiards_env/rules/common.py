@@ -1,14 +1,25 @@
 """Rule pieces shared by the games: the facts of a shot every ruling reads,
-and the ruleset interface."""
+and the ruleset interface.
+
+A ball off the table (``ShotInput.off_table``: ``BallState.pocket`` >=
+``physics.constants.OFF_TABLE``, a ball that left the table over a cushion,
+on the rail top or the floor) is never pocketed; ``Facts`` reads it apart
+(``off_table``, ``cue_off``, ``object_off``) and ``foul_code`` rules it a
+foul, ``FOUL_OFF_TABLE``: WPA General Rules, standard fouls "Cue Ball
+Scratch or off the Table" (the cue ball driven off the table is a foul) and
+"Ball Driven off the Table" (an object ball driven off the table is a foul;
+whether it is spotted is each game's rule). Each game says what goes back
+on the table (its module docstring; docs/rules.md, "Balls off the table")."""
 from __future__ import annotations
 
 import dataclasses
 
 import numpy as np
 
-from .records import (FOUL_BAD_BREAK, FOUL_NO_CONTACT, FOUL_NO_RAIL, FOUL_NONE, FOUL_SCRATCH, FOUL_WRONG_BALL,
-                      PHASE_AFTER_BREAK, PHASE_BREAK, PHASE_OPTION, PHASE_PLAY, PHASE_PUSHED, Constraints, GameState, ShotInput,
-                      ShotRecord)
+from .records import (FOUL_BAD_BREAK, FOUL_NO_CONTACT, FOUL_NO_RAIL, FOUL_NONE, FOUL_OFF_TABLE, FOUL_SCRATCH,
+                      FOUL_WRONG_BALL, PHASE_AFTER_BREAK, PHASE_BREAK, PHASE_OPTION, PHASE_PLAY, PHASE_PUSHED,
+                      Constraints, GameState, ShotInput, ShotRecord)
+from .respot import respot
 
 BREAK_RAIL_BALLS = 4  # a legal break pockets a ball or drives at least this many object balls to a rail
 THREE_FOULS = 3       # a player's third consecutive foul loses the game (9-ball, 10-ball)
@@ -16,10 +27,13 @@ THREE_FOULS = 3       # a player's third consecutive foul loses the game (9-ball
 
 @dataclasses.dataclass(frozen=True, eq=False)
 class Facts:
-    """What every ruling needs from a ``ShotInput`` [E]: ``pocketed`` [E, B],
-    ``scratch``, ``object_pocketed`` (any object ball), ``rail`` (some
-    ball, the cue ball included, touched a rail after the first contact),
-    ``break_rails`` (object balls that touched a rail), ``first``."""
+    """What every ruling needs from a ``ShotInput`` [E]: ``pocketed`` [E, B]
+    (in a pocket), ``scratch`` (the cue ball in a pocket), ``object_pocketed``
+    (any object ball), ``rail`` (some ball, the cue ball included, touched a
+    rail after the first contact), ``break_rails`` (object balls that touched
+    a rail), ``first``; and the balls driven off the table, never pocketed:
+    ``off_table`` [E, B], ``cue_off`` (the cue ball) and ``object_off``
+    (any object ball)."""
 
     pocketed: np.ndarray
     scratch: np.ndarray
@@ -27,14 +41,28 @@ class Facts:
     rail: np.ndarray
     break_rails: np.ndarray
     first: np.ndarray
+    off_table: np.ndarray
+    cue_off: np.ndarray
+    object_off: np.ndarray
 
     @classmethod
     def of(cls, shot: ShotInput) -> "Facts":
-        pk = shot.pocketed
+        pk, off = shot.pocketed, shot.off_table
         return cls(pocketed=pk, scratch=pk[:, 0].copy(), object_pocketed=pk[:, 1:].any(axis=1),
                    rail=(np.asarray(shot.rails) > 0).any(axis=1),
                    break_rails=(np.asarray(shot.object_rails)[:, 1:] > 0).sum(axis=1),
-                   first=np.asarray(shot.first_contact, dtype=np.int64))
+                   first=np.asarray(shot.first_contact, dtype=np.int64),
+                   off_table=off, cue_off=off[:, 0].copy(), object_off=off[:, 1:].any(axis=1))
+
+    @property
+    def any_off(self) -> np.ndarray:
+        """[E] some ball, the cue ball included, left the table."""
+        return self.cue_off | self.object_off
+
+    @property
+    def cue_lost(self) -> np.ndarray:
+        """[E] the cue ball is no longer on the table: pocketed (a scratch) or off the table."""
+        return self.scratch | self.cue_off
 
 
 def in_phases(phase: np.ndarray, phases) -> np.ndarray:
@@ -52,10 +80,12 @@ def lowest_on_table(pocket: np.ndarray) -> np.ndarray:
 
 
 def foul_code(f: Facts, first_ok: np.ndarray, is_break: np.ndarray, exempt: np.ndarray) -> np.ndarray:
-    """The foul of each shot (FOUL_*), the most serious first: scratch, no
-    contact, wrong ball first, illegal break, no rail after contact.
-    ``first_ok``: the first contact was a legal target; ``exempt``: shots
-    free of the contact and rail requirements (a 9-ball push-out)."""
+    """The foul of each shot (FOUL_*), the most serious first: scratch, a
+    ball off the table, no contact, wrong ball first, illegal break, no rail
+    after contact. ``first_ok``: the first contact was a legal target;
+    ``exempt``: shots free of the contact and rail requirements (a 9-ball
+    push-out; a ball off the table is a foul on it too: WPA 9-ball 2.4
+    suspends only the wrong-ball and no-rail fouls)."""
     code = np.full(len(f.first), FOUL_NONE, dtype=np.int64)
     no_rail = ~is_break & ~exempt & ~f.object_pocketed & ~f.rail
     bad_break = is_break & ~f.object_pocketed & (f.break_rails < BREAK_RAIL_BALLS)
@@ -63,6 +93,7 @@ def foul_code(f: Facts, first_ok: np.ndarray, is_break: np.ndarray, exempt: np.n
     code[bad_break] = FOUL_BAD_BREAK
     code[~exempt & (f.first >= 1) & ~first_ok] = FOUL_WRONG_BALL
     code[~exempt & (f.first < 1)] = FOUL_NO_CONTACT
+    code[f.any_off] = FOUL_OFF_TABLE
     code[f.scratch] = FOUL_SCRATCH
     return code
 
@@ -151,6 +182,14 @@ class Rules:
 
     def constraints(self, game: GameState, pocket: np.ndarray) -> Constraints:
         raise NotImplementedError
+
+    def respot(self, pos: np.ndarray, pocket: np.ndarray, balls: np.ndarray, table, R: float,
+               pockets: np.ndarray) -> None:
+        """Put the balls a ruling marks (``ShotRecord.respot`` [n, B]) back on the table, in place on ``pos``
+        [n, B, 2] and ``pocket`` [n, B] (``contract.turn.play_turn`` calls it after every ruling): on the foot
+        spot or the nearest free point behind it (``respot.respot``). Snooker spots its colours
+        (``snooker.respot_colours``), three-cushion puts its balls on its own spots (``respot.carom_spots``)."""
+        respot(pos, pocket, balls, table, R, pockets)
 
     def check(self, game: GameState, shot: ShotInput) -> None:
         """Shapes agree and no finished game is shot (ValueError otherwise)."""

@@ -14,15 +14,28 @@ pocketing it wins only when the group was cleared before the shot, on a
 legal shot, in the called pocket, and loses in every other case. A scratch
 on the break gives the opponent ball in hand behind the head string, any
 other foul ball in hand anywhere.
+
+Balls off the table (``ShotInput.off_table``; docs/rules.md, "Balls off the
+table"): driving any ball off the table, the cue ball included, is a foul
+(``FOUL_OFF_TABLE``, WPA General Rules, standard fouls). The 8 driven off the
+table loses the rack (WPA 8-ball, loss of rack: "drives the eight ball off
+the table"; ``END_EIGHT_OFF``), except on the break, where WPA 8-ball's
+spotting rule spots an 8 pocketed or driven off the table (the break is
+still a foul: ball in hand for the opponent). No other object ball is ever
+spotted: a jumped solid or stripe stays off the table and counts as gone
+from its group. The cue ball off the table is ruled as a scratch: ball in
+hand anywhere, behind the head string when it happens on the break (WPA
+groups "Cue Ball Scratch or off the Table" as one foul).
 """
 from __future__ import annotations
 
 import numpy as np
 
 from .common import Facts, Rules, foul_code, next_state
-from .records import (END_EIGHT, END_EIGHT_EARLY, END_EIGHT_FOUL, END_EIGHT_POCKET, END_NONE, FOUL_SCRATCH,
-                      GROUP_OPEN, GROUP_SOLIDS, GROUP_STRIPES, IN_HAND_ANYWHERE, IN_HAND_KITCHEN, IN_HAND_NONE,
-                      PHASE_BREAK, PHASE_PLAY, Constraints, GameState, ShotInput, ShotRecord)
+from .records import (END_EIGHT, END_EIGHT_EARLY, END_EIGHT_FOUL, END_EIGHT_OFF, END_EIGHT_POCKET, END_NONE,
+                      FOUL_OFF_TABLE, FOUL_SCRATCH, GROUP_OPEN, GROUP_SOLIDS, GROUP_STRIPES, IN_HAND_ANYWHERE,
+                      IN_HAND_KITCHEN, IN_HAND_NONE, PHASE_BREAK, PHASE_PLAY, Constraints, GameState, ShotInput,
+                      ShotRecord)
 
 EIGHT = 8
 SOLIDS = np.arange(1, 8)
@@ -92,6 +105,8 @@ class EightBallRules(Rules):
         end[live8 & legal & on_eight & (pocket8 != called)] = END_EIGHT_POCKET
         end[live8 & legal & ~on_eight] = END_EIGHT_EARLY
         end[live8 & ~legal] = END_EIGHT_FOUL
+        eight_off = f.off_table[:, EIGHT]
+        end[eight_off & ~is_break] = END_EIGHT_OFF       # loss of rack; on the break it is spotted (below)
         over = end != END_NONE
         winner = np.where(end == END_EIGHT, s, np.where(over, 1 - s, -1))
 
@@ -106,14 +121,16 @@ class EightBallRules(Rules):
         keeps = legal & ~over & np.where(is_break, f.object_pocketed, own_pk)
 
         respot = np.zeros_like(pk)
-        respot[:, EIGHT] = eight & is_break
+        respot[:, EIGHT] = (eight | eight_off) & is_break
         rec = ShotRecord(legal=legal, foul=foul, turn_over=~keeps & ~over, game_over=over, winner=winner, end=end,
                          push_out=no, passed=no.copy(), respot=respot, shooter=s.copy())
         g = next_state(game, rec, foul, ~no)
         g.group[ar[assign], s[assign]] = own[assign]
         g.group[ar[assign], 1 - s[assign]] = np.where(own[assign] == GROUP_SOLIDS, GROUP_STRIPES, GROUP_SOLIDS)
         g.phase = np.full(E, PHASE_PLAY, dtype=np.int64)
-        g.ball_in_hand = np.where(is_break & (foul == FOUL_SCRATCH), IN_HAND_KITCHEN,
+        # a scratch on the break, or the cue ball off the table on it (ruled as a scratch): behind the head string
+        scratch_break = is_break & ((foul == FOUL_SCRATCH) | ((foul == FOUL_OFF_TABLE) & f.cue_off))
+        g.ball_in_hand = np.where(scratch_break, IN_HAND_KITCHEN,
                                   np.where(foul > 0, IN_HAND_ANYWHERE, IN_HAND_NONE)).astype(np.int64)
         return rec, g
 

@@ -14,6 +14,14 @@ Option (``NineBallRules(spot_break_nine=True)``, ``GameConfig(break_nine=
 "spotted")``, the rule of some professional events): a 9 pocketed on the
 break is respotted and does not win; it counts as a ball pocketed, so a
 legal break that pockets it keeps the breaker at the table.
+
+Balls off the table (``ShotInput.off_table``; docs/rules.md, "Balls off the
+table"): driving any ball off the table, the cue ball included, is a foul
+(``FOUL_OFF_TABLE``, WPA General Rules, standard fouls; ball in hand anywhere
+for the opponent, as after every foul). WPA 9-ball's spotting rule (2.6):
+the 9 pocketed on a foul or a push-out, or driven off the table, is spotted;
+no other object ball is ever spotted, so a jumped 1-8 stays off the table.
+The cue ball off the table comes back in hand.
 """
 from __future__ import annotations
 
@@ -39,13 +47,14 @@ class NineBallRules(Rules):
         r = RotationShot.of(game, shot)
         f, legal, pushed, played, three = r.facts, r.legal, r.pushed, r.played, r.three
         nine = f.pocketed[:, self.game_ball] & played
+        nine_off = f.off_table[:, self.game_ball] & played  # a foul, so never a win: spotted (WPA 9-ball 2.6)
         win = legal & nine & ~pushed & ~(r.is_break & self.spot_break_nine)
         over = win | three
         winner = np.where(win, game.shooter, np.where(three, 1 - game.shooter, -1))
         end = np.where(win, END_NINE, np.where(three, END_THREE_FOULS, END_NONE))
         keeps = played & legal & ~pushed & f.object_pocketed
         respot = np.zeros_like(f.pocketed)
-        respot[:, self.game_ball] = nine & ~over
+        respot[:, self.game_ball] = (nine | nine_off) & ~over
         rec = ShotRecord(legal=legal, foul=r.foul, turn_over=~keeps & ~over, game_over=over, winner=winner, end=end,
                          push_out=pushed, passed=r.passed, respot=respot, shooter=game.shooter.copy())
         g = next_state(game, rec, r.foul, played)

@@ -22,6 +22,8 @@ from ..physics.state import SPOT_CLEAR, SPOT_EDGE, spot_free
 
 HEAD_STRING = 0.25   # the head string's distance from the head rail, as a fraction of the table's length
 FOOT_SPOT = 0.75     # the foot spot's, likewise
+CENTRE_SPOT = 0.5    # the centre spot's, likewise (three-cushion's spot for a jumped ball)
+OPENING_OFFSET = 0.182  # m: three-cushion's opening: the starting player's ball on the head string beside the head spot
 KITCHEN_GAP = 1e-6   # m: a cue ball placed behind the head string keeps its centre this far behind the line
 PLACE_RINGS = 400    # rings of the nearest-legal-spot search (radius step R/4: covers any table)
 D_ARC_TOL = 1e-9     # m: a spot this little outside the D's arc counts as in the D, so a placed spot placed again stays

@@ -20,6 +20,8 @@ import dataclasses
 
 import numpy as np
 
+from ..physics.constants import OFF_TABLE
+
 # --- foul reasons (ShotRecord.foul) ------------------------------------------
 FOUL_NONE = 0
 FOUL_NO_CONTACT = 1      # the cue ball touched no object ball
@@ -31,10 +33,11 @@ FOUL_WRONG_POT = 6       # snooker: a ball not on was pocketed
 FOUL_PUSH = 7            # the cue ball played into the ball it lay touching (snooker's push stroke, three-cushion's
                          # ball in contact): its first contact, read from the simulator
 FOUL_WRONG_CUE_BALL = 8  # three-cushion: the cue struck another ball than the shooter's own cue ball
+FOUL_OFF_TABLE = 9       # a ball, the cue ball or an object ball, left the table (``ShotInput.off_table``)
 FOUL_NAMES = {FOUL_NONE: "none", FOUL_NO_CONTACT: "no contact", FOUL_WRONG_BALL: "wrong ball first",
               FOUL_NO_RAIL: "no rail after contact", FOUL_SCRATCH: "scratch", FOUL_BAD_BREAK: "illegal break",
               FOUL_WRONG_POT: "a ball not on pocketed", FOUL_PUSH: "push stroke (the touching ball moved)",
-              FOUL_WRONG_CUE_BALL: "the wrong cue ball struck"}
+              FOUL_WRONG_CUE_BALL: "the wrong cue ball struck", FOUL_OFF_TABLE: "a ball left the table"}
 
 # --- how a game ended (ShotRecord.end) ----------------------------------------
 END_NONE = 0
@@ -48,11 +51,12 @@ END_TEN = 7              # 10-ball: the 10 called and pocketed in the called poc
 END_TARGET = 8           # games to a score: a player reached the target score (winner -1: a draw, as equal innings allow)
 END_INNINGS = 9          # games to a score: the innings limit was reached; the higher score wins (winner -1: a draw)
 END_LAST_BLACK = 10      # snooker: the first score or foul with only the black left ended the frame on points
+END_EIGHT_OFF = 11       # 8-ball: the 8 driven off the table (any shot but the break): the shooter loses
 END_NAMES = {END_NONE: "none", END_NINE: "9 pocketed", END_THREE_FOULS: "three consecutive fouls",
              END_EIGHT: "8 pocketed", END_EIGHT_EARLY: "8 pocketed early", END_EIGHT_FOUL: "8 pocketed on a foul",
              END_EIGHT_POCKET: "8 in an uncalled pocket", END_TEN: "10 pocketed as called",
              END_TARGET: "target score reached", END_INNINGS: "innings limit reached",
-             END_LAST_BLACK: "the last black decided the frame"}
+             END_LAST_BLACK: "the last black decided the frame", END_EIGHT_OFF: "8 driven off the table"}
 
 # --- called ball (ShotInput.called_ball, 10-ball) ----------------------------------
 CALL_NONE = -1           # no ball called (the break, a push-out, a game without ball calls)
@@ -159,7 +163,10 @@ _GAME_FIELDS = tuple(f.name for f in dataclasses.fields(GameState))  # in order 
 @dataclasses.dataclass(frozen=True, eq=False)
 class ShotInput:
     """One shot per table [E]: ``pocket_before`` / ``pocket_after`` [E, B]
-    (pocket id, -1 on the table; ball 0 the cue ball), ``first_contact`` (the
+    (``BallState.pocket``: -1 on the table, 0 .. K-1 in pocket k, and
+    ``physics.constants.OFF_TABLE`` (100) or above off the table, over a
+    cushion: ``pocketed`` and ``off_table`` tell the two apart; ball 0 the
+    cue ball), ``first_contact`` (the
     first ball the cue ball touched, -1 none), ``rails`` [E, B] cushion hits
     of each ball after the cue ball's first contact (object balls rest until
     touched, so all of theirs count), ``object_rails`` [E, B] every ball's
@@ -217,8 +224,15 @@ class ShotInput:
 
     @property
     def pocketed(self) -> np.ndarray:
-        """[E, B] balls pocketed by this shot."""
-        return (np.asarray(self.pocket_after) >= 0) & (np.asarray(self.pocket_before) < 0)
+        """[E, B] balls this shot put in a pocket (a code 0 .. OFF_TABLE - 1; ``off_table`` are not pocketed)."""
+        after = np.asarray(self.pocket_after)
+        return (after >= 0) & (after < OFF_TABLE) & (np.asarray(self.pocket_before) < 0)
+
+    @property
+    def off_table(self) -> np.ndarray:
+        """[E, B] balls this shot drove off the table over a cushion (a code >= OFF_TABLE: on the rail top or the
+        floor; only the simulator's airborne effect produces them). Every game rules it a foul: ``rules.common``."""
+        return (np.asarray(self.pocket_after) >= OFF_TABLE) & (np.asarray(self.pocket_before) < 0)
 
 
 @dataclasses.dataclass(frozen=True, eq=False)

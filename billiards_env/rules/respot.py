@@ -3,15 +3,16 @@ object balls respotted on the foot spot (``respot``), and in the games
 where each player has a cue ball (three-cushion) the incoming player's ball
 to slot 0 (``hand_over``) and the starting position (``three_cushion_spots``,
 ``restart_position``: the equal-innings last inning, and balls in contact
-the shooter had replaced). Snooker's colours go back by
+the shooter had replaced), and three-cushion's balls that left the table
+(``carom_spots``). Snooker's colours go back by
 ``rules.snooker.respot_colours``. ``contract.turn.play_turn`` applies them
-after every ruling."""
+after every ruling, through the game's ``Rules.respot``."""
 from __future__ import annotations
 
 import numpy as np
 
-from ..physics.state import free_spot
-from .placement import FOOT_SPOT, HEAD_STRING
+from ..physics.state import SPOT_CLEAR, free_spot
+from .placement import CENTRE_SPOT, FOOT_SPOT, HEAD_STRING, OPENING_OFFSET
 
 
 def three_cushion_spots(table, R: float, u: np.ndarray) -> np.ndarray:
@@ -20,7 +21,6 @@ def three_cushion_spots(table, R: float, u: np.ndarray) -> np.ndarray:
     the foot spot, the opponent's ball on the head spot, the starting
     player's on the head string ``OPENING_OFFSET`` to its left or right
     (``u`` [n, 1] < 0.5: left)."""
-    from .three_cushion import OPENING_OFFSET
     n, w, l = len(u), table.width, table.length
     pos = np.zeros((n, 3, 2))
     side = np.where(u[:, 0] < 0.5, -1.0, 1.0)
@@ -67,3 +67,47 @@ def respot(pos: np.ndarray, pocket: np.ndarray, balls: np.ndarray, table, R: flo
             raise RuntimeError("no free spot on the table to respot a ball")
         pos[e, b] = (x, y)
         pocket[e, b] = -1
+
+
+# Three-cushion's spots for balls put back (shooter's frame: slot 0 the shooter's ball, 1 the opponent's, 2 the
+# red), as fractions of the table's length on the long string: the red on the foot (top) spot, the opponent's
+# ball, whose inning comes next, on the head (starting) spot, the shooter's on the centre spot.
+CAROM_SPOTS = (CENTRE_SPOT, HEAD_STRING, FOOT_SPOT)
+
+
+def carom_spots(pos: np.ndarray, pocket: np.ndarray, balls: np.ndarray, table, R: float) -> None:
+    """Three-cushion: put the balls marked in ``balls`` [n, 3] (the balls that
+    left the table, ``ShotRecord.respot``, in the shooter's frame) back on
+    the table, in place (``pos`` [n, 3, 2], ``pocket`` [n, 3] set to -1).
+
+    The rule (UMB; the KNBB's text of it: balls that jump off the table are
+    placed as balls in contact are, the red on the top spot, the cue ball on
+    the lower spot, the other ball on the centre spot; a ball whose spot is
+    occupied goes to the spot of the ball occupying it): each ball goes to
+    its own spot (``CAROM_SPOTS``: the red on the foot spot; the cue ball of
+    the next stroke, which after a jumped ball is the opponent's, the inning
+    having ended, on the head spot; the other, the shooter's, on the centre
+    spot); if a ball lies on it (centres nearer than 2R + ``SPOT_CLEAR``), to
+    the spot of that ball, and so on (three balls, three spots: a free one
+    is always found). Balls put back earlier in the same call count as lying
+    there; the red is placed first, then the head spot's ball."""
+    n, B = np.shape(balls)
+    w, L = table.width, table.length
+    spots = np.array([[w / 2, f * L] for f in CAROM_SPOTS])       # [3, 2], indexed by ball slot
+    for e in range(n):
+        for b in (2, 1, 0):
+            if not balls[e, b]:
+                continue
+            on = pocket[e] < 0
+            on[b] = False
+            k = b
+            for _ in range(B):
+                d = np.hypot(*(pos[e] - spots[k]).T)
+                blocker = np.nonzero(on & (d < 2 * R + SPOT_CLEAR))[0]
+                if not len(blocker):
+                    break
+                k = int(blocker[0])
+            else:
+                raise RuntimeError("no free spot on the carom table to put back a ball")
+            pos[e, b] = spots[k]
+            pocket[e, b] = -1

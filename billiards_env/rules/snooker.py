@@ -27,6 +27,17 @@ and is respotted when potted. After an in-off the cue ball is in hand in
 the D. With only the black left the first score or foul ends the frame; on
 equal scores the black is spotted (potted or not) and played again with
 the cue ball in hand.
+
+Balls forced off the table (``ShotInput.off_table``; docs/rules.md, "Balls
+off the table"): WPBSA Section 2 defines a ball forced off the table (it
+comes to rest other than on the bed of the table or in a pocket); Section 3
+makes it a foul (``FOUL_OFF_TABLE``) with the penalty of the ball on or the
+ball concerned, at least 4 (the ball forced off counts as the ball
+concerned, like a ball pocketed on a foul), and puts the balls back: a red
+forced off stays off, a colour is spotted (as a colour pocketed on a foul),
+and the cue ball forced off is in hand in the D (as after an in-off). With
+only the black left, forcing it off is a foul and so ends the frame (or,
+on equal scores, re-spots the black) as any other foul does.
 """
 from __future__ import annotations
 
@@ -36,9 +47,9 @@ import numba
 from ..physics.state import SPOT_CLEAR, SPOT_EDGE, spot_free
 from .common import Rules, next_state
 from .placement import d_of, legal_spots
-from .records import (END_LAST_BLACK, END_NONE, FOUL_NO_CONTACT, FOUL_NONE, FOUL_PUSH, FOUL_SCRATCH, FOUL_WRONG_BALL,
-                      FOUL_WRONG_POT, IN_HAND_D, IN_HAND_NONE, PHASE_BREAK, PHASE_COLOUR, PHASE_OPTION, PHASE_PLAY,
-                      Constraints, GameState, ShotInput, ShotRecord)
+from .records import (END_LAST_BLACK, END_NONE, FOUL_NO_CONTACT, FOUL_NONE, FOUL_OFF_TABLE, FOUL_PUSH, FOUL_SCRATCH,
+                      FOUL_WRONG_BALL, FOUL_WRONG_POT, IN_HAND_D, IN_HAND_NONE, PHASE_BREAK, PHASE_COLOUR, PHASE_OPTION,
+                      PHASE_PLAY, Constraints, GameState, ShotInput, ShotRecord)
 
 N_REDS = 15
 REDS = slice(1, 1 + N_REDS)
@@ -332,6 +343,7 @@ class SnookerRules(Rules):
         ar = np.arange(E)
         before = np.asarray(shot.pocket_before) < 0
         pk = shot.pocketed
+        off = shot.off_table                    # forced off the table: a foul; reds stay off, colours are spotted
         phase = game.phase
         replaced = np.asarray(shot.replaced, dtype=bool) & self.may_replace(game)  # the balls back, the offender on
         passed = np.asarray(shot.passed, dtype=bool) & (phase == PHASE_OPTION) & ~replaced  # the offender back in
@@ -369,11 +381,12 @@ class SnookerRules(Rules):
         foul[(first >= 1) & ~first_ok] = FOUL_WRONG_BALL
         foul[(first < 1) & ~touch_on] = FOUL_NO_CONTACT
         foul[push] = FOUL_PUSH
+        foul[off.any(axis=1)] = FOUL_OFF_TABLE
         foul[pk[:, 0]] = FOUL_SCRATCH
         foul[~played] = FOUL_NONE
         fouled = foul > 0
         involved = np.where(first >= 1, value[ar, np.clip(first, 0, N_BALLS)], 0)
-        potted_value = np.where(pk, value, 0).max(axis=1)
+        potted_value = np.where(pk | off, value, 0).max(axis=1)  # a ball pocketed or forced off: "the ball concerned"
         penalty = np.where(fouled, np.maximum.reduce([np.full(E, MIN_FOUL), on_value, involved, potted_value]), 0)
         # the points of a legal stroke: every red (and a free ball taken as a red) potted; otherwise the ball on,
         # or the free ball when the ball on stayed up (WPBSA Section 3, rule 12 (c)-(e))
@@ -387,7 +400,7 @@ class SnookerRules(Rules):
         g.score[ar, 1 - s] += penalty
         # colours back on the table: any colour pocketed on a foul, the colour taken after a red, a free ball
         respot = np.zeros_like(pk)
-        col = pk[:, FIRST_COLOUR:]
+        col = (pk | off)[:, FIRST_COLOUR:]    # a colour forced off is always a foul's: spotted
         keep_down = played & ~fouled & ~colour & ~red_turn                      # the clearance: the colour on stays down
         respot[:, FIRST_COLOUR:] = col & ~(keep_down[:, None] & on[:, FIRST_COLOUR:])
         # the frame: with only the black left, the first score or foul ends it. On equal scores the black is
@@ -413,10 +426,16 @@ class SnookerRules(Rules):
         pot_red = played & ~fouled & red_turn & (points > 0)
         g2.phase = np.where(fouled, PHASE_OPTION, np.where(pot_red, PHASE_COLOUR, PHASE_PLAY)).astype(np.int64)
         g2.phase = np.where(tie, PHASE_PLAY, g2.phase)
-        hand = np.where(passed, game.ball_in_hand, np.where(played & pk[:, 0], IN_HAND_D, IN_HAND_NONE))
+        cue_lost = pk[:, 0] | off[:, 0]         # an in-off, or the cue ball forced off the table: in hand in the D
+        hand = np.where(passed, game.ball_in_hand, np.where(played & cue_lost, IN_HAND_D, IN_HAND_NONE))
         g2.ball_in_hand = np.where(tie, IN_HAND_D, hand).astype(np.int64)
         self._keep_miss(g2, game, shot, miss, replaced)
         return rec, g2
+
+    def respot(self, pos, pocket, balls, table, R, pockets) -> None:
+        """The colours a ruling marks back on their spots (``respot_colours``; ``balls[:, 0]``: the re-spotted
+        black's cue ball in hand)."""
+        respot_colours(pos, pocket, balls, table, R, pockets)
 
     def touching_balls(self, shot: ShotInput, before: np.ndarray) -> np.ndarray:
         """[E, B] the balls the cue ball touched where the stroke was played from (none without positions)."""

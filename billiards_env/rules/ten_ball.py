@@ -16,6 +16,13 @@ spotted), the turn passes and the incoming player chooses to shoot or to
 hand the shot back. The shot right after a legal break may be a push-out,
 as in 9-ball. Every foul gives the opponent ball in hand anywhere (a 10
 pocketed on a foul is spotted); a player's third consecutive foul loses.
+
+Balls off the table (``ShotInput.off_table``; docs/rules.md, "Balls off the
+table"): driving any ball off the table, the cue ball included, is a foul
+(``FOUL_OFF_TABLE``, WPA General Rules, standard fouls; ball in hand anywhere).
+WPA 10-ball's spotting rule: only the 10 is ever spotted (pocketed on a foul,
+on a push-out or illegally, or driven off the table); any other ball driven
+off the table stays off. The cue ball off the table comes back in hand.
 """
 from __future__ import annotations
 
@@ -55,7 +62,7 @@ class TenBallRules(Rules):
         keeps = legal & ~over & np.where(r.is_break, f.object_pocketed, made)
         option = legal & called_shot & f.object_pocketed & ~made     # pocketed illegally, no foul
         respot = np.zeros_like(f.pocketed)
-        respot[:, TEN] = f.pocketed[:, TEN] & played & ~win
+        respot[:, TEN] = (f.pocketed[:, TEN] | f.off_table[:, TEN]) & played & ~win  # the 10 off: a foul, spotted
         rec = ShotRecord(legal=legal, foul=r.foul, turn_over=~keeps & ~over, game_over=over, winner=winner, end=end,
                          push_out=r.pushed, passed=r.passed, respot=respot, shooter=s.copy(), option=option)
         g = next_state(game, rec, r.foul, played)

@@ -33,9 +33,19 @@ slot 0, ``Rules.own_cue_balls``).
 - **The wrong cue ball** (UMB Art. 41): the cue striking another ball than
   the shooter's own cue ball (``ShotInput.struck``: the opponent's ball or
   the red) is a foul (``FOUL_WRONG_CUE_BALL``).
+- **A jumped ball** (``ShotInput.off_table``: a ball that left the table
+  over a cushion, only with the simulator's airborne effect): a foul
+  (``FOUL_OFF_TABLE``; UMB's rule on balls jumping off the table, World
+  Rules of Carom Billiard Art. 28, "Balls bounding out of the billiard":
+  the inning ends and the stroke scores nothing). The balls that left
+  are put back on the spots (``ShotRecord.respot``, placed by
+  ``rules.respot.carom_spots``): the red on the foot spot, the cue ball of
+  the next stroke (the opponent's) on the head spot, the other on the
+  centre spot, a ball whose spot is taken going to the spot of the ball
+  that takes it.
 - **A foul** scores nothing (not even a point made on that shot) and ends
-  the inning. (Jumped balls, a double hit, push shots through the cue
-  ball and touching a ball by hand cannot happen here.)
+  the inning. (A double hit, push shots through the cue ball and touching
+  a ball by hand cannot happen here.)
 - **The game** is to ``target`` points, or ends after ``max_innings``
   innings of each player with the higher score winning (equal: a draw).
   With ``equal_innings`` the opponent of the starting player gets a last
@@ -53,15 +63,16 @@ import numpy as np
 from ..physics import constants as PC
 from ..physics.params import PhysicsParams
 from .common import Rules, next_state
-from .records import (END_INNINGS, END_NONE, END_TARGET, FOUL_NONE, FOUL_PUSH, FOUL_WRONG_BALL, FOUL_WRONG_CUE_BALL,
-                      IN_HAND_NONE, PHASE_BREAK, PHASE_FINAL, PHASE_FINAL_OPENING, PHASE_PLAY, Constraints, GameState,
-                      ShotInput, ShotRecord)
+from .records import (END_INNINGS, END_NONE, END_TARGET, FOUL_NONE, FOUL_OFF_TABLE, FOUL_PUSH, FOUL_WRONG_BALL,
+                      FOUL_WRONG_CUE_BALL, IN_HAND_NONE, PHASE_BREAK, PHASE_FINAL, PHASE_FINAL_OPENING, PHASE_PLAY,
+                      Constraints, GameState, ShotInput, ShotRecord)
+from .placement import OPENING_OFFSET  # noqa: F401  (the opening's offset beside the head spot, with the spots)
+from .respot import carom_spots
 from .snooker import touching  # the touching-ball test (centres within 2R + TOUCH_TOL): one for both games
 
 CUE, OPPONENT_BALL, RED = 0, 1, 2  # slots in the shooter's frame
 POINT_CUSHIONS = 3                 # cushions the cue ball needs before its contact with the second object ball
 CONTACTS_KEPT = 64                 # the cue ball's contacts the simulator keeps: a point is decided within a few dozen
-OPENING_OFFSET = 0.182             # m: the starting player's ball on the head string beside the head spot (UMB)
 CAROM_R = PhysicsParams.carom().R  # m, the carom ball's radius: the default of the touching-ball test
 TARGET = 15                        # default points to win (UMB matches: 40 or 50; shorter games train faster)
 MAX_INNINGS = 50                   # default innings limit per player
@@ -165,6 +176,9 @@ class ThreeCushionRules(Rules):
         into = (np.asarray(shot.n_contacts) > 0) & (kind == PC.EV_BALL_BALL)
         into &= touch[ar, np.clip(other, 0, touch.shape[1] - 1)]
         foul[into] = FOUL_PUSH
+        # a ball jumped off the table (UMB Art. 28): a foul; the balls that left go back on the spots (``respot``)
+        off = shot.off_table & played[:, None]
+        foul[off.any(axis=1)] = FOUL_OFF_TABLE
         # the wrong cue ball (UMB Art. 41): the cue struck the opponent's ball or the red
         foul[np.asarray(shot.struck) != CUE] = FOUL_WRONG_CUE_BALL
         foul[~played] = FOUL_NONE
@@ -189,7 +203,7 @@ class ThreeCushionRules(Rules):
         turn_over = (missed | to_final) & ~over
         rec = ShotRecord(legal=played & (foul == FOUL_NONE), foul=foul, turn_over=turn_over, game_over=over,
                          winner=winner.astype(np.int64), end=end.astype(np.int64), push_out=np.zeros(E, dtype=bool),
-                         passed=np.zeros(E, dtype=bool), respot=np.zeros(np.shape(shot.pocket_before), dtype=bool),
+                         passed=np.zeros(E, dtype=bool), respot=off,
                          shooter=s.copy(), points=scored.astype(np.int64), restart=to_final | replaced,
                          replaced=replaced)
         g = next_state(game, rec, foul, played)
@@ -199,6 +213,10 @@ class ThreeCushionRules(Rules):
                            np.where(replaced, PHASE_BREAK, np.where(final, PHASE_FINAL, PHASE_PLAY))).astype(np.int64)
         g.ball_in_hand = np.full(E, IN_HAND_NONE, dtype=np.int64)
         return rec, g
+
+    def respot(self, pos, pocket, balls, table, R, pockets) -> None:
+        """The balls that jumped off the table back on the carom spots (``rules.respot.carom_spots``)."""
+        carom_spots(pos, pocket, balls, table, R)
 
     def touching_balls(self, shot: ShotInput) -> np.ndarray:
         """[E, B] the balls the cue ball touched where the shot was played from (none without positions)."""
