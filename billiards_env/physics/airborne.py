@@ -184,6 +184,13 @@ def landing_now(balls, e, i, t_land, t):
 
 
 @njit
+def meets_slate(balls, e, i):
+    """True if ball i is in flight on the slate and not rising (its
+    landing is now), with its state current (the step solver's)."""
+    return balls.st[e, i] == C.AIRBORNE and balls.air[e, i, 0] <= 0.0 and balls.air[e, i, 1] <= 0.0
+
+
+@njit
 def flight_energy(balls, e, i, p):
     """The energy of ball i's height and vertical motion (J), m g h +
     m vz^2 / 2, which the planar energy (``motion.energy``) leaves out."""

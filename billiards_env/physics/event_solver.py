@@ -92,7 +92,8 @@ def refresh(balls, scr, geo, e, i, t, p, air_on):
                     or paths_apart(paths, e, i, j, 2.0 * p[C.P_R])):
                 tij = math.inf
             else:
-                tij = t + flight.contact_time(balls, paths, e, i, j, hj, p, t - tlast[e, j])
+                acc = (paths[e, i, 0], paths[e, i, 1], paths[e, j, 0], paths[e, j, 1])
+                tij = t + flight.contact_time(balls, e, i, j, acc, hj, p, t - tlast[e, j])
         else:
             tij = t + pair_time(pos, vel, st, paths, e, i, j, hj, p, t - tlast[e, j])
         tpair[e, i, j] = tij; tpair[e, j, i] = tij

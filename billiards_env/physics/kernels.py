@@ -78,9 +78,6 @@ def make_kernel(kind: str, effects: Effects, models: Models, diagnostics: bool =
     (``forking.threads_usable``)."""
     if kind not in KINDS:
         raise ValueError(f"unknown solver {kind!r}; choose one of {KINDS}")
-    if effects.airborne and kind == "step":
-        raise NotImplementedError("Effects(airborne=True) is simulated by the event solver only; the step "
-                                  "solver has no flight yet (issue 46): simulate with solver='event'")
     n = effects.normalized()
     bb_name, cu_name = models.resolved(n)
     key = (kind, n.spin, n.sliding, n.vertical_spin, bb_name, cu_name, bool(diagnostics))

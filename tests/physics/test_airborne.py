@@ -8,10 +8,9 @@ import math
 import numpy as np
 import pytest
 
-from billiards_env.physics import Effects, Models
+from billiards_env.physics import Effects
 from billiards_env.physics.airborne import (SETTLE_HEIGHT, SLATE_RESTITUTION, bounces, flight,
                                             flight_contact_time, landing_time, settles, slate_impact)
-from billiards_env.physics.kernels import make_kernel
 from billiards_env.physics.strike import cue_strike_3d
 
 G = 9.81
@@ -192,10 +191,10 @@ def test_a_ball_dropped_on_a_ball_touches_it_when_free_fall_says():
     assert flight_contact_time(2 * R + 1e-6, 0.0, h0, 0.0, 0.0, 0.0, R, G, 1.0) == math.inf
 
 
-def test_airborne_is_opt_in_and_refused_by_the_step_solver():
+def test_airborne_is_opt_in():
     """Off (the default) it is invisible: each_off's sets, their kernel keys
-    and to_dict are what they were; on, the step solver refuses it by name
-    (the event solver simulates it: test_airborne_solver.py)."""
+    and to_dict are what they were; on, both solvers simulate it
+    (test_airborne_solver.py)."""
     sets = Effects.each_off()
     assert "no airborne" not in sets and len(sets) == 8
     assert Effects().key() == (True,) * 6
@@ -204,5 +203,3 @@ def test_airborne_is_opt_in_and_refused_by_the_step_solver():
     on = Effects(airborne=True)
     assert on.to_dict()["airborne"] is True and on.key() != Effects().key()
     assert Effects.from_dict(on.to_dict()) == on and Effects.from_dict(Effects().to_dict()) == Effects()
-    with pytest.raises(NotImplementedError, match="airborne.*event"):
-        make_kernel("step", on, Models())

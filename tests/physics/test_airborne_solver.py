@@ -3,7 +3,7 @@
 over a blocking ball and one that strikes it, balls driven off the table
 onto the rail and the floor, a ball in flight into a pocket, the 3D impact's
 conservation laws, the strike into the slate carried by ``BallState.air``,
-and input checks. Invariants under random elevated strikes are the fuzz
+the step solver's flight against the event solver's, and input checks. Invariants under random elevated strikes are the fuzz
 quick mode (tests/physics/test_strike_3d.py)."""
 import math
 
@@ -131,6 +131,24 @@ def test_a_ball_dropped_on_a_ball_conserves_horizontal_momentum_and_loses_energy
     assert upper[2] + lower[2] == pytest.approx(0.0, abs=1e-15)  # vx: both started at rest horizontally
     assert lower[2] > 0 and upper[2] < 0
     assert r.diagnostics[0, 0] <= 1e-12 and r.diagnostics[0, 2] >= -C.OVERLAP_TOL and not r.truncated[0]
+
+
+@pytest.mark.parametrize("dt", [1e-3, 1e-4])
+def test_the_step_solver_flies_the_same_jump(dt):
+    """The step solver flies a ball on the same parabola (its height exact
+    within a step): the jump over the blocker's first impact, the bounces'
+    times and the final layout agree with the event solver's, closer at the
+    finer step, and energy never rises."""
+    s = strike_velocity(_state([[0.635, 0.6], [0.635, 0.9], [0.635, 1.5]]), math.pi / 2, 4.0, 0.0, 0.0, P,
+                        theta=math.radians(30))
+    exact = simulate(s, TABLE, P, effects=AIR, record=True)
+    step = simulate(s, TABLE, P, solver="step", dt=dt, effects=AIR, record=True, diagnostics=True)
+    for kind in (C.EV_SLATE, C.EV_BALL_BALL):
+        a, b = _events(exact, kind), _events(step, kind)
+        assert np.allclose(a[:3], b[:3], atol=10 * dt)
+    gap = np.abs(exact.state.pos - step.state.pos).max()
+    assert gap < (2e-3 if dt == 1e-3 else 3e-4), gap
+    assert step.diagnostics[0, 0] <= 1e-12 and np.all(step.state.air == 0)
 
 
 def test_planar_states_and_bad_heights():

@@ -50,15 +50,16 @@ from ..roots import first_entry
 
 
 @njit
-def _lagged(balls, paths, e, j, lag, g):
-    """Ball j's centre offset (x, y, h), velocity and acceleration (3D),
-    its state ``lag`` seconds old shifted to now."""
+def _lagged(balls, e, j, ax, ay, lag, g):
+    """Ball j's centre offset (x, y, h), velocity and acceleration (3D), its
+    horizontal acceleration (ax, ay) on the felt, its state ``lag`` seconds
+    old shifted to now."""
     pos, vel, air, st = balls.pos, balls.vel, balls.air, balls.st
     x, y, h = pos[e, j, 0], pos[e, j, 1], air[e, j, 0]
     vx, vy, vz = vel[e, j, 0], vel[e, j, 1], air[e, j, 1]
-    ax, ay, az = paths[e, j, 0], paths[e, j, 1], 0.0
+    az = 0.0
     if st[e, j] == C.AIRBORNE:
-        az = -g
+        ax, ay, az = 0.0, 0.0, -g
     elif st[e, j] != C.SLIDING and st[e, j] != C.ROLLING:
         return x, y, h, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     if lag > 0.0:
@@ -70,13 +71,14 @@ def _lagged(balls, paths, e, j, lag, g):
 
 
 @njit
-def contact_time(balls, paths, e, i, j, H, p, lag):
+def contact_time(balls, e, i, j, acc, H, p, lag):
     """Time from now until balls i and j touch in 3D (inf if not within H):
-    ball i's state is now, ball j's ``lag`` seconds old; ``paths`` holds
-    each ball's horizontal acceleration (``detection.sweep_path``)."""
+    ball i's state is now, ball j's ``lag`` seconds old; ``acc`` = (axi,
+    ayi, axj, ayj), the balls' horizontal accelerations on the felt (the
+    event solver's ``paths``; zeros for the step solver's straight lines)."""
     g = p[C.P_G]
-    xi, yi, hi, vxi, vyi, vzi, axi, ayi, azi = _lagged(balls, paths, e, i, 0.0, g)
-    xj, yj, hj, vxj, vyj, vzj, axj, ayj, azj = _lagged(balls, paths, e, j, lag, g)
+    xi, yi, hi, vxi, vyi, vzi, axi, ayi, azi = _lagged(balls, e, i, acc[0], acc[1], 0.0, g)
+    xj, yj, hj, vxj, vyj, vzj, axj, ayj, azj = _lagged(balls, e, j, acc[2], acc[3], lag, g)
     dx, dy, dz = xi - xj, yi - yj, hi - hj
     vx, vy, vz = vxi - vxj, vyi - vyj, vzi - vzj
     ax, ay, az = axi - axj, ayi - ayj, azi - azj
