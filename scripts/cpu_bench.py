@@ -32,6 +32,8 @@ import numpy as np
 from billiards_env.physics import BallState, Effects, PhysicsParams, Table, set_num_threads, simulate
 
 FIELDS = ("pos", "vel", "omega", "pocket")
+# each effect switched off alone (Effects.each_off), and the opt-in flight on top of all of them
+EFFECT_SETS = {**Effects.each_off(), "all + airborne": Effects(airborne=True)}
 LATENCY_CALLS = 200  # single-table calls per timed run (one call lasts tens of microseconds)
 
 
@@ -62,7 +64,7 @@ def best_ms(fn, repeats: int, calls: int) -> float:
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--scene", action="append", help="keep scenes whose name contains this (repeatable)")
-    ap.add_argument("--effects", action="append", choices=list(Effects.each_off()),
+    ap.add_argument("--effects", action="append", choices=list(EFFECT_SETS),
                     help="effect sets to time (repeatable; default 'all')")
     ap.add_argument("--batch", type=int, default=1024)
     ap.add_argument("--repeats", type=int, default=7)
@@ -85,7 +87,7 @@ def main(argv=None) -> int:
         print(f"wrote {len(found)} scenes to {args.save_scenes}")
         return 0
     set_num_threads(1)
-    sets = Effects.each_off()
+    sets = EFFECT_SETS
     out = {"tree": str(Path(sys.modules["billiards_env"].__file__).resolve().parents[1])}
     for name, s in found.items():
         one = s.take([0])

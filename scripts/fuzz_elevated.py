@@ -22,6 +22,7 @@ import time
 import numpy as np
 
 from billiards_env.physics import BallState, Effects, strike
+from billiards_env.physics import constants as C
 from billiards_env.physics.strike import MAX_ELEVATION
 from billiards_env.testing import case_dict, random_batch, run_batch, save_case
 from billiards_env.testing.fuzzing import TABLE_KINDS, report, table_layout
@@ -53,7 +54,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     effects = Effects(airborne=True) if args.airborne else Effects()
     rng = np.random.default_rng(args.seed)
-    done = failing = events = 0
+    done = failing = events = off = 0
     t0 = time.perf_counter()
     while done < args.shots:
         n = min(args.batch, args.shots - done)
@@ -64,6 +65,7 @@ def main(argv=None):
         state = elevated(state, rng, params, args.theta_max)
         res, violations = run_batch(state, table, params, args.solver, effects=effects)
         events += int(res.n_events.sum())
+        off += int((res.state.pocket >= C.OFF_TABLE).sum())
         for e, v in enumerate(violations):
             if v:
                 failing += 1
@@ -72,7 +74,7 @@ def main(argv=None):
                           tag="airborne" if args.airborne else "elevated")
         done += n
     summary = {"solver": args.solver, "airborne": args.airborne, "table": args.table, "shots": done,
-               "shots_with_violations": failing, "events": events,
+               "shots_with_violations": failing, "events": events, "balls_off_table": off,
                "theta_max": args.theta_max, "seed": args.seed, "wall_s": round(time.perf_counter() - t0, 1)}
     report(summary, args.summary)
     return 1 if failing else 0

@@ -245,20 +245,24 @@ def test_elevated_strikes_keep_the_invariants(solver, seed):
         assert not any(violations), [v for v in violations if v][:3]
 
 
-def test_fuzz_elevated_script_quick(tmp_path):
-    """scripts/fuzz_elevated.py (docs/physics.md names it) at a tiny size, both solvers: runs, strikes with the cue
-    elevated, finds nothing, and its summary says so."""
+@pytest.mark.parametrize("solver, extra", [("event", []), ("step", []), ("event", ["--airborne"]),
+                                           ("step", ["--airborne"]), ("event", ["--airborne", "--table", "snooker"]),
+                                           ("event", ["--airborne", "--table", "carom"])])
+def test_fuzz_elevated_script_quick(tmp_path, solver, extra):
+    """scripts/fuzz_elevated.py (docs/physics.md names it) at a tiny size, both solvers, planar and with balls in
+    flight (``--airborne``) on each table: runs, strikes with the cue elevated, finds nothing, and its summary says
+    so; with ``--airborne`` some balls really leave the table over a rail (none can without it)."""
     import json
     import pathlib
     import subprocess
     import sys
     root = pathlib.Path(__file__).resolve().parents[2]
-    for solver in ("event", "step"):
-        out = subprocess.run([sys.executable, str(root / "scripts" / "fuzz_elevated.py"), "--shots", "64", "--batch",
-                              "32", "--seed", "5", "--solver", solver, "--summary", str(tmp_path / f"{solver}.json"),
-                              "--regressions", str(tmp_path / "reg")], capture_output=True, text=True, timeout=900,
-                             cwd=root)
-        assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
-        s = json.loads((tmp_path / f"{solver}.json").read_text())
-        assert s["solver"] == solver and s["shots"] == 64 and s["shots_with_violations"] == 0 and s["events"] > 64
-        assert s["theta_max"] > 0
+    out = subprocess.run([sys.executable, str(root / "scripts" / "fuzz_elevated.py"), "--shots", "64", "--batch",
+                          "32", "--seed", "5", "--solver", solver, "--summary", str(tmp_path / "s.json"),
+                          "--regressions", str(tmp_path / "reg"), *extra], capture_output=True, text=True,
+                         timeout=900, cwd=root)
+    assert out.returncode == 0, out.stdout[-2000:] + out.stderr[-2000:]
+    s = json.loads((tmp_path / "s.json").read_text())
+    assert s["solver"] == solver and s["shots"] == 64 and s["shots_with_violations"] == 0 and s["events"] > 64
+    assert s["theta_max"] > 0 and s["airborne"] == ("--airborne" in extra)
+    assert (s["balls_off_table"] > 0) == ("--airborne" in extra), s

@@ -18,13 +18,18 @@ def _run(*args):
 
 
 def test_cpu_bench_times_effect_sets_and_replays_saved_scenes(tmp_path):
-    built = json.loads(_run("--scene", "two-ball", "--effects", "all", "--effects", "no spin", "--latency", "--json"))
+    built = json.loads(_run("--scene", "two-ball", "--effects", "all", "--effects", "no spin", "--effects",
+                            "all + airborne", "--latency", "--json"))
     rows = {k: v for k, v in built.items() if k != "tree"}
-    assert sorted(k.split(" | ")[1] for k in rows) == ["all", "no spin"]
+    assert sorted(k.split(" | ")[1] for k in rows) == ["all", "all + airborne", "no spin"]
+    # a planar shot plays the same with the flight switched on (docs/physics.md, what it costs)
+    assert rows["two-ball cut (2 m/s, top+side) | all + airborne"]["events_per_shot"] == \
+        rows["two-ball cut (2 m/s, top+side) | all"]["events_per_shot"]
     assert all(v["ms"] > 0 and v["latency_us"] > 0 and v["events_per_shot"] > 2 for v in rows.values())
     f = tmp_path / "scenes.npz"
     assert "wrote 1 scenes" in _run("--scene", "two-ball", "--save-scenes", str(f))
-    loaded = json.loads(_run("--scenes-from", str(f), "--effects", "all", "--effects", "no spin", "--json"))
+    loaded = json.loads(_run("--scenes-from", str(f), "--effects", "all", "--effects", "no spin", "--effects",
+                             "all + airborne", "--json"))
     assert {k: v["events_per_shot"] for k, v in loaded.items() if k != "tree"} == \
         {k: v["events_per_shot"] for k, v in rows.items()}
     assert "shots/s" in _run("--scene", "two-ball")
