@@ -70,10 +70,11 @@ def write_replays(folder: Path, results) -> None:
     for r in results:
         for n, rep in enumerate(r.replays):
             folder.mkdir(parents=True, exist_ok=True)
-            stem = folder / f"{_safe(r.a)}_v_{_safe(r.b)}-{n:02d}"
-            rep.save(stem.with_suffix(".json"))
-            save_replay_html(rep, stem.with_suffix(".html"))
-            print(f"wrote {stem.with_suffix('.html')} ({len(rep)} shots)")
+            # appended, not Path.with_suffix: an entrant's name may hold a dot (lookahead-2026.12)
+            stem = f"{_safe(r.a)}_v_{_safe(r.b)}-{n:02d}"
+            rep.save(folder / f"{stem}.json")
+            save_replay_html(rep, folder / f"{stem}.html")
+            print(f"wrote {folder / stem}.html ({len(rep)} shots)")
 
 
 def timed_bot(spec, seed):

@@ -207,6 +207,16 @@ def test_match_saves_replays_without_changing_the_match(tmp_path):
     bad = subprocess.run(cmd[:-2] + ["--save-replays", "5", "--out", str(tmp_path)], capture_output=True, text=True,
                          timeout=900, cwd=ROOT)
     assert bad.returncode == 2 and "--save-replays" in bad.stderr
+    # an entrant whose name holds a dot keeps one file per game (it once lost the game number to with_suffix)
+    import importlib.util
+    import types
+    spec = importlib.util.spec_from_file_location("match_script", ROOT / "scripts" / "match.py")
+    match = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(match)
+    match.write_replays(tmp_path / "dotted", [types.SimpleNamespace(a="lookahead-2026.12", b="ghost",
+                                                                    replays=saved.replays[:2])])
+    assert sorted(p.name for p in (tmp_path / "dotted").iterdir()) == [
+        f"lookahead-2026.12_v_ghost-0{n}.{ext}" for n in (0, 1) for ext in ("html", "json")]
 
 
 # ------------------------------------------------------------- browser --
