@@ -322,3 +322,72 @@ def test_snooker_balls_in_the_jaws(solver, pocket):
         ok = SNOOKER.contains(s.pos[0], R_, 1e-9)
         assert ok.all(), "the constructed balls must lie legally on the table"
         run_checked(s, SNOOKER, SNK_P, solver)
+
+
+# ------------------------------------------------- balls in flight (issue 46) --
+AIR = Effects(airborne=True)
+
+
+def _air(state):
+    """``state`` with every ball on the slate, its vertical velocity settable (``BallState.air``)."""
+    return BallState(state.pos, state.vel, state.omega, state.pocket, np.zeros(state.pos.shape[:2] + (2,)))
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+@pytest.mark.parametrize("theta", [5.0, 30.0])
+def test_elevated_break_into_a_frozen_rack(solver, theta):
+    """A break at 10 m/s with the cue elevated: the cue ball hops (5 deg) or
+    flies into the rack from above (30 deg); the invariants hold with the
+    height's energy and 3D gaps, every ball ends on the slate or off the table."""
+    s = _air(rack(POOL, P, "nine", 1, seed=0))
+    s = strike(s, math.pi / 2, P.max_draw, 0.0, 0.0, P, theta=math.radians(theta))
+    run_checked(s, POOL, P, solver, effects=AIR)
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+@pytest.mark.parametrize("offset", [0.0, 1e-12, 1e-6, R])
+def test_ball_dropped_onto_a_ball(solver, offset):
+    """A ball dropped from 20 cm onto a resting ball, exactly on top (the
+    unstable balance: ``flight.STACK_TILT`` tips it off), a hair off, and
+    half a ball off: it bounces off and both end on the slate, no overlap,
+    no energy gained, no truncation."""
+    s = place(POOL, [[0.6, 1.0], [0.6 + offset, 1.0]])
+    s = BallState(s.pos, s.vel, s.omega, s.pocket, np.array([[[0.2, 0.0], [0.0, 0.0]]]))
+    res = run_checked(s, POOL, P, solver, effects=AIR)
+    assert np.all(res.state.air == 0)
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+def test_frozen_pair_struck_into_the_slate(solver):
+    """A cue ball frozen to an object ball, struck down into the slate
+    towards it: it meets the slate and the ball at one instant; the bounce
+    comes first (``airborne.landing_now`` / ``meets_slate``), so no stall."""
+    s = _air(place(POOL, [[0.6, 1.0], [0.6, 1.0 + 2 * R]]))
+    s = strike_velocity(s, math.pi / 2, 2.0, 0.0, 0.0, P, theta=math.radians(40))
+    run_checked(s, POOL, P, solver, effects=AIR, max_events=200)
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+@pytest.mark.parametrize("margin", [-1e-9, 1e-9])
+def test_ball_in_flight_grazing_the_cushion_nose(solver, margin):
+    """A ball in flight reaching the cushion's contact line with its lowest
+    point a nanometre below or above the nose (``cushion.rail``): it strikes
+    the cushion or leaves the table, nothing in between; invariants hold."""
+    t = 0.01 / 2.0  # it reaches the contact line 1 cm away at 2 m/s, falling g t^2 / 2 meanwhile
+    s = place(POOL, [[0.635, POOL.length - R - 0.01]])
+    s = BallState(s.pos, s.vel, s.omega, s.pocket, np.array([[[P.h_c + margin + 0.5 * P.g * t * t, 0.0]]]))
+    s.vel[0, 0, 1] = 2.0
+    res = run_checked(s, POOL, P, solver, effects=AIR)
+    if margin < 0:
+        assert res.state.pocket[0, 0] == -1  # it struck the cushion and stayed on the table
+    else:
+        assert res.state.pocket[0, 0] >= 100  # over the nose: off the table
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+def test_extreme_masse(solver):
+    """A near-vertical cue (80 deg) at the edge of the miscue disc, fast: the
+    ball is driven into the slate with massé spin of hundreds of rad/s."""
+    s = _air(place(POOL, [[0.635, 1.27], [0.7, 1.6]]))
+    s = strike(s, 1.2, P.max_draw, 0.49, -0.05, P, theta=math.radians(80))
+    run_checked(s, POOL, P, solver, effects=AIR)

@@ -40,13 +40,22 @@ is conserved, vertical momentum goes into the slate. At n_z = 0 (both
 centres at one height) it is the planar frictionless impact. pooltool's main
 branch detects 3D ball-ball contacts with the same quartic; its resolution
 of a ball pressed into the slate is not modelled there yet, which is why
-this one is the rigid-slate limit written out here.
+this one is the rigid-slate limit written out here. A ball dropped exactly
+on top of another is tipped off its balance (``STACK_TILT``).
 """
 import math
 
 from .. import constants as C
 from .._jit import njit
 from ..roots import first_entry
+
+# A ball dropped exactly onto the top of another (the line of centres
+# exactly vertical) would bounce there for ever, each bounce lower by e_b^2,
+# an unstable balance no real table keeps (any offset grows from bounce to
+# bounce until the ball falls off). Its impact normal is tilted by this
+# angle (rad) towards +x, the smallest offset of a real stack: it then falls
+# off as from an offset of 6e-11 m (R times this).
+STACK_TILT = 1e-9
 
 
 @njit
@@ -99,6 +108,8 @@ def resolve(balls, e, i, j, p):
     nx = pos[e, j, 0] - pos[e, i, 0]
     ny = pos[e, j, 1] - pos[e, i, 1]
     nz = air[e, j, 0] - air[e, i, 0]
+    if nx == 0.0 and ny == 0.0:  # stacked exactly: tip the balance (STACK_TILT)
+        nx = STACK_TILT * abs(nz)
     d = math.sqrt(nx * nx + ny * ny + nz * nz)
     nx /= d; ny /= d; nz /= d
     w = -((vel[e, j, 0] - vel[e, i, 0]) * nx + (vel[e, j, 1] - vel[e, i, 1]) * ny
