@@ -6,6 +6,21 @@ animations of shots and replays.
 Image frame: the table's x axis runs left to right, its y axis bottom to
 top; a ``border`` (m) of rail surrounds the playing surface; ``ppm`` pixels
 per metre. ``world_to_pixel`` gives the pixel (column, row) of a table point.
+
+The third dimension (``Effects(airborne=True)``). A ball in flight, its
+lowest point h above the slate, casts a shadow on the slate at its (x, y)
+(a disc of radius R in ``SHADOW_COLOR``, under every ball) and is drawn above
+it, lifted up the image by h (``HEIGHT_LIFT``: the plan to scale with heights
+standing straight up the page, as a military projection draws them) and
+larger by the factor 1 + h / ``CAMERA_HEIGHT`` (a camera looking down sees a
+ball closer to it larger: a pinhole at height H above the ball's centre
+scales it by H / (H - h), whose first order this is; linear, so a ball thrown
+a metre up grows in proportion instead of without bound). Balls in flight are
+drawn after the balls on the slate, lowest first. A ball that left the table
+(``pocket`` >= ``OFF_TABLE``) is drawn where it came down, moved onto the
+drawn rail (``off_table_spot``): plain on the rail top (``OFF_RAIL``), ringed
+in ``FLOOR_RING_COLOR`` when it fell to the floor (``OFF_FLOOR``), at the
+rail's outer edge on the side it went; pocketed balls are not drawn.
 """
 from __future__ import annotations
 
@@ -18,7 +33,7 @@ from PIL import Image, ImageDraw
 
 from ..physics import constants as C
 from ..physics.effects import Effects
-from .replay import evolve_state
+from .replay import evolve_state, off_table_of, segment_normals
 
 FELT_COLOR = (35, 100, 155)
 RAIL_COLOR = (95, 55, 30)
@@ -47,6 +62,14 @@ NUMBER_MIN_RADIUS = 5.0
 NUMBER_DISC_RADIUS = 8.0
 NUMBER_DISC_FRACTION = 0.6
 STRIPE_ANGLE = 40.5  # degrees: the band of a striped ball spans |dy| < sin(40.5 deg) R = 0.65 R
+# Balls in flight (module docstring). A camera this high (m) above a ball
+# draws it 11% larger when it jumps one ball height (5.7 cm): 2 px at PPM. A
+# camera that frames the whole table (2.2 m up with a 60 degree lens) would
+# draw it 2.6% larger, under half a pixel: the size cue would be lost.
+CAMERA_HEIGHT = 0.5
+HEIGHT_LIFT = 1.0  # m up the image per m of height
+SHADOW_COLOR = tuple(int(0.45 * c) for c in FELT_COLOR)  # the felt in the ball's shadow
+FLOOR_RING_COLOR = (230, 60, 60)  # around a ball that fell to the floor
 _DIGITS = ("111101101101111", "010110010010111", "111001111100111", "111001111001111", "101101111001001",
            "111100111001111", "111100111101111", "111001010010010", "111101111101111", "111101111001111")
 
@@ -156,11 +179,71 @@ def positions_at(log, params, n_balls: int, t: float, effects=None):
     return pos, on
 
 
+def flight_scale(h) -> float:
+    """How much larger a ball whose lowest point is ``h`` m above the slate
+    is drawn: 1 + h / CAMERA_HEIGHT (module docstring)."""
+    return 1.0 + max(float(h), 0.0) / CAMERA_HEIGHT
+
+
+def off_table_spot(table, xy, R: float, border: float = BORDER) -> tuple[float, float]:
+    """Where a ball off the table is drawn (table coordinates): the point
+    where it came down (``Replay.table_view``), moved onto the drawn rail:
+    out of the cushion box [0, W] x [0, L] widened by R to its nearest
+    side, then at least R inside the drawn rail's outer edge (which wins
+    where the rail is drawn narrower than 2R)."""
+    x, y = float(xy[0]), float(xy[1])
+    W, L = table.width, table.length
+    if -R < x < W + R and -R < y < L + R:
+        k = int(np.argmin([x + R, W + R - x, y + R, L + R - y]))
+        x, y = ((-R, y), (W + R, y), (x, -R), (x, L + R))[k]
+    return min(max(x, R - border), W + border - R), min(max(y, R - border), L + border - R)
+
+
+def balls_at(log, params, n_balls: int, t: float, effects=None, table=None):
+    """The balls at time ``t`` of a recorded shot as the renderers draw them:
+    (pos [B, 2], pocket [B], h [B]), as ``Replay.table_view`` gives them for
+    a replay. With ``table`` (the one simulated on) a ball that left the
+    table is at ``OFF_RAIL`` / ``OFF_FLOOR`` where it came down; without it,
+    or a ball in a pocket, ``pocket`` is the pocket (0 where the log does not
+    say) and the ball is not drawn. A ball the log never mentions: pocket 0."""
+    eff = (effects or Effects()).normalized()
+    p = params.as_array()
+    pos, h = np.zeros((n_balls, 2)), np.zeros(n_balls)
+    pocket = np.zeros(n_balls, dtype=np.int64)
+    for i, rec in enumerate(_records(log, n_balls)):
+        last = None
+        for tr, st in rec:
+            if tr <= t:
+                last = (tr, st)
+            else:
+                break
+        if last is None:
+            continue
+        s = evolve_state(last[1], t - last[0], p, eff.vertical_spin, eff.spin)
+        pos[i] = s[:2]
+        if s[7] != C.POCKETED:
+            pocket[i] = -1
+            h[i] = s[8] if len(s) > 8 else 0.0
+    for n in range(len(log)):
+        if log.time[n] <= t and log.kind[n] == C.EV_POCKET:
+            pocket[int(log.balls[n, 0])] = int(log.balls[n, 1])
+    if table is not None and np.any(np.asarray(log.kind) == C.EV_OFF_TABLE):
+        normals = segment_normals(table.geometry(eff.pockets)[0])
+        for e in off_table_of(log.time, log.kind, log.balls, log.states, normals, p, eff.vertical_spin, eff.spin):
+            if e["t"] <= t:
+                pocket[e["ball"]], pos[e["ball"]] = e["code"], (e["x"], e["y"])
+    return pos, pocket, h
+
+
 def render_table(table, params, pos, pocket=None, paths=None, ppm: float = PPM,
-                 border: float = BORDER, ids=None) -> np.ndarray:
+                 border: float = BORDER, ids=None, height=None) -> np.ndarray:
     """RGB uint8 image [H, W, 3] (see ``image_size``) of the table with its
-    cushions, pockets and the balls at ``pos [B, 2]`` (those with
-    ``pocket >= 0`` are not drawn); ``paths`` (list of [K, 2]) are drawn
+    cushions, pockets and the balls at ``pos [B, 2]``: those with
+    ``0 <= pocket < OFF_TABLE`` (pocketed) are not drawn, those off the
+    table (``pocket >= OFF_TABLE``, ``pos`` where they came down) on the rail
+    (``off_table_spot``); ``height`` [B]: the height of each ball's lowest
+    point above the slate (m; > 0 in flight: drawn lifted and larger over
+    its shadow, module docstring); ``paths`` (list of [K, 2]) are drawn
     under the balls in each ball's colour; ``ids`` [B]: the ball in each
     slot, whose colour it is drawn in (default: slot i is ball i)."""
     H, W = image_size(table, ppm, border)
@@ -193,19 +276,37 @@ def render_table(table, params, pos, pocket=None, paths=None, ppm: float = PPM,
             if len(pth) > 1:
                 d.line(P(pth), fill=ball_color(i if ids is None else ids[i], style), width=max(1, int(ppm * 0.006)))
     rp = R * ppm
-    for i in range(len(pos)):
-        if pocket[i] >= 0:
-            continue
+    h = np.zeros(len(pos)) if height is None else np.maximum(np.asarray(height, dtype=np.float64), 0.0)
+    flying = [i for i in np.argsort(h, kind="stable") if pocket[i] < 0 and h[i] > 0.0]
+    for i in flying:  # shadows on the slate, under every ball
         cx, cy = world_to_pixel(table, pos[i], ppm, border)
-        box = [cx - rp, cy - rp, cx + rp, cy + rp]
-        col = ball_color(i if ids is None else ids[i], style)
-        d.ellipse(box, fill=col, outline=(0, 0, 0))
-        if i >= 9 and numbered:  # stripe: white caps above and below a coloured band of 1.3 R
-            d.chord(box, 180 + STRIPE_ANGLE, 360 - STRIPE_ANGLE, fill=(255, 255, 255))
-            d.chord(box, STRIPE_ANGLE, 180 - STRIPE_ANGLE, fill=(255, 255, 255))
-        if i > 0 and numbered and rp >= NUMBER_MIN_RADIUS:
-            _draw_number(d, i, cx, cy, rp, col)
+        d.ellipse([cx - rp, cy - rp, cx + rp, cy + rp], fill=SHADOW_COLOR)
+    colour = lambda i: ball_color(i if ids is None else ids[i], style)
+    for i in range(len(pos)):
+        if pocket[i] >= C.OFF_TABLE:
+            cx, cy = world_to_pixel(table, off_table_spot(table, pos[i], R, border), ppm, border)
+            if pocket[i] == C.OFF_FLOOR:
+                w = max(2, int(round(0.25 * rp)))
+                d.ellipse([cx - rp - w, cy - rp - w, cx + rp + w, cy + rp + w], outline=FLOOR_RING_COLOR, width=w)
+            _draw_ball(d, i, cx, cy, rp, colour(i), numbered)
+        elif pocket[i] < 0 and h[i] <= 0.0:
+            cx, cy = world_to_pixel(table, pos[i], ppm, border)
+            _draw_ball(d, i, cx, cy, rp, colour(i), numbered)
+    for i in flying:  # lowest first, lifted by their height
+        cx, cy = world_to_pixel(table, pos[i], ppm, border)
+        _draw_ball(d, i, cx, cy - HEIGHT_LIFT * h[i] * ppm, rp * flight_scale(h[i]), colour(i), numbered)
     return np.asarray(img, dtype=np.uint8).copy()
+
+
+def _draw_ball(d, i: int, cx: float, cy: float, rp: float, col: tuple, numbered: bool) -> None:
+    """Ball ``i`` centred at pixel (cx, cy), radius ``rp`` px."""
+    box = [cx - rp, cy - rp, cx + rp, cy + rp]
+    d.ellipse(box, fill=col, outline=(0, 0, 0))
+    if i >= 9 and numbered:  # stripe: white caps above and below a coloured band of 1.3 R
+        d.chord(box, 180 + STRIPE_ANGLE, 360 - STRIPE_ANGLE, fill=(255, 255, 255))
+        d.chord(box, STRIPE_ANGLE, 180 - STRIPE_ANGLE, fill=(255, 255, 255))
+    if i > 0 and numbered and rp >= NUMBER_MIN_RADIUS:
+        _draw_number(d, i, cx, cy, rp, col)
 
 
 def _draw_number(d, i: int, cx: float, cy: float, rp: float, col: tuple) -> None:
@@ -285,8 +386,8 @@ def save_shot_animation(path, table, params, log, n_balls: int, anim: Animation 
     full = ball_paths(log, params, n_balls, effects=effects) if paths else None
     frames = []
     for t in times:
-        pos, on = positions_at(log, params, n_balls, t, effects)
-        frames.append(render_table(table, params, pos, np.where(on, -1, 0), paths=full, ppm=ppm))
+        pos, pocket, h = balls_at(log, params, n_balls, t, effects, table)
+        frames.append(render_table(table, params, pos, pocket, paths=full, ppm=ppm, height=h))
     return write_animation(path, np.stack(frames), fps)
 
 
@@ -294,7 +395,7 @@ def save_replay_animation(path, replay, shots=None, fps: int = 30, ppm: float = 
                           max_seconds: float = 60.0, paths: bool = True, hold: float = 0.5) -> Path:
     """Write the shots (default: all) of a ``Replay`` one after another as a
     GIF or MP4, holding each shot's last frame ``hold`` seconds of video.
-    Positions come from ``Replay.positions_at``. Returns the path."""
+    The balls come from ``Replay.table_view``. Returns the path."""
     from ..physics.simulate import EventLog
 
     path = _check_suffix(path)
@@ -307,8 +408,8 @@ def save_replay_animation(path, replay, shots=None, fps: int = 30, ppm: float = 
         full = ball_paths(EventLog(*replay.event_states(k)), params, replay.n_balls, effects=replay.effects) \
             if paths else None
         for t in times:
-            pos, on = replay.positions_at(t, k)
-            frames.append(render_table(table, params, pos, np.where(on, -1, 0), paths=full, ppm=ppm))
+            pos, pocket, h = replay.table_view(t, k)
+            frames.append(render_table(table, params, pos, pocket, paths=full, ppm=ppm, height=h))
     if not frames:
         raise ValueError("the replay has no shots to animate")
     return write_animation(path, np.stack(frames), fps)

@@ -15,7 +15,7 @@ from PIL import Image, ImageDraw, ImageFont
 from ..rules import END_NAMES, FOUL_NAMES
 from ..rules import records as R
 from .game_words import GROUP_WORDS, IN_HAND_WORDS, ball_ids, call_words
-from .draw import BORDER, PPM, Animation, ball_paths, positions_at, render_table, world_to_pixel
+from .draw import BORDER, PPM, Animation, ball_paths, balls_at, render_table, world_to_pixel
 
 PANEL_LINES = 4
 LINE_PX = 14             # pixel height of a status line
@@ -64,17 +64,22 @@ def status_lines(core, k: int, info: dict | None = None) -> list[str]:
 
 
 def render_game(core, k: int = 0, info: dict | None = None, pos=None, on=None, paths=None,
-                ppm: float = PPM) -> np.ndarray:
+                ppm: float = PPM, pocket=None, height=None) -> np.ndarray:
     """RGB image of table ``k`` (balls at ``pos``/``on``, default the core's
-    state) with the legal targets ringed, the head string drawn when the ball
-    in hand is behind it, and the status panel (``info``: the last step's
-    info, for the ruling line)."""
+    state; or ``pocket`` codes as ``render_table`` takes them, and ``height``
+    above the slate of balls in flight) with the legal targets ringed, the
+    head string drawn when the ball in hand is behind it, and the status
+    panel (``info``: the last step's info, for the ruling line)."""
     s, c, t = core.state, core.constraints(), core.table
+    if pocket is None:  # the state's own codes draw its off-table balls on the rail
+        pocket = s.pocket[k] if on is None else np.where(on, -1, 0)
+    pocket = np.asarray(pocket)
+    on = pocket < 0
     pos = s.pos[k] if pos is None else pos
-    on = (s.pocket[k] < 0) if on is None else on
     # balls drawn in their owners' colours (three-cushion); during a shot's frames, the shot's shooter's
     shooter = int(info["shooter"][k]) if pos is not None and info is not None else None
-    img = render_table(t, core.params, pos, np.where(on, -1, 0), paths=paths, ppm=ppm, ids=ball_ids(core, k, shooter))
+    img = render_table(t, core.params, pos, pocket, paths=paths, ppm=ppm, ids=ball_ids(core, k, shooter),
+                       height=height)
     H, W, _ = img.shape
     canvas = Image.new("RGB", (W, H + PANEL_LINES * LINE_PX + 4), (20, 20, 20))
     canvas.paste(Image.fromarray(img), (0, 0))
@@ -103,10 +108,10 @@ def shot_frames(core, start_pos, start_on, log, info, anim: Animation):
     moved = np.array([len(x) > 0 for x in paths])
     frames = []
     for tt in np.minimum(np.arange(n) * speedup / fps, t_end):
-        p, o = positions_at(log, core.params, B, tt, core.effects)
+        p, pk, h = balls_at(log, core.params, B, tt, core.effects, core.table)
         p = np.where(moved[:, None], p, start_pos)
-        o = np.where(moved, o, start_on)
-        frames.append(render_game(core, 0, info, p, o, paths, ppm))
+        pk = np.where(moved, pk, np.where(start_on, -1, 0))
+        frames.append(render_game(core, 0, info, p, paths=paths, ppm=ppm, pocket=pk, height=np.where(moved, h, 0.0)))
     return frames
 
 

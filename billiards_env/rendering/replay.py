@@ -25,6 +25,18 @@ A ball in flight (``Effects(airborne=True)``) follows its parabola between
 records (``airborne.fly``), with h the height of its lowest point above the
 slate and vz its vertical velocity; every other record has h = vz = 0.
 
+A ball that leaves the table (an ``EV_OFF_TABLE`` event: it passed over a
+cushion, a jaw tip or a pocket) is recorded POCKETED where it crossed, as a
+pocketed ball is where it dropped; the event log does not say where it came
+down, so ``off_table_landing`` works it out from the ball's flight by the
+rail model's rule (``physics.cushion.rail.landing_code``): on the rail top
+(``OFF_RAIL``) if it descends to the cushion nose's height within
+``RAIL_WIDTH`` beyond the cushion, else on the floor (``OFF_FLOOR``). The
+shot's ``info["off_table"]`` lists these balls (ball, code, the time it
+left, where it came down), and carries them into the next shot while they
+stay off the table, for the renderers (``draw.render_table`` and the
+viewer draw them on the rail, distinct from pocketed balls).
+
 Numbers are written with the shortest decimal that reads back as the same
 float64, so unpacking gives the event log's states bit for bit. The format,
 field by field, is documented in docs/replay.md.
@@ -45,6 +57,7 @@ import numpy as np
 
 from ..physics import constants as C
 from ..physics.airborne import drop_time
+from ..physics.cushion.rail import RAIL_WIDTH
 from ..physics.effects import Effects
 from ..physics.motion import evolve, transition_time
 from ..physics.params import PhysicsParams
@@ -82,6 +95,56 @@ def evolve_state(state, dt: float, p: np.ndarray, zspin_on: bool, spin_on: bool)
     evolve(pos, vel, om, st, 0, 0, dt, p, bool(zspin_on), bool(spin_on))
     return np.array([pos[0, 0, 0], pos[0, 0, 1], vel[0, 0, 0], vel[0, 0, 1],
                      om[0, 0, 0], om[0, 0, 1], om[0, 0, 2], st[0, 0], 0.0, 0.0], dtype=np.float64)
+
+
+def segment_normals(segments) -> np.ndarray:
+    """Unit normals [S, 2] of cushion segments [S, 4] (up to sign: the
+    replay keeps the segments, not the kernels' normals)."""
+    segs = np.asarray(segments, dtype=np.float64).reshape(-1, 4)
+    d = segs[:, 2:] - segs[:, :2]
+    return np.stack([-d[:, 1], d[:, 0]], axis=1) / np.hypot(d[:, 0], d[:, 1])[:, None]
+
+
+def off_table_landing(flight, b: int, normals, p: np.ndarray) -> tuple[int, float, float]:
+    """Where a ball in flight that passes over boundary ``b`` (an
+    ``EV_OFF_TABLE`` event's index: a cushion segment, -2 - tip for a jaw
+    tip, -1 over a pocket) comes down: (``OFF_RAIL`` or ``OFF_FLOOR``, x, y).
+    ``flight`` [10]: its state as it crosses; (x, y) where it descends to
+    the cushion nose's height, on the rail top or over the floor. The rule
+    of ``physics.cushion.rail.landing_code``: on the rail if it gets there
+    within ``RAIL_WIDTH`` beyond the cushion line, its outward speed being
+    its speed across cushion ``b`` (over a tip or a pocket: all of its
+    horizontal speed); ``normals``: ``segment_normals`` of the table's
+    segments (their sign does not matter)."""
+    s = np.asarray(flight, dtype=np.float64)
+    R, g, hc = float(p[C.P_R]), float(p[C.P_G]), float(p[C.P_H_C])
+    vx, vy = float(s[2]), float(s[3])
+    td = drop_time(max(float(s[8]) - hc, 0.0), float(s[9]), g)
+    if b >= 0:
+        out = abs(vx * float(normals[b, 0]) + vy * float(normals[b, 1]))
+    else:
+        out = math.sqrt(vx * vx + vy * vy)
+    code = C.OFF_RAIL if out * td - R <= RAIL_WIDTH else C.OFF_FLOOR
+    return code, float(s[0]) + vx * td, float(s[1]) + vy * td
+
+
+def off_table_of(time, kind, balls, states, normals, p: np.ndarray, zspin_on: bool, spin_on: bool) -> list:
+    """The balls an event log (its arrays: time [N], kind [N], balls [N, 2],
+    states [N, 2, 10]) sends off the table, in order:
+    ``{"ball", "code", "t", "x", "y"}`` (``off_table_landing``)."""
+    last, out = {}, []
+    for n in range(len(time)):
+        k, i = int(kind[n]), int(balls[n, 0])
+        if k == C.EV_OFF_TABLE and i in last:
+            t0, s0 = last[i]
+            fl = evolve_state(s0, float(time[n]) - t0, p, zspin_on, spin_on)
+            fl[0], fl[1] = states[n, 0, 0], states[n, 0, 1]  # where it crossed, as the log has it
+            code, x, y = off_table_landing(fl, int(balls[n, 1]), normals, p)
+            out.append({"ball": i, "code": code, "t": float(time[n]), "x": x, "y": y})
+        last[i] = (float(time[n]), states[n, 0])
+        if k == C.EV_BALL_BALL:
+            last[int(balls[n, 1])] = (float(time[n]), states[n, 1])
+    return out
 
 
 # ------------------------------------------------------------- records --
@@ -208,6 +271,7 @@ class Replay:
         self.effects = Effects(**data["effects"]).normalized()
         self._p = self.params.as_array()
         self._tracks = [None] * len(data["shots"])
+        self._segment_normals = None
 
     # --- construction -----------------------------------------------------
     @classmethod
@@ -265,6 +329,12 @@ class Replay:
         shot = _shot_from_log(log, duration, truncated, _jsonable(shot_info))
         if len(shot["start"]) != self.n_balls:
             raise ValueError(f"the log has {len(shot['start'])} balls, the replay {self.n_balls}")
+        off = self._still_off(shot["start"])
+        if np.any(log.kind == C.EV_OFF_TABLE):
+            off += off_table_of(log.time, log.kind, log.balls, log.states, self._normals(), self._p,
+                                self.effects.vertical_spin, self.effects.spin)
+        if off:  # only where a ball left the table: planar replays are unchanged
+            shot["info"]["off_table"] = off
         self.data["shots"].append(shot)
         self._tracks.append(None)
         return shot
@@ -282,9 +352,25 @@ class Replay:
                  for i in range(len(pos))]
         shot = {"info": _jsonable(dict(info or {})), "duration": 0.0, "truncated": False, "start": start,
                 "events": []}
+        off = self._still_off(start)
+        if off:
+            shot["info"]["off_table"] = off
         self.data["shots"].append(shot)
         self._tracks.append(None)
         return shot
+
+    def _normals(self) -> np.ndarray:
+        if self._segment_normals is None:
+            self._segment_normals = segment_normals(self.table["segments"])
+        return self._segment_normals
+
+    def _still_off(self, start) -> list:
+        """The previous shot's off-table balls that start this one still off
+        the table (their record pocketed), from time 0."""
+        if not self.shots:
+            return []
+        prev = (self.shots[-1].get("info") or {}).get("off_table", [])
+        return [dict(e, t=0.0) for e in prev if int(start[e["ball"]][0]) == C.POCKETED]
 
     # --- access -----------------------------------------------------------
     @property
@@ -339,6 +425,27 @@ class Replay:
         """(pos [B, 2], on_table [B]) at time ``t`` of a shot."""
         s = self.states_at(t, shot)
         return s[:, :2].copy(), s[:, 7] != C.POCKETED
+
+    def table_view(self, t: float, shot: int = 0):
+        """The balls at time ``t`` of a shot as the renderers draw them: (pos
+        [B, 2], pocket [B], h [B]). ``pocket`` as ``BallState.pocket``: -1 on
+        the table (in flight too, h > 0 the height of its lowest point above
+        the slate), ``OFF_RAIL`` / ``OFF_FLOOR`` for a ball off the table (pos:
+        where it came down, ``off_table_landing``), else the pocket the shot
+        put it in (0 where the replay does not say: pocketed before the shot)."""
+        s = self.states_at(t, shot)
+        pos, h = s[:, :2].copy(), s[:, 8].copy()
+        pocket = np.where(s[:, 7] == C.POCKETED, 0, -1)
+        info = self.shots[shot].get("info") or {}
+        for b, k in zip(info.get("pocketed", []), info.get("pockets", [])):
+            if pocket[b] >= 0:
+                pocket[b] = k
+        t = min(max(float(t), 0.0), self.duration(shot))
+        for e in info.get("off_table", []):
+            b = e["ball"]
+            if e["t"] <= t and pocket[b] >= 0:
+                pocket[b], pos[b] = e["code"], (e["x"], e["y"])
+        return pos, pocket, h
 
     def event_states(self, shot: int = 0):
         """The shot's event log read back: (time [N], kind [N], balls [N, 2],

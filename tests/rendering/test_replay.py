@@ -76,7 +76,7 @@ def brk():
 def _closed_form(st, dt, params):
     """Independent numpy evaluation of a recorded state after dt: constant
     acceleration -mu g along the slip (sliding) or the velocity (rolling)."""
-    x, y, vx, vy, wx, wy, _, ms = st
+    x, y, vx, vy, wx, wy, _, ms = st[:8]  # the event log's states have 10 columns (h, vz: 0 on the slate)
     ax = ay = 0.0
     if ms == C.SLIDING:
         ux, uy = vx - params.R * wy, vy + params.R * wx
