@@ -10,8 +10,11 @@ rules replace balls on a declaration, ``Rules.replaces``, 0 < a6 <=
 ``PASS_LEVEL`` has the balls replaced: snooker's after a foul and a miss,
 three-cushion's when the cue ball touches a ball; a6 > ``PASS_LEVEL``
 there is a pass, snooker's offender put back in), the called
-pocket (a7, six equal bins) and, in 10-ball only, the called ball (a8,
-``n_balls`` equal bins; 0 a safety). The aim origin is the direction from the cue
+pocket (a7, six equal bins), in 10-ball only, the called ball (a8,
+``n_balls`` equal bins; 0 a safety), and, only where the equipment
+simulates balls in flight (``Effects(airborne=True)``), the cue's elevation
+as the last component (a8, 10-ball a9): theta = (a + 1) / 2 *
+``MAX_ACTION_ELEVATION`` (60 degrees), a = -1 the level cue. The aim origin is the direction from the cue
 ball to the table's nominal target (the lowest legal ball; on the break, the
 foot spot), so it moves with a placed cue ball.
 
@@ -41,6 +44,11 @@ N_POCKETS = 6
 # positive half.
 PASS_LEVEL = 0.5
 REPLACE_ACTION = 0.25  # the a6 a replace declaration is encoded as (the middle of its share; float32-exact)
+# The steepest cue an env's action can elevate (the last component, where the effects have airborne on): 60
+# degrees spans the jump strokes (a jump cue at 30-50 degrees) and the half massés; a full massé's near-vertical
+# cue (physics.strike.MAX_ELEVATION, 90 degrees) is a plan's (``ShotPlan.theta``), not an action's.
+MAX_ACTION_ELEVATION_DEG = 60.0
+MAX_ACTION_ELEVATION = math.radians(MAX_ACTION_ELEVATION_DEG)
 
 # The shot mapping's per-table passes, fused (numpy would take one pass, and a temporary, per operation).
 _jit = numba.njit(cache=True, nogil=True)
@@ -161,8 +169,10 @@ class ActionCodec:
     nearest to ``xy`` on rows ``rows``; the table, the physics and the env's
     shortest draw (``min_draw``); ``nominal`` [n] the nominal target;
     ``ball_dim``: the action's size where it carries a called ball (10-ball;
-    0 elsewhere); ``n_balls``; ``cue`` [n, 2] where the cue ball lies;
-    ``is_break`` [n]."""
+    0 elsewhere), the elevation not counted; ``n_balls``; ``cue`` [n, 2]
+    where the cue ball lies; ``is_break`` [n]; ``max_elevation``: the cue's
+    elevation at the last component's +1 (rad; 0, the default: the action
+    has no elevation component, the planar envs')."""
 
     origin: np.ndarray
     aim_point: np.ndarray
@@ -177,6 +187,7 @@ class ActionCodec:
     cue: np.ndarray
     is_break: np.ndarray
     replaces: bool = False  # a6 carries a replace declaration below PASS_LEVEL (snooker, three-cushion)
+    max_elevation: float = 0.0  # > 0: the last component is the cue's elevation (Effects(airborne=True))
 
     @property
     def n(self) -> int:
@@ -203,11 +214,27 @@ class ActionCodec:
     def shots_of(self, actions: np.ndarray, origin: np.ndarray | None = None) -> Shots:
         """a0..a3 of actions [n, >= 4] (clipped to [-1, 1]) -> ``Shots``, the aim relative to ``origin`` [n]
         (default the codec's: the cue ball where it lies)."""
-        a = np.ascontiguousarray(np.asarray(actions, dtype=np.float64)[:, :4])
+        actions = np.asarray(actions, dtype=np.float64)
+        a = np.ascontiguousarray(actions[:, :4])
         out = np.empty((4, len(a)))
         _action_to_shot(a, self.origin if origin is None else origin, self.min_draw, self.params.max_draw,
                         self.params.miscue_limit, out)
-        return Shots.of_arrays(out[0], draw_to_speed(out[1], self.params), out[2], out[3])
+        theta = self.elevation_of(actions) if self.max_elevation else None
+        return Shots.of_arrays(out[0], draw_to_speed(out[1], self.params), out[2], out[3], theta)
+
+    @property
+    def elevation_index(self) -> int:
+        """The action component that carries the cue's elevation (the last; meaningful where ``max_elevation``)."""
+        return self.ball_dim or ACTION_DIM
+
+    def elevation_of(self, a: np.ndarray) -> np.ndarray:
+        """The elevation component of actions [k, action_dim] (clipped to [-1, 1]) -> theta [k] (rad):
+        (a + 1) / 2 * ``max_elevation``, -1 the level cue."""
+        return (np.clip(a[:, self.elevation_index], -1.0, 1.0) + 1.0) * 0.5 * self.max_elevation
+
+    def elevation_to_actions(self, theta) -> np.ndarray:
+        """``elevation_of``'s inverse: elevations [k] (rad, 0 .. ``max_elevation``) -> the component [k]."""
+        return 2.0 * np.asarray(theta, dtype=np.float64) / self.max_elevation - 1.0
 
     def actions_of_shots(self, shots: Shots) -> np.ndarray:
         """``shots_of``'s inverse on the unclipped range: ``Shots`` -> a0..a3 [n, 4] (float64, clipped)."""
@@ -241,7 +268,7 @@ class ActionCodec:
 
     @property
     def action_dim(self) -> int:
-        return self.ball_dim or ACTION_DIM
+        return (self.ball_dim or ACTION_DIM) + (self.max_elevation > 0)
 
     def encode(self, shots, placement=None, declare=None, pocket=None, ball=None, replace=None) -> np.ndarray:
         """Actions [n, action_dim] (float64) that play ``shots`` (absolute aim) with the
@@ -251,8 +278,13 @@ class ActionCodec:
         (push-out or pass), the called ``pocket`` [n] and, in 10-ball, the
         called ``ball`` [n] (0 a safety; -1 or None: the lowest legal ball)
         and, in snooker and three-cushion, ``replace`` [n] (the balls
-        replaced; it wins over ``declare``, as ``play_turn`` plays them)."""
+        replaced; it wins over ``declare``, as ``play_turn`` plays them).
+        The cue's elevation is the shots' (``Shots.theta``), in [0,
+        ``max_elevation``]; an elevated shot on a codec without the component
+        (the planar envs) is a ValueError."""
         n = self.n
+        theta = np.broadcast_to(np.asarray(getattr(shots, "theta", 0.0), dtype=np.float64), (n,))
+        self._check_elevation(theta)
         out = np.zeros((n, self.action_dim))
         out[:, 4:6] = self.placement_to_actions(self.cue)
         origin = self.origin.copy()
@@ -274,7 +306,25 @@ class ActionCodec:
         if self.ball_dim:
             ball = self.nominal if ball is None else np.where(np.asarray(ball) < 0, self.nominal, ball)
             out[:, 8] = -1.0 + (2.0 * ball + 1.0) / self.n_balls
+        if self.max_elevation:
+            out[:, self.elevation_index] = self.elevation_to_actions(theta)
         return np.clip(out, -1.0, 1.0)
+
+    def _check_elevation(self, theta: np.ndarray) -> None:
+        """A ValueError naming an elevation the action cannot carry: any on a codec without the component,
+        or one outside [0, ``max_elevation``]."""
+        nonzero = theta != 0
+        if not nonzero.any():
+            return
+        r = int(np.argmax(nonzero))
+        if not self.max_elevation:
+            raise ValueError(f"shot {r} elevates the cue (theta {theta[r]} rad) but this env's action has no "
+                             "elevation: make the env with effects={'airborne': True}")
+        bad = ~np.isfinite(theta) | (theta < 0) | (theta > self.max_elevation * (1 + 1e-12))
+        if bad.any():
+            r = int(np.argmax(bad))
+            raise ValueError(f"the cue's elevation must lie in [0, {self.max_elevation:.6g}] rad (the action's "
+                             f"{math.degrees(self.max_elevation):g} degrees), got {theta[r]} at shot {r}")
 
     def encode_plan(self, plan) -> np.ndarray:
         """The actions [n, 8] of a bot's ``ShotPlan`` (checked first), rounded

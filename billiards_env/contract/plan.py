@@ -30,6 +30,11 @@ Every field is an array over the view's rows (n):
                cue ball). Three-cushion only: the opponent's ball (1) or the
                red (2) is a foul there (the wrong cue ball). The env's
                actions never strike another ball; a bot never plans it
+``theta``      the cue's elevation above the horizontal (rad, 0 .. pi/2;
+               0, the default, the level cue): a jump or massé stroke.
+               Played only with the equipment's ``Effects(airborne=True)``
+               (the envs' ``effects={"airborne": True}``); a plan that
+               elevates the cue elsewhere is refused (``contract.turn``)
 =============  ===========================================================
 """
 from __future__ import annotations
@@ -38,7 +43,7 @@ import dataclasses
 
 import numpy as np
 
-from ..physics.strike import Shots
+from ..physics.strike import MAX_ELEVATION, Shots
 
 
 @dataclasses.dataclass(eq=False)
@@ -53,6 +58,7 @@ class ShotPlan:
     ball: np.ndarray | None = None  # filled with -1 (none) when not given
     replace: np.ndarray | None = None  # filled with False when not given
     struck: np.ndarray | None = None   # filled with 0 (the shooter's own cue ball) when not given
+    theta: np.ndarray | None = None    # filled with 0.0 (the level cue) when not given
 
     def __post_init__(self):
         if self.ball is None:
@@ -61,23 +67,27 @@ class ShotPlan:
             self.replace = np.zeros(np.shape(self.phi)[:1] or (1,), dtype=bool)
         if self.struck is None:
             self.struck = np.zeros(np.shape(self.phi)[:1] or (1,), dtype=np.int64)
+        if self.theta is None:
+            self.theta = np.zeros(np.shape(self.phi)[:1] or (1,))
 
     @classmethod
     def of(cls, shots: Shots, placement=None, declare=None, pocket=None, ball=None, replace=None,
            struck=None) -> "ShotPlan":
         """A plan from ``Shots`` (arrays or scalars broadcast to the batch)
         and optional placements, declarations, called pockets, called balls,
-        replace declarations and (three-cushion) the ball struck."""
+        replace declarations and (three-cushion) the ball struck. The cue's
+        elevation is the shots' (``Shots.theta``)."""
         given = [len(np.atleast_1d(v)) for v in (placement, declare, pocket, ball, replace, struck) if v is not None]
-        n = max([np.size(v) for v in (shots.phi, shots.speed, shots.a, shots.b)] + given)
+        n = max([np.size(v) for v in (shots.phi, shots.speed, shots.a, shots.b, shots.theta)] + given)
         vec = [np.broadcast_to(np.asarray(v, dtype=np.float64), (n,)).copy() for v in shots]
+        th = np.broadcast_to(np.asarray(shots.theta, dtype=np.float64), (n,)).copy()
         place = np.full((n, 2), np.nan) if placement is None else np.asarray(placement, dtype=np.float64)
         decl = np.zeros(n, dtype=bool) if declare is None else np.asarray(declare, dtype=bool)
         pk = np.full(n, -1, dtype=np.int64) if pocket is None else np.asarray(pocket, dtype=np.int64)
         bl = np.full(n, -1, dtype=np.int64) if ball is None else np.asarray(ball, dtype=np.int64)
         rp = np.zeros(n, dtype=bool) if replace is None else np.asarray(replace, dtype=bool)
         st = np.zeros(n, dtype=np.int64) if struck is None else np.asarray(struck, dtype=np.int64)
-        return cls(*vec, place, decl, pk, bl, rp, st)
+        return cls(*vec, place, decl, pk, bl, rp, st, th)
 
     @property
     def n(self) -> int:
@@ -85,7 +95,12 @@ class ShotPlan:
 
     @property
     def shots(self) -> Shots:
-        return Shots(self.phi, self.speed, self.a, self.b)
+        return Shots(self.phi, self.speed, self.a, self.b, self.theta)
+
+    @property
+    def elevated(self) -> bool:
+        """Some row elevates the cue (``theta`` > 0)."""
+        return bool(np.any(self.theta != 0))
 
     def take(self, rows) -> "ShotPlan":
         return ShotPlan(*(getattr(self, f.name)[rows] for f in dataclasses.fields(self)))
@@ -95,8 +110,8 @@ class ShotPlan:
         shape, a NaN or infinite shot, a speed out of range, offsets outside
         the miscue disc, a bad pocket index, a called ball outside -1 ..
         ``n_balls - 1`` or a struck ball outside 0 .. ``n_balls - 1`` (when
-        given)."""
-        for f in ("phi", "speed", "a", "b", "declare", "pocket", "ball", "replace", "struck"):
+        given), an elevation outside [0, pi/2]."""
+        for f in ("phi", "speed", "a", "b", "declare", "pocket", "ball", "replace", "struck", "theta"):
             if np.shape(getattr(self, f)) != (n,):
                 raise ValueError(f"ShotPlan.{f} must have shape ({n},), got {np.shape(getattr(self, f))}")
         if np.shape(self.placement) != (n, 2):
@@ -112,6 +127,7 @@ class ShotPlan:
         if n_balls is not None and ((self.struck < 0) | (self.struck >= n_balls)).any():
             raise ValueError(f"ShotPlan.struck must be a ball 0..{n_balls - 1} (0: the shooter's cue ball), "
                              f"got {self.struck}")
+        check_theta(self.theta)
         p = self.placement
         if not np.isfinite(p).all() and not (np.isfinite(p) | np.isnan(p[:, :1])).all():
             raise ValueError("ShotPlan.placement rows must be finite (or NaN in both coordinates)")
@@ -133,3 +149,12 @@ class ShotPlan:
                              f"miscue disc (radius {params.miscue_limit} R)")
         if ((self.pocket < -1) | (self.pocket > 5)).any():
             raise ValueError(f"ShotPlan.pocket must be -1 (none) or a pocket index 0..5, got {self.pocket}")
+
+
+def check_theta(theta) -> None:
+    """Raise a ValueError naming the first elevation ``theta`` [n] that is not finite or outside [0, pi/2]."""
+    theta = np.asarray(theta, dtype=np.float64)
+    bad = ~np.isfinite(theta) | (theta < 0) | (theta > MAX_ELEVATION)
+    if bad.any():
+        r = int(np.argmax(bad))
+        raise ValueError(f"ShotPlan.theta (the cue's elevation) must lie in [0, pi/2] rad, got {theta[r]} at row {r}")

@@ -17,6 +17,11 @@ One-player tasks: ``preview(view, plan, rows)`` (or ``start=``, a
 ``BallState`` to play from) strikes and simulates each shot and judges it
 with the task: ``TaskPreview``.
 
+Elevated shots (``ShotPlan.theta``) are previewed where the view's effects
+have ``airborne`` on, as the env plays them: the tables carry
+``BallState.air`` and the ball jumps (``contract.turn.airborne_state``);
+elsewhere a plan with the cue elevated is refused (a ValueError).
+
 Noise (``noise=``):
 
 - ``None`` (default): the shot exactly as planned;
@@ -41,7 +46,7 @@ from ..physics import BallState, strike_velocity
 from ..physics.noise import NoiseConfig, perturb
 from ..rules import Constraints, ShotRecord
 from .outcome import ShotOutcome
-from .turn import Turn, play_turn
+from .turn import Turn, airborne_state, check_elevation, play_turn
 
 
 @dataclasses.dataclass(eq=False)
@@ -150,11 +155,14 @@ def play_shots(view, start: BallState, shots, noise=None, rng=None, rows=None, d
     factor) and simulate them to rest with the view's equipment: the
     ``physics.SimResult``. The one-player tasks' preview."""
     k = start.n_envs
+    effects = view.equipment.effects
+    theta = np.broadcast_to(np.asarray(getattr(shots, "theta", 0.0), dtype=np.float64), (k,))  # the noise leaves the elevation
+    check_elevation(theta, effects)
     cfg, scale = _noise_of(view, noise, np.arange(k) if rows is None else rows)
     draw = _drawer(cfg, None if scale is None else np.asarray(scale), rng, draws, k)
     if draw is not None:
         shots = perturb(shots, draw(np.arange(k)), cfg, view.params)
-    struck = strike_velocity(start, *shots, view.params)
+    struck = strike_velocity(airborne_state(start, effects), *shots, view.params, theta=theta)
     # the cue ball's contacts in order where the rules read them (three-cushion)
     return view.equipment.simulate(struck, getattr(view.rules, "contacts", 0))
 

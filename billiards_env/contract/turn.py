@@ -30,6 +30,11 @@ A turn, for each of ``n`` tables (a ``ShotPlan`` row, absolute aim):
    strikes the shooter's cue ball, or where the plan names another ball
    (``ShotPlan.struck``, games where each player has a cue ball:
    three-cushion's wrong cue ball) that ball, with the same arithmetic;
+   elevated (``ShotPlan.theta``; the noise leaves the elevation as planned)
+   only where the equipment's effects have ``airborne`` on: the struck
+   tables then carry ``BallState.air`` (zeros before the strike), so the
+   cue's drive into the slate makes the ball jump, and a ball may leave the
+   table (``ShotInput.off_table``, ruled by every game);
 6. the rules' ruling from the game state, then the balls the ruling puts
    back (respotted object balls, snooker's colours, the re-placed carom
    balls), and in games where each player has a cue ball, the incoming
@@ -50,7 +55,7 @@ from ..rules import records as R
 from ..rules.placement import d_of, legal_spots
 from ..rules.records import Constraints, GameState, ShotInput, ShotRecord
 from ..rules.respot import hand_over, restart_position
-from .plan import ShotPlan
+from .plan import ShotPlan, check_theta
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
@@ -139,6 +144,7 @@ def play_turn(rules, eq: Equipment, game: GameState, c: Constraints, pos: np.nda
                          "player has a cue ball (three-cushion) rule a shot with the wrong ball")
     if ((plan.struck < 0) | (plan.struck >= B)).any():
         raise ValueError(f"ShotPlan.struck must be a ball 0..{B - 1}, got {plan.struck}")
+    check_elevation(plan.theta, eq.effects)
     replaced = c.may_replace & plan.replace
     passed = c.may_pass & plan.declare & ~replaced
     push = c.push_out_allowed & plan.declare
@@ -173,8 +179,10 @@ def play_turn(rules, eq: Equipment, game: GameState, c: Constraints, pos: np.nda
         shots = plan.take(shoot).shots
         if noise is not None and noise.enabled:
             shots = perturb(shots, draw(shoot), noise, eq.params)
-        struck = start.take(shoot)  # a copy, struck in place
-        apply_strike(struck, *(np.ascontiguousarray(v, dtype=np.float64) for v in shots), eq.params.R)
+        struck = airborne_state(start.take(shoot), eq.effects)  # a copy, struck in place
+        theta = plan.theta[shoot]
+        apply_strike(struck, *(np.ascontiguousarray(v, dtype=np.float64) for v in shots), eq.params.R,
+                     np.ascontiguousarray(theta) if (theta != 0).any() else None)
         _strike_other(struck, plan.struck[shoot])
         t0 = time.perf_counter()
         res = eq.simulate(struck, K, record)
@@ -208,6 +216,33 @@ def _strike_other(struck: BallState, ball: np.ndarray) -> None:
         j = ball[r]
         struck.vel[r, j], struck.omega[r, j] = struck.vel[r, 0], struck.omega[r, 0]
         struck.vel[r, 0], struck.omega[r, 0] = 0.0, 0.0
+        if struck.air is not None:  # an elevated cue's drive into the slate
+            struck.air[r, j], struck.air[r, 0] = struck.air[r, 0], 0.0
+
+
+def airborne_state(state: BallState, effects: Effects) -> BallState:
+    """``state`` ready to be struck with ``effects``: with ``airborne`` on, the
+    same arrays with ``air`` zeros (every ball resting on the slate) where it
+    has none, so that ``apply_strike`` keeps an elevated cue's velocity into
+    the slate and the simulator makes it jump; else ``state`` itself."""
+    if not effects.airborne or state.air is not None:
+        return state
+    return BallState(state.pos, state.vel, state.omega, state.pocket, np.zeros(state.pos.shape[:2] + (2,)))
+
+
+def check_elevation(theta: np.ndarray, effects: Effects) -> None:
+    """Shots that elevate the cue (``theta`` [n], ``ShotPlan.theta``) are
+    played only with ``Effects(airborne=True)``: elsewhere a ValueError naming
+    the switch (the planar simulator would drop the drive into the slate and
+    play another shot than the one planned). Elevations lie in [0, pi/2]."""
+    if not np.any(theta != 0):
+        return
+    if not effects.airborne:
+        r = int(np.argmax(theta != 0))
+        raise ValueError(f"ShotPlan.theta elevates the cue ({theta[r]} rad at row {r}) but the equipment's "
+                         "effects have airborne off: elevated shots are played with Effects(airborne=True) (the "
+                         "envs' effects={'airborne': True}); a level shot has theta 0")
+    check_theta(theta)
 
 
 def _put_back(rules, eq: Equipment, pos: np.ndarray, pocket: np.ndarray, rec: ShotRecord) -> None:

@@ -33,6 +33,12 @@ _INFO_DTYPES = {"pocketed": bool, "n_pocketed": np.int64, "first_contact": np.in
                 "foul": bool, "scratch": bool, "success": bool, "n_events": np.int64, "sim_time": np.float64,
                 "sim_truncated": bool, "action_clipped": bool, "shot": np.int64}
 _NO_BALL_INFO = ("first_contact", "legal_target")
+_BALL_INFO = ("pocketed", "off_table")  # [N, B] entries
+_AIRBORNE_INFO = {"off_table": bool}  # the airborne option's own entries (effects={"airborne": True})
+
+
+def _info_dtypes(core) -> dict:
+    return {**_INFO_DTYPES, **_AIRBORNE_INFO} if core.airborne else _INFO_DTYPES
 
 _COMMON_DOC = """
     **Observation** (``Box(0, 1, (4*B + 1,), float32)``, B = n_balls + 1 balls,
@@ -99,6 +105,18 @@ _COMMON_DOC = """
     **Shot noise** (``noise=``: ``"none"`` default, ``"tournament"`` = std
     0.125 deg aim, 0.075 m/s speed, 0.5 mm per offset, or a mapping) is drawn
     from the table's own random stream, so seeding reproduces it.
+
+    **The cue's elevation** (an option, off by default: the ids, spaces,
+    observations and infos above are the planar env's): with the equipment's
+    ``effects={"airborne": True}`` (``gym.make(id, effects={"airborne":
+    True})``) the balls fly (jump and massé strokes, bounces on the slate,
+    balls driven off the table: ``physics.Effects``) and the action is
+    ``Box(-1, 1, (5,), float32)``: a4 is the cue's elevation theta =
+    (a4 + 1) / 2 * 60 degrees (``contract.codec.MAX_ACTION_ELEVATION``),
+    a4 = -1 the level cue; ``Shots.theta`` and ``ShotPlan.theta`` carry it.
+    ``info["off_table"]`` [B] marks the balls the shot drove off the table
+    (onto the rail or the floor): out of play as pocketed balls are, but in
+    no pocket; the cue ball off the table is a scratch.
 
     **Reward**: sum of ``info["reward_terms"]``: ``pocket`` (per legal ball
     pocketed), ``scratch``, ``foul``, ``contact`` (legal target hit first),
@@ -197,7 +215,7 @@ class BilliardsEnv(gym.Env):
         self._renderer = _Renderer(render_mode, render_ppm, render_paths)
         d = self._core.obs_dim
         self.observation_space = spaces.Box(self._core.obs_low, 1.0, shape=(d,), dtype=np.float32)
-        self.action_space = spaces.Box(-1.0, 1.0, shape=(4,), dtype=np.float32)
+        self.action_space = spaces.Box(-1.0, 1.0, shape=(self._core.action_dim,), dtype=np.float32)
         self._done = True
         self._seeded = False
 
@@ -223,13 +241,15 @@ class BilliardsEnv(gym.Env):
         return self._core.shot_context()
 
     def actions_to_shots(self, actions) -> Shots:
-        """Actions [n, 4] (or [4]), each for this table as it is now -> ``Shots`` [n] (after clipping)."""
+        """Actions [n, action_dim] (or [action_dim]), each for this table as it is now -> ``Shots`` [n] (after
+        clipping)."""
         a = np.asarray(actions, dtype=np.float64)
-        a2 = self._core.validate_actions(a.reshape(-1, 4) if a.ndim == 1 else a, len(a.reshape(-1, 4)))
+        d = self._core.action_dim
+        a2 = self._core.validate_actions(a.reshape(-1, d) if a.ndim == 1 else a, len(a.reshape(-1, d)))
         return self._core.actions_to_shots(a2, np.zeros(len(a2), dtype=np.int64))
 
     def shots_to_actions(self, shots: Shots) -> np.ndarray:
-        """``Shots`` [n] (or scalars), each for this table as it is now -> actions [n, 4] (float64,
+        """``Shots`` [n] (or scalars), each for this table as it is now -> actions [n, action_dim] (float64,
         clipped to [-1, 1])."""
         return self._core.shots_to_actions(shots, np.zeros(len(shots), dtype=np.int64))
 
@@ -238,7 +258,7 @@ class BilliardsEnv(gym.Env):
         return self._core.view(np.array([0]))
 
     def actions_of(self, plan) -> np.ndarray:
-        """A bot's one-row ``ShotPlan`` -> actions [1, 4] (float32)."""
+        """A bot's one-row ``ShotPlan`` -> actions [1, action_dim] (float32)."""
         return self._core.actions_of(plan, np.array([0]))
 
     def set_state(self, state) -> np.ndarray:
@@ -264,11 +284,12 @@ class BilliardsEnv(gym.Env):
     def step(self, action):
         if self._done:
             raise RuntimeError("the episode has ended (or never started): call reset() before step()")
-        if np.shape(action) != (4,):
-            raise ValueError(f"action must have shape (4,), got {np.shape(action)}")
-        a = self._core.validate_actions(np.asarray(action, dtype=np.float64).reshape(1, 4), 1)
+        d = self._core.action_dim
+        if np.shape(action) != (d,):
+            raise ValueError(f"action must have shape ({d},), got {np.shape(action)}")
+        a = self._core.validate_actions(np.asarray(action, dtype=np.float64).reshape(1, d), 1)
         out = self._core.step(a, [0])
-        info = {k: (v[0] if k == "pocketed" else v[0].item()) for k, v in out["info"].items()}
+        info = {k: (v[0] if k in _BALL_INFO else v[0].item()) for k, v in out["info"].items()}
         info["reward_terms"] = {k: float(v[0]) for k, v in out["terms"].items()}
         terminated, truncated = bool(out["terminated"][0]), bool(out["truncated"][0])
         self._done = terminated or truncated
@@ -344,7 +365,7 @@ class BilliardsVectorEnv(VectorEnv):
         self._renderer = _Renderer(render_mode, render_ppm, render_paths)
         d = self._core.obs_dim
         self.single_observation_space = spaces.Box(self._core.obs_low, 1.0, shape=(d,), dtype=np.float32)
-        self.single_action_space = spaces.Box(-1.0, 1.0, shape=(4,), dtype=np.float32)
+        self.single_action_space = spaces.Box(-1.0, 1.0, shape=(self._core.action_dim,), dtype=np.float32)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
         self._seeded = False
@@ -371,12 +392,13 @@ class BilliardsVectorEnv(VectorEnv):
         return self._core.shot_context()
 
     def actions_to_shots(self, actions) -> Shots:
-        """Actions [N, 4] -> ``Shots`` [N] for the current tables (after clipping)."""
+        """Actions [N, action_dim] -> ``Shots`` [N] for the current tables (after clipping)."""
         a = self._core.validate_actions(actions, self.num_envs)
         return self._core.actions_to_shots(a, np.arange(self.num_envs))
 
     def shots_to_actions(self, shots: Shots) -> np.ndarray:
-        """``Shots`` [N] (or scalars) -> actions [N, 4] (float64, clipped to [-1, 1]) for the current tables."""
+        """``Shots`` [N] (or scalars) -> actions [N, action_dim] (float64, clipped to [-1, 1]) for the current
+        tables."""
         return self._core.shots_to_actions(shots, np.arange(self.num_envs))
 
     def view(self):
@@ -384,7 +406,7 @@ class BilliardsVectorEnv(VectorEnv):
         return self._core.view(np.arange(self.num_envs))
 
     def actions_of(self, plan) -> np.ndarray:
-        """A bot's ``ShotPlan`` for every table -> actions [N, 4] (float32)."""
+        """A bot's ``ShotPlan`` for every table -> actions [N, action_dim] (float32)."""
         return self._core.actions_of(plan, np.arange(self.num_envs))
 
     def set_state(self, state) -> np.ndarray:
@@ -428,13 +450,14 @@ class BilliardsVectorEnv(VectorEnv):
         if len(act) == N:  # every table shot: the core's arrays are already complete
             out = self._core.step(a, act)
             reward, terminated, truncated = out["reward"], out["terminated"], out["truncated"]
-            info = {k: np.asarray(v, dtype=_INFO_DTYPES[k]) for k, v in out["info"].items()}
+            dtypes = _info_dtypes(self._core)
+            info = {k: np.asarray(v, dtype=dtypes[k]) for k, v in out["info"].items()}
             terms = out["terms"]
         else:  # some or no tables shot: the others report zeros
             reward, terminated, truncated = np.zeros(N), np.zeros(N, dtype=bool), np.zeros(N, dtype=bool)
             if self._idle_info is None:  # built once: copies are cheaper than np.full
-                self._idle_info = {k: np.full((N, B) if k == "pocketed" else N, -1 if k in _NO_BALL_INFO else 0,
-                                              dtype=dt) for k, dt in _INFO_DTYPES.items()}
+                self._idle_info = {k: np.full((N, B) if k in _BALL_INFO else N, -1 if k in _NO_BALL_INFO else 0,
+                                              dtype=dt) for k, dt in _info_dtypes(self._core).items()}
             info = {k: v.copy() for k, v in self._idle_info.items()}
             terms = {k: np.zeros(N) for k in self._core.task.reward_names}
             if len(act):

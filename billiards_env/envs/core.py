@@ -14,7 +14,10 @@ Shot space: an action [4] in [-1, 1] maps to a ``Shots`` row (phi, speed, a,
 b) relative to the table's *shot context* (legal target, aim origin,
 potential), computed once per state change for every table
 (``shot_context``) and shared by the mapping, the reward, the observation and
-the policies.
+the policies. With the equipment's ``effects={"airborne": True}`` (off by
+default) the action is [5]: a4 the cue's elevation
+(``contract.codec.MAX_ACTION_ELEVATION``), the balls fly and the info
+reports the balls driven off the table (``off_table``).
 """
 from __future__ import annotations
 
@@ -26,8 +29,9 @@ import numpy as np
 from ..physics import BallState, SimOptions, simulate
 from ..physics.noise import perturb
 from ..physics.strike import Shots, apply_strike, draw_to_speed
-from ..contract.codec import ShotContext, _action_to_shot, _context, shot_actions
+from ..contract.codec import MAX_ACTION_ELEVATION, ShotContext, _action_to_shot, _context, shot_actions
 from ..contract.outcome import ShotOutcome
+from ..contract.turn import airborne_state, check_elevation
 from ..contract.pockets import pocket_accept_cos, pocket_axes
 from ..contract.view import TaskView
 from . import target_frame
@@ -67,6 +71,8 @@ class BilliardsCore:
         self.params = cfg.params()
         self.effects = cfg.effects
         self.models = cfg.models
+        self.airborne = bool(self.effects.airborne)  # the option: balls fly, a4 the cue's elevation
+        self.action_dim = 4 + int(self.airborne)
         self.record = record
         self.n_balls = cfg.n_balls + 1  # cue ball + object balls
         self.diag = math.hypot(self.table.width, self.table.length)
@@ -114,20 +120,23 @@ class BilliardsCore:
         return obs
 
     # --- actions <-> shots ----------------------------------------------------
-    @staticmethod
-    def validate_actions(actions, n: int) -> np.ndarray:
+    def validate_actions(self, actions, n: int) -> np.ndarray:
         a = np.asarray(actions, dtype=np.float64)
-        if a.shape != (n, 4):
-            raise ValueError(f"actions must have shape ({n}, 4), got {a.shape}")
+        if a.shape != (n, self.action_dim):
+            raise ValueError(f"actions must have shape ({n}, {self.action_dim}), got {a.shape}")
         if not np.all(np.isfinite(a)):
             bad = np.argwhere(~np.isfinite(a))[0]
             raise ValueError(f"action contains NaN or infinite values (first at index {tuple(bad)}): {a[bad[0]]}")
         return a
 
     def actions_to_shots(self, actions: np.ndarray, idx) -> Shots:
-        """Validated actions [n, 4] of tables ``idx`` -> ``Shots`` (after clipping;
+        """Validated actions [n, action_dim] of tables ``idx`` -> ``Shots`` (after clipping;
         see billiards._COMMON_DOC for the mapping)."""
         actions = np.ascontiguousarray(actions, dtype=np.float64)
+        theta = None
+        if self.airborne:  # a4: the cue's elevation, -1 the level cue
+            theta = (np.clip(actions[:, 4], -1.0, 1.0) + 1.0) * 0.5 * MAX_ACTION_ELEVATION
+            actions = np.ascontiguousarray(actions[:, :4])
         out = np.empty((4, len(actions)))
         ctx = self.shot_context()
         _action_to_shot(actions, ctx.aim_origin[idx], self.cfg.min_draw, self.params.max_draw,
@@ -138,14 +147,22 @@ class BilliardsCore:
         if self.cfg.speed_scale == "log":  # a1 spans min_draw..max_draw geometrically
             lo, hi = self.cfg.min_draw, self.params.max_draw
             out[1] = lo * (hi / lo) ** (0.5 * (np.clip(actions[:, 1], -1.0, 1.0) + 1.0))
-        return Shots.of_arrays(out[0], draw_to_speed(out[1], self.params), out[2], out[3])
+        return Shots.of_arrays(out[0], draw_to_speed(out[1], self.params), out[2], out[3], theta)
 
     def shots_to_actions(self, shots: Shots, idx) -> np.ndarray:
-        """``Shots`` of tables ``idx`` -> actions [n, 4] (float64, clipped to
-        [-1, 1]); the inverse of ``actions_to_shots`` on the unclipped range."""
+        """``Shots`` of tables ``idx`` -> actions [n, action_dim] (float64, clipped to
+        [-1, 1]); the inverse of ``actions_to_shots`` on the unclipped range.
+        An elevated shot (``Shots.theta``) needs the option (a ValueError
+        otherwise) and an elevation in [0, ``MAX_ACTION_ELEVATION``]."""
         n = len(idx)
         if not isinstance(shots, Shots):
             raise TypeError(f"shots must be a Shots, got {type(shots).__name__}")
+        theta = np.broadcast_to(np.asarray(shots.theta, dtype=np.float64), (n,))
+        check_elevation(theta, self.effects)
+        if (theta > MAX_ACTION_ELEVATION * (1 + 1e-12)).any():
+            r = int(np.argmax(theta > MAX_ACTION_ELEVATION * (1 + 1e-12)))
+            raise ValueError(f"the cue's elevation must lie in [0, {MAX_ACTION_ELEVATION:.6g}] rad (the action's "
+                             f"{np.degrees(MAX_ACTION_ELEVATION):g} degrees), got {theta[r]} at shot {r}")
         ctx = self.shot_context()
         out = shot_actions(shots, ctx.aim_origin[idx], self.cfg.min_draw, self.params, self.cfg.speed_scale == "log")
         if self.cfg.aim == "impact":  # a0 is the impact parameter (envs/impact.py)
@@ -153,6 +170,8 @@ class BilliardsCore:
             impact_actions(np.ascontiguousarray(phi), ctx.aim_origin[idx], ctx.target[idx],
                            self.state.pos[idx], self.params.R, rel)
             out[:, 0] = rel
+        if self.airborne:
+            out = np.concatenate([out, (2.0 * theta / MAX_ACTION_ELEVATION - 1.0)[:, None]], axis=1)
         return np.clip(out, -1.0, 1.0)
 
     # --- bots ----------------------------------------------------------------
@@ -167,9 +186,9 @@ class BilliardsCore:
                               _observe=lambda: self.observe()[idx])
 
     def actions_of(self, plan, idx=None) -> np.ndarray:
-        """The actions [n, 4] (float32, clipped) that play a bot's ``ShotPlan``
+        """The actions [n, action_dim] (float32, clipped) that play a bot's ``ShotPlan``
         on tables ``idx`` (the env's inverse mapping of its shots); a bot's
-        own actions [n, 4] are returned as they are."""
+        own actions [n, action_dim] are returned as they are."""
         if isinstance(plan, np.ndarray):
             return plan
         idx = self._every_table() if idx is None else idx
@@ -278,15 +297,18 @@ class BilliardsCore:
             raise RuntimeError("the cue ball is pocketed: the episode has ended, call reset()")
         ctx = self.shot_context()
         tgt, phi0 = ctx.target[sel], ctx.potential[sel]
-        shots = self.apply_noise(self.actions_to_shots(actions, sel), idx)
-        struck = start.copy()
-        apply_strike(struck, *shots, p.R)  # actions were checked at the env's boundary
+        shots = self.actions_to_shots(actions, sel)
+        theta = shots.elevated  # None: the level cue's arithmetic (the noise leaves the elevation as it is)
+        shots = self.apply_noise(shots, idx)
+        struck = airborne_state(start.copy(), self.effects)
+        apply_strike(struck, *shots, p.R, theta)  # actions were checked at the env's boundary
         res = self.simulate(struck)
         rest = res.state  # simulate's own arrays: no copy needed
         end = BallState(rest.pos, np.zeros_like(rest.vel), np.zeros_like(rest.omega), rest.pocket)
 
         shot = ShotOutcome.of(start.pocket, end.pocket, first_contact=res.first_contact, target=tgt,
                               contacts=res.contacts, n_contacts=res.n_contacts)
+        more = {"off_table": shot.off_table} if self.airborne else {}  # the option's own entry
         judged = self.task.judge(shot)
         self.shots[sel] += 1
         n_shots = self.shots[sel].copy()
@@ -305,4 +327,4 @@ class BilliardsCore:
                     info=dict(pocketed=shot.pocketed, n_pocketed=shot.n_pocketed, first_contact=shot.first_contact,
                               legal_target=tgt, foul=judged.foul, scratch=shot.scratch, success=judged.success,
                               n_events=res.n_events, sim_time=res.time, sim_truncated=res.truncated,
-                              action_clipped=clipped, shot=n_shots))
+                              action_clipped=clipped, shot=n_shots, **more))

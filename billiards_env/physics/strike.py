@@ -59,18 +59,22 @@ class Shots:
     """A batch of cue strikes, the arguments of ``strike_velocity``: float64
     arrays [N] of the aim ``phi`` (rad, counter-clockwise from +x), the
     cue-ball ``speed`` (m/s) and the tip offsets ``a`` (side, + = right
-    english) and ``b`` (height, + = follow) in units of R. Scalars and
-    arrays are broadcast to one shape; ``phi, speed, a, b = shots`` unpacks."""
+    english) and ``b`` (height, + = follow) in units of R, and the cue's
+    elevation ``theta`` (rad above the horizontal, 0 .. pi/2; default 0, the
+    level cue). Scalars and arrays are broadcast to one shape;
+    ``phi, speed, a, b = shots`` unpacks the four level-cue arguments (the
+    elevation is ``shots.theta``, passed as ``theta=``)."""
 
     phi: np.ndarray
     speed: np.ndarray
     a: np.ndarray
     b: np.ndarray
+    theta: np.ndarray = 0.0
 
     def __post_init__(self):
         arrays = np.broadcast_arrays(*(np.atleast_1d(np.asarray(getattr(self, f), dtype=np.float64))
-                                       for f in ("phi", "speed", "a", "b")))
-        for f, v in zip(("phi", "speed", "a", "b"), arrays):
+                                       for f in _FIELDS))
+        for f, v in zip(_FIELDS, arrays):
             object.__setattr__(self, f, np.array(v))  # own, writable copies
 
     def __len__(self) -> int:
@@ -80,18 +84,30 @@ class Shots:
         return iter((self.phi, self.speed, self.a, self.b))
 
     @classmethod
-    def of_arrays(cls, phi: np.ndarray, speed: np.ndarray, a: np.ndarray, b: np.ndarray) -> "Shots":
+    def of_arrays(cls, phi: np.ndarray, speed: np.ndarray, a: np.ndarray, b: np.ndarray,
+                  theta: np.ndarray | None = None) -> "Shots":
         """Shots over float64 arrays [N] of one length that the caller hands
         over (not copied, not checked): for code that built them itself,
-        such as the envs' action mapping."""
+        such as the envs' action mapping. ``theta`` None: the level cue
+        (zeros)."""
         shots = object.__new__(cls)
-        for f, v in zip(("phi", "speed", "a", "b"), (phi, speed, a, b)):
+        theta = np.zeros(len(phi)) if theta is None else theta
+        for f, v in zip(_FIELDS, (phi, speed, a, b, theta)):
             object.__setattr__(shots, f, v)
         return shots
 
+    @property
+    def elevated(self) -> np.ndarray | None:
+        """``theta`` where some shot is elevated, else None (the level strike's
+        own arithmetic: what ``strike_velocity`` and ``apply_strike`` take)."""
+        return self.theta if np.any(self.theta != 0) else None
+
     def take(self, idx) -> "Shots":
         """The shots at ``idx`` (an index array or mask)."""
-        return Shots(self.phi[idx], self.speed[idx], self.a[idx], self.b[idx])
+        return Shots(self.phi[idx], self.speed[idx], self.a[idx], self.b[idx], self.theta[idx])
+
+
+_FIELDS = ("phi", "speed", "a", "b", "theta")
 
 
 # The steepest cue: vertical (a massé cue stands up to about 90 degrees); a cue

@@ -71,8 +71,9 @@ def game_bots(game: str) -> list[str]:
     rest = spec.own_bots + ("random",) if spec.own_bots else POOL_BOTS + STRONG_BOTS
     return [own] + [b for b in rest if b != own and bot_problem(b, game) is None] + ladder_names(game)
 DECLARATIONS = ("push_out", "pass")
-SHOT_FIELDS = {"turn", "player", "aim", "speed", "side", "height", "placement", "declare", "pocket", "ball"}
-NEW_FIELDS = {"game", "opponent", "players", "seed", "breaker", "noise"}
+SHOT_FIELDS = {"turn", "player", "aim", "speed", "side", "height", "elevation", "placement", "declare", "pocket",
+               "ball"}
+NEW_FIELDS = {"game", "opponent", "players", "seed", "breaker", "noise", "airborne"}
 
 
 # --- request checks -----------------------------------------------------------------
@@ -148,6 +149,11 @@ def shot_request(req, lim: dict) -> dict:
     if math.hypot(out["side"], out["height"]) > lim["tip_max"] + 1e-12:
         raise PlayError(400, f"the tip offset ({out['side']}, {out['height']}) R is beyond the miscue limit "
                              f"{lim['tip_max']} R")
+    if req.get("elevation") is not None:  # the cue's elevation (rad): games started with airborne only
+        if "elevation_max" not in lim:
+            raise PlayError(400, "this game is played with a level cue: 'elevation' needs a game started with "
+                                 "\"airborne\": true (jump and masse shots)")
+        out["elevation"] = _number(req, "elevation", 0.0, lim["elevation_max"])
     if req.get("placement") is not None:
         p = req["placement"]
         if not (isinstance(p, list) and len(p) == 2):
@@ -184,7 +190,11 @@ def new_request(req, extra_bots=()) -> dict:
     seed = req.get("seed")
     seed = secrets.randbelow(2 ** 31) if seed is None else _integer(req, "seed", 0, MAX_SEED)
     breaker = _integer(req, "breaker", 0, 1) if "breaker" in req else 0
-    return {"game": game, "players": players, "seed": seed, "breaker": breaker, "noise": noise}
+    airborne = req.get("airborne", False)
+    if not isinstance(airborne, bool):
+        raise PlayError(400, f"'airborne' must be true or false (balls that fly: jump and masse shots), got "
+                             f"{_shown(airborne)}")
+    return {"game": game, "players": players, "seed": seed, "breaker": breaker, "noise": noise, "airborne": airborne}
 
 
 # --- which bots play what ----------------------------------------------------------------
@@ -304,7 +314,7 @@ def create_app(max_games: int = MAX_GAMES, extra_bots=(), allowed_hosts=None, id
     def start(req) -> Session:
         try:
             return Session(secrets.token_hex(8), req["game"], req["players"], req["seed"], req["breaker"],
-                           req["noise"])
+                           req["noise"], req.get("airborne", False))
         except (ValueError, TypeError) as exc:  # a bot that cannot be made for this game (its own message)
             raise PlayError(400, f"the game could not be set up: {exc}") from None
 

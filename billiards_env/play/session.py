@@ -26,7 +26,9 @@ from ..rendering.replay import Replay
 from ..rules import records as R
 from ..rules.placement import FOOT_SPOT, HEAD_STRING, KITCHEN_GAP, d_of
 from ..rules.snooker import FIRST_COLOUR
+from ..contract.codec import MAX_ACTION_ELEVATION
 from ..physics.params import draw_to_speed
+from ..physics.strike import Shots
 from ..physics.state import SPOT_CLEAR, SPOT_EDGE
 
 HUMAN = "human"          # a player's name for a person at the screen
@@ -83,11 +85,15 @@ class Session:
     ``bots.registry``) on ``game`` (a name of ``envs.games.GAMES``), seeded
     with ``seed``; ``breaker``: who breaks (0 or 1); ``noise``: the shot
     noise of ``GameConfig`` (``none`` by default: a person's shot is played
-    as aimed)."""
+    as aimed); ``airborne``: the balls fly (``Effects(airborne=True)``) and a
+    person's shot may elevate the cue (``elevation``, up to
+    ``contract.codec.MAX_ACTION_ELEVATION``: jump and massé shots)."""
 
-    def __init__(self, gid: str, game: str, players, seed: int, breaker: int = 0, noise: str = "none"):
+    def __init__(self, gid: str, game: str, players, seed: int, breaker: int = 0, noise: str = "none",
+                 airborne: bool = False):
         self.id, self.seed, self.players = gid, int(seed), [str(p) for p in players]
-        self.core = GameCore(GameConfig(game=game, noise=noise, max_shots=MAX_SHOTS), 1, record=True)
+        air = {"effects": {"airborne": True}} if airborne else {}
+        self.core = GameCore(GameConfig(game=game, noise=noise, max_shots=MAX_SHOTS, **air), 1, record=True)
         self.core.streams.seed([0], [self.seed])
         self.bots = [None if p == HUMAN else make_bot(p, seed=self.seed + k) for k, p in enumerate(self.players)]
         self.core.reset_tables([0], breaker=np.array([int(breaker)]))
@@ -181,6 +187,9 @@ class Session:
             "pockets": c.pockets.tolist(), "hint_bot": default_bot(self.game), "pocket_names": pocket_names(c.pockets),
             "ball_names": self.ball_names(),
         })
+        if c.airborne:  # the option's own entries: the cue's steepest elevation (rad), balls that fly
+            st["airborne"] = True
+            st["limits"]["elevation_max"] = float(MAX_ACTION_ELEVATION)
         return st
 
     def ball_names(self) -> list[str]:
@@ -255,7 +264,10 @@ class Session:
         elif nominating:  # none nominated: the colour hit first counts (an obvious nomination), as a bot's -1
             ball = 0
         codec = c.codec([0])
-        actions = codec.encode((req["aim"], req["speed"], req.get("side", 0.0), req.get("height", 0.0)),
+        shots = (req["aim"], req["speed"], req.get("side", 0.0), req.get("height", 0.0))
+        if req.get("elevation"):  # an elevated cue (a game started with airborne; app.shot_request checked it)
+            shots = Shots(*shots, req["elevation"])
+        actions = codec.encode(shots,
                                placement=placement, declare=np.array([declare is not None]),
                                pocket=None if pocket is None else np.array([pocket]),
                                ball=None if ball is None else np.array([ball]))

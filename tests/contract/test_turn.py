@@ -198,3 +198,100 @@ def test_preview_draws_are_checked():
         core.view([0]).preview(plan, noise="tournament", draws=np.zeros((2, 4)))
     with pytest.raises(ValueError, match="needs rng"):
         core.view([0]).preview(plan, noise="tournament")
+
+
+AIR = {"airborne": True}
+
+
+@pytest.mark.parametrize("game", GAMES)
+def test_elevated_preview_is_the_env_bit_for_bit(game):
+    """The airborne option (``effects={"airborne": True}``): random actions, their last component the cue's
+    elevation (0 to 60 degrees: jumps, balls off the table), decoded into plans with ``theta``; the preview and
+    the step agree on everything, bit for bit, as on the planar tables."""
+    n = 12
+    core = GameCore(GameConfig(game=game, noise="variable", effects=AIR), n)
+    assert core.action_dim == core.base_dim + 1
+    idx = np.arange(n)
+    core.streams.seed(idx, 200 + idx)
+    core.reset_tables(idx)
+    rng = np.random.default_rng(2)
+    elevated = off = 0
+    for _ in range(4):
+        view = core.view(idx)
+        actions = _actions(rng, core, n)
+        plan, _ = view.codec.decode(actions)
+        elevated += int((plan.theta > 0).sum())
+        shoot = ~(view.may_pass & plan.declare)
+        draws = np.zeros((n, 4))
+        draws[shoot] = copy.deepcopy(core.streams).normal(idx[shoot], 4)
+        pv = view.preview(plan, noise="env", draws=draws)
+        out = core.step(actions, idx)
+        _same(pv.record, out["record"], "record")
+        assert np.array_equal(pv.pos, core.state.pos) and np.array_equal(pv.pocket, core.state.pocket)
+        _same(pv.state, core.game, "state")
+        _same(pv.next, core.constraints(), "next")
+        assert np.array_equal(pv.off_table, out["info"]["off_table"])
+        off += int(out["info"]["off_table"].sum())
+        done = np.nonzero(out["terminated"] | out["truncated"])[0]
+        if len(done):
+            core.reset_tables(done)
+    assert elevated > 0 and off > 0  # the option played elevated shots, and some balls left the table
+
+
+def test_an_encoded_elevated_plan_is_played_as_previewed():
+    """A bot's plan with the cue elevated (``ShotPlan.theta``) through the env's actions (``actions_of``: the
+    codec's last component) plays as the preview of the decoded plan; the elevation round-trips through the
+    codec to float32 precision."""
+    core = game_table("nine_ball", {0: (0.635, 0.5), 1: (0.635, 0.75), 9: (0.3, 2.0)}, effects=AIR)
+    view = core.view([0])
+    plan = ShotPlan.of(Shots(np.array([math.pi / 2]), np.array([4.0]), 0.0, 0.0, np.radians([45.0])))
+    actions = core.actions_of(plan, [0], view.codec)
+    assert actions.shape == (1, 9) and actions[0, 8] == pytest.approx(0.5, abs=1e-6)
+    played, _ = view.codec.decode(actions)
+    assert played.theta[0] == pytest.approx(math.radians(45.0), rel=1e-6)
+    pv = view.preview(played)
+    out = core.step(actions, [0])
+    _same(pv.record, out["record"], "record")
+    assert np.array_equal(pv.pos, core.state.pos)
+
+
+def test_an_elevated_plan_needs_the_airborne_option():
+    """A plan that elevates the cue on planar equipment is refused, by the preview and by the codec, naming the
+    switch; on the option's codec an elevation above its 60 degrees is refused too."""
+    core = game_table("nine_ball", {0: (0.5, 0.5), 1: (0.9, 1.5), 9: (0.3, 2.0)})
+    plan = ShotPlan.of(Shots(np.array([1.0]), np.array([1.0]), 0.0, 0.0, np.array([0.3])))
+    with pytest.raises(ValueError, match="airborne"):
+        core.view([0]).preview(plan)
+    with pytest.raises(ValueError, match="airborne"):
+        core.actions_of(plan, [0])
+    air = game_table("nine_ball", {0: (0.5, 0.5), 1: (0.9, 1.5), 9: (0.3, 2.0)}, effects=AIR)
+    steep = ShotPlan.of(Shots(np.array([1.0]), np.array([1.0]), 0.0, 0.0, np.array([1.2])))
+    with pytest.raises(ValueError, match="elevation must lie in"):
+        air.actions_of(steep, [0])
+    with pytest.raises(ValueError, match="theta"):
+        air.view([0]).preview(ShotPlan.of(Shots(np.array([1.0]), np.array([1.0]), 0.0, 0.0, np.array([-0.1]))))
+
+
+def test_one_player_elevated_preview_is_the_env_bit_for_bit():
+    """The one-player tasks with the option: the env's step of random 5-component actions and the view's
+    preview of the shots they decode to (``actions_to_shots``, theta included) agree bit for bit."""
+    import gymnasium as gym
+    env = gym.make_vec("Billiards-RunOut-v1", num_envs=16, vectorization_mode="vector_entry_point", effects=AIR,
+                       noise="tournament")
+    env.reset(seed=3)
+    assert env.single_action_space.shape == (5,)
+    rng = np.random.default_rng(4)
+    for _ in range(3):
+        a = rng.uniform(-1, 1, (16, 5)).astype(np.float32)
+        view = env.view()
+        shots = env.actions_to_shots(a)
+        assert (shots.theta > 0).all()
+        draws = copy.deepcopy(env._core.streams).normal(np.arange(16), 4)
+        pv = view.preview(ShotPlan.of(shots), noise="env", draws=draws)
+        _, _, term, trunc, info = env.step(a)
+        live = ~info["reset"]
+        assert np.array_equal(pv.outcome.off_table[live], info["off_table"][live])
+        assert np.array_equal(pv.judged.success[live], info["success"][live])
+        keep = live & ~(term | trunc)
+        assert np.array_equal(pv.pos[keep], env.state.pos[keep]) and np.array_equal(pv.pocket[keep],
+                                                                                    env.state.pocket[keep])

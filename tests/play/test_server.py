@@ -335,3 +335,24 @@ def test_the_lobby_offers_each_game_its_bots(server):
     assert ladder_names("nine_ball") == ladder_names("eight_ball")
     status, g = server("POST", "/api/games", {"game": "nine_ball", "opponent": "ladder-3", "seed": 1, "breaker": 1})
     assert status == 201 and server("POST", f"/api/games/{g['id']}/bot")[0] == 200
+
+
+def test_a_game_with_jump_shots(server):
+    """``airborne: true`` starts a game whose balls fly: the state gives the cue's steepest elevation, a
+    person's shot elevated 40 degrees makes the cue ball jump (slate events in the shot's log); a level-cue
+    game refuses an elevation, naming the switch; bad values are refused."""
+    from billiards_env.contract.codec import MAX_ACTION_ELEVATION
+    from billiards_env.physics import constants as C
+    plain = new_game(server)
+    assert "airborne" not in plain and "elevation_max" not in plain["limits"]
+    got, answer = server.shot(plain["id"], {"aim": math.pi / 2, "speed": 2, "elevation": 0.5})
+    assert got == 400 and "airborne" in answer["error"], answer
+    assert "'airborne' must be true or false" in server("POST", "/api/games", {"airborne": "yes"})[1]["error"]
+    g = new_game(server, airborne=True)
+    assert g["airborne"] and g["limits"]["elevation_max"] == pytest.approx(MAX_ACTION_ELEVATION)
+    got, answer = server.shot(g["id"], {"aim": math.pi / 2, "speed": 2, "elevation": 1.2})
+    assert got == 400 and "'elevation' = 1.2 is out of range" in answer["error"], answer
+    got, answer = server.shot(g["id"], {"aim": math.pi / 2, "speed": 6, "elevation": math.radians(40)})
+    assert got == 200, answer
+    core = server.app.state.store.get(g["id"]).core
+    assert core.airborne and (np.asarray(core.last_events[0].kind) == C.EV_SLATE).any()

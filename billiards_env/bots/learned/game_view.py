@@ -146,6 +146,8 @@ class OnePlayerView:
         out[:, 7] = -1.0 + (2.0 * pocket + 1.0) / N_POCKETS
         if codec.ball_dim:   # the called / nominated ball: the codec's nominal (its ``encode`` with ball=None)
             out[:, 8] = -1.0 + (2.0 * codec.nominal + 1.0) / codec.n_balls
+        if codec.max_elevation:  # the airborne option's elevation: the level cue
+            out[:, codec.elevation_index] = -1.0
         out[:, :AGENT_ACTION_DIM] = a4
         brk = np.nonzero(self._break)[0]
         if len(brk):

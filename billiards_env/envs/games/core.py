@@ -38,6 +38,15 @@ after a foul a6 > 0.5 puts the offender back in (``may_pass``), and after a
 foul and a miss 0 < a6 <= 0.5 has the balls replaced where they were before
 the foul and the offender play again (``may_replace``; elsewhere ignored).
 
+**The cue's elevation** (an option, off by default): with the equipment's
+``effects={"airborne": True}`` the balls fly (jump and massé strokes, balls
+driven off the table) and the action gains one last component (a8; 10-ball
+a9): the cue's elevation theta = (a + 1) / 2 * 60 degrees
+(``contract.codec.MAX_ACTION_ELEVATION``), a = -1 the level cue; ``info``
+gains ``off_table`` [B] (the balls the shot drove off the table, each game
+ruling them: ``rules.FOUL_OFF_TABLE``). Off, the action, the observation and
+the info are the planar env's.
+
 Components outside [-1, 1] are clipped (``info["action_clipped"]``);
 components the constraints do not use are ignored.
 """
@@ -52,7 +61,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ...contract.codec import ACTION_DIM, ActionCodec, ShotContext, _context, placement_to_actions
+from ...contract.codec import ACTION_DIM, MAX_ACTION_ELEVATION, ActionCodec, ShotContext, _context, placement_to_actions
 from ...contract.turn import Equipment, play_turn
 from ...contract.view import GameView
 from ...physics import BallState
@@ -219,7 +228,9 @@ class GameCore:
         self.params = cfg.params()
         self.effects, self.models, self.record = cfg.effects, cfg.models, record
         self.n_balls = self.rules.n_balls + 1
-        self.action_dim = ACTION_DIM + int(self.rules.calls_ball)  # a8: the called ball (10-ball)
+        self.base_dim = ACTION_DIM + int(self.rules.calls_ball)  # a8: the called ball (10-ball)
+        self.airborne = bool(self.effects.airborne)  # the option: balls fly, the cue's elevation the last component
+        self.action_dim = self.base_dim + int(self.airborne)
         self.obs_dim = 4 * self.n_balls + 1 + EXTRA_OBS + self.rules.extra_obs
         self.diag = math.hypot(self.table.width, self.table.length)
         self.state: BallState | None = None
@@ -382,6 +393,8 @@ class GameCore:
             info["miss"] = rec.miss
         if self.rules.replaces:  # snooker after a miss, three-cushion with balls in contact: the balls replaced
             info["replaced"] = rec.replaced
+        if self.airborne:  # the option's own entry (a new key would change the planar envs' fingerprints)
+            info["off_table"] = shot.off_table
         out = dict(record=rec, reward=reward, terminated=game.over.copy(), truncated=truncated, info=info)
         for listener in self.listeners:
             listener.after_step(self, idx, out)
@@ -425,8 +438,8 @@ class GameCore:
         tgt = np.maximum(ctx.target[idx], 0)
         aim = np.where(is_break[:, None], np.array([t.width / 2, FOOT_SPOT * t.length]), pos[np.arange(len(idx)), tgt])
         return ActionCodec(ctx.aim_origin[idx], aim, in_hand, place, t, self.params, self.config.min_draw,
-                           tgt, self.action_dim if self.rules.calls_ball else 0, self.n_balls, pos[:, 0], is_break,
-                           self.rules.replaces)
+                           tgt, self.base_dim if self.rules.calls_ball else 0, self.n_balls, pos[:, 0], is_break,
+                           self.rules.replaces, MAX_ACTION_ELEVATION if self.airborne else 0.0)
 
     def actions_to_shots(self, actions: np.ndarray, idx) -> Shots:
         """Actions [n, >= 4] of tables ``idx`` -> ``Shots`` (aim relative to the origin with the cue ball where it
