@@ -114,3 +114,28 @@ def test_without_noise_the_break_is_searched_on_each_rack():
         rec = core.step(core.actions_of(plan, np.arange(n)), np.arange(n))["record"]
         kept[exact_breaks] = int(((~rec.turn_over) | (rec.game_over & (rec.winner == 0))).sum())
     assert kept[64] == n and kept[0] < n, kept
+
+
+def test_escapes_jump_and_masse_out_of_a_hook_where_balls_fly():
+    """Hooked (the 1 straight behind the 5, no open pot): with balls flying (``effects={"airborne": True}``) the
+    search adds jump and massé strokes at the legal ball (``candidates.escapes``), and some of them clear the
+    blocker and strike the 1 first, as the preview (the env's own turn) plays them; on planar equipment, and
+    with ``Parts(escapes=False)``, there are none. The chosen plan is worth at least the best escape."""
+    from billiards_env.bots.planner.bot import Parts
+    balls = {0: (0.635, 0.6), 5: (0.635, 0.75), 1: (0.635, 1.2), 9: (1.1, 2.2)}
+    core = game_table("nine_ball", balls, effects={"airborne": True})
+    view = core.view([0])
+    bot = Champion(seed=1)
+    c = bot.candidates(view, np.array([0]))
+    esc = c["theta"] > 0
+    assert esc.sum() >= 20 and (c["prob"][~c["safe"]] < 0.2).all()
+    assert ((c["a"][esc] != 0) & (c["theta"][esc] > np.radians(59))).any()  # massé strokes among them
+    pv = view.preview(bot.plan(c, np.flatnonzero(esc)), c["row"][esc])
+    over = (pv.first_contact == 1)
+    assert over.any(), pv.first_contact  # a jump over the 5 (or a massé around it) meets the 1 first
+    plan = bot.act(view)
+    assert bot.last_value[0] >= bot.values(view, pv)[over].max() - 1e-12
+    flat = game_table("nine_ball", balls).view([0])
+    assert not (Champion(seed=1).candidates(flat, np.array([0]))["theta"] > 0).any()
+    assert not (Champion(seed=1, parts=Parts(escapes=False)).candidates(view, np.array([0]))["theta"] > 0).any()
+    assert plan.theta.shape == (1,)

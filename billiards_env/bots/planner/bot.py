@@ -47,14 +47,16 @@ EXACT_BREAKS = 64          # without noise: break strikes previewed on the rack 
 class Parts:
     """The parts of the search, each on by default (``ablations`` takes one out): ``throw`` (pots aimed
     corrected for throw), ``windows`` (pots aimed into the measured pocket windows; off: lookahead's pots),
-    ``searched_break``, ``own_leave`` (the window model's leave; off: lookahead's) and ``replies`` (lookahead's
-    reply search on the best survivors)."""
+    ``searched_break``, ``own_leave`` (the window model's leave; off: lookahead's), ``replies`` (lookahead's
+    reply search on the best survivors) and ``escapes`` (jump and massé strokes out of a hook, where the
+    equipment lets balls fly: ``candidates.escapes``; nothing changes where it does not)."""
 
     throw: bool = True
     windows: bool = True
     searched_break: bool = True
     own_leave: bool = True
     replies: bool = True
+    escapes: bool = True
 
 
 class PlanRows:
@@ -64,6 +66,7 @@ class PlanRows:
 
     def __init__(self, n: int):
         self.phi, self.speed, self.a, self.b = np.zeros(n), np.ones(n), np.zeros(n), np.zeros(n)
+        self.theta = np.zeros(n)  # the cue's elevation (escapes; 0: the level cue)
         self.placement, self.declare = np.full((n, 2), np.nan), np.zeros(n, bool)
         self.pocket, self.ball = np.zeros(n, np.int64), np.full(n, -1, np.int64)
         self.value, self.kind = np.full(n, np.nan), np.full(n, "break", dtype=object)
@@ -79,6 +82,8 @@ class PlanRows:
                                                                         c["a"][best], c["b"][best])
         self.placement[rows], self.pocket[rows], self.ball[rows] = c["placement"][best], c["pocket"][best], \
             c["ball"][best]
+        if "theta" in c:
+            self.theta[rows] = c["theta"][best]
         self.value[rows] = value
         self.kind[rows] = np.where(c["safe"][best], "safety", "pot")
 
@@ -86,12 +91,12 @@ class PlanRows:
         """Push-outs and passes on rows ``rows`` as the lookahead ``la`` declares them."""
         declarations(la, view, rows, (self.phi, self.speed, self.a, self.b), self.placement, self.declare,
                      self.value, self.kind)
-
+        self.theta[rows[self.kind[rows] == "push"]] = 0.0  # a push-out is lookahead's level stroke
     def plan(self, view) -> ShotPlan:
         """The plan, speeds clipped to the table's range."""
         speed = np.clip(self.speed, 0.05, view.params.max_speed)
-        return ShotPlan.of(Shots(self.phi, speed, self.a, self.b), self.placement, self.declare, self.pocket,
-                           self.ball)
+        return ShotPlan.of(Shots(self.phi, speed, self.a, self.b, self.theta), self.placement, self.declare,
+                           self.pocket, self.ball)
 
 
 class Champion:
@@ -109,6 +114,7 @@ class Champion:
         self.first_pots, self.first_safe = first_pots, first_safe
         self.breaks = BreakSearch() if parts.searched_break else None
         self.own_leave = parts.own_leave
+        self.escapes = parts.escapes
         self.variants = dict(variants or {})   # the pots' speed factors, tip heights and sides (candidates.pots)
         self.exact_plies, self.exact_k = int(exact_plies), int(exact_k)  # without noise: plies searched exactly
         self.exact_breaks = int(exact_breaks)  # without noise: break strikes tried on each rack itself
@@ -150,7 +156,13 @@ class Champion:
             pots = self.lookahead_pots(view, rows)
         first = np.searchsorted(srow, rows)
         saf = CAND.safeties(self, view, rows, cue[first], placed[first])
-        c = {k: np.concatenate([pots[k], saf[k]]) for k in saf}
+        parts = [pots, saf]
+        esc = CAND.escapes(self, view, rows, cue[first], placed[first], pots) if self.escapes else None
+        if esc is not None:  # jump and massé strokes out of a hook, where balls fly
+            parts.append(esc)
+        for part in parts:
+            part.setdefault("theta", np.zeros(len(part["row"])))
+        c = {k: np.concatenate([part[k] for part in parts]) for k in parts[-1]}
         if not getattr(view.rules, "calls_ball", False):
             c["ball"][:] = -1
         o = np.argsort(c["row"], kind="stable")
@@ -170,7 +182,7 @@ class Champion:
         return LEAVE.values(view, pv) if self.own_leave else self.la.values(view, pv)
 
     def plan(self, c, idx):
-        return ShotPlan.of(Shots(c["phi"][idx], c["speed"][idx], c["a"][idx], c["b"][idx]),
+        return ShotPlan.of(Shots(c["phi"][idx], c["speed"][idx], c["a"][idx], c["b"][idx], c["theta"][idx]),
                            placement=c["placement"][idx], pocket=c["pocket"][idx], ball=c["ball"][idx])
 
     def decide(self, view, rows, plies: int | None = None):

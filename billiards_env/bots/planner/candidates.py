@@ -5,7 +5,10 @@
   estimate (the window's angular half-width against the aim noise carried through the contact), the best few in
   speed and tip-height variants, each aim corrected for throw (``aim``);
 - **safeties and kicks**: ``GameLookahead``'s soft shots at the legal balls and one-rail kicks, plus a 360-degree
-  fan of cue directions at a few speeds (the preview keeps what the rules call legal).
+  fan of cue directions at a few speeds (the preview keeps what the rules call legal);
+- **escapes** from a hook, where the equipment lets balls fly (``Effects(airborne=True)``): jump strokes over the
+  blocker and massé strokes that curve around it, at the nearest legal balls of the tables with no open pot; the
+  preview (which flies them as the env does) judges them with the safeties.
 """
 from __future__ import annotations
 
@@ -29,6 +32,14 @@ SIDES = (0.0,)                    # tip side offsets (units of R): centre ball (
 MISCUE_MARGIN = 0.98              # tip offsets kept within this fraction of the miscue limit (the check is strict)
 FAN_DIRS = 48                     # the kick scan: this many cue directions around the full circle
 FAN_SPEEDS = (1.2, 2.6, 4.5)      # m/s: at these speeds
+HOOKED_PROB = 0.2                 # a table whose best pot from where the cue ball lies is less likely is hooked
+ESCAPE_TARGETS = 3                # escapes try this many legal balls, the nearest first
+JUMP_THETAS = tuple(math.radians(d) for d in (30, 45, 55))  # jump strokes: the cue this steep ...
+JUMP_SPEEDS = (3.0, 4.5, 6.0)                               # ... at these speeds (m/s), at the ball's centre
+MASSE_THETAS = tuple(math.radians(d) for d in (60, 75))     # massé strokes: a near-vertical cue ...
+MASSE_SIDE = 0.45                 # ... with this much side (units of R; inside the miscue disc) ...
+MASSE_TURNS = tuple(math.radians(d) for d in (10, 20, 35))  # ... aimed this far off the ball, the curve bringing it back
+MASSE_SPEEDS = (2.0, 3.5)         # m/s
 
 
 @numba.njit(cache=True, nogil=True)
@@ -132,4 +143,46 @@ def safeties(bot, view, rows, cue, placed):
     out = {key: np.concatenate([c[key], fan[key]]) for key in fan}
     out["ball"] = np.full(len(out["row"]), -1, np.int64)
     out["prob"] = np.zeros(len(out["row"]))
+    return out
+
+
+def escapes(bot, view, rows, cue, placed, pots):
+    """Jump and massé strokes (``ShotPlan.theta``) at the ``ESCAPE_TARGETS`` nearest legal balls of the tables
+    among ``rows`` that are hooked: the cue ball where it lies (not in hand) and no pot from there with a success
+    estimate of ``HOOKED_PROB`` (``pots``: ``pots``' candidates). Only where balls fly (the view's effects);
+    else nothing. Right side with the cue raised curves the ball right (``physics.strike``), so each massé turns
+    the aim away from the ball on the side the curve comes back from."""
+    if not view.effects.airborne or not len(rows):
+        return None
+    best = np.zeros(view.n)
+    from_lie = np.isnan(pots["placement"][:, 0])
+    np.maximum.at(best, pots["row"][from_lie], pots["prob"][from_lie])
+    keep = ~placed & (best[rows] < HOOKED_PROB)
+    rows, cue = rows[keep], cue[keep]
+    if not len(rows):
+        return None
+    on = view.on_table[rows] & view.targets[rows]
+    on[:, 0] = False
+    d = np.where(on, np.hypot(*(view.pos[rows] - cue[:, None]).transpose(2, 0, 1)), np.inf)
+    order = np.argsort(d, axis=1, kind="stable")[:, :ESCAPE_TARGETS]
+    t_row, t_k = np.nonzero(np.take_along_axis(d, order, axis=1) < np.inf)
+    ball = order[t_row, t_k]
+    to = view.pos[rows[t_row], ball] - cue[t_row]
+    aim = np.arctan2(to[:, 1], to[:, 0])
+    strokes = [(th, v, 0.0, 0.0) for th in JUMP_THETAS for v in JUMP_SPEEDS]
+    strokes += [(th, v, side * MASSE_SIDE, turn * side) for th in MASSE_THETAS for v in MASSE_SPEEDS
+                for turn in MASSE_TURNS for side in (1.0, -1.0)]
+    th, v, a, turn = (np.asarray(x) for x in zip(*strokes))
+    k = len(strokes)
+    rep = np.repeat(np.arange(len(t_row)), k)
+    n = len(rep)
+    out = dict(row=rows[t_row][rep], phi=aim[rep] + np.tile(turn, len(t_row)), speed=np.tile(v, len(t_row)),
+               a=np.tile(a, len(t_row)), b=np.zeros(n), theta=np.tile(th, len(t_row)),
+               placement=np.full((n, 2), np.nan), pocket=np.full(n, -1, np.int64), safe=np.ones(n, bool),
+               ball=np.full(n, -1, np.int64), prob=np.zeros(n))
+    need = view.call_needed[rows]
+    if need.any():  # the pocket the safeties call (the 8 in 8-ball)
+        call = np.full(len(rows), -1, np.int64)
+        call[need] = bot.la.eight_pocket(view, rows[need])
+        out["pocket"] = call[t_row][rep]
     return out
