@@ -65,7 +65,8 @@ def random_strikes(s, rng, params, extreme_spin: float = 0.0):
     return strike(s, phi, draw, r * np.cos(ang), r * np.sin(ang), params)
 # On the snooker table: the frozen 22-ball frame opening, random balls, and random balls of which about half lie
 # in a pocket's mouth or jaws (within JAW_REACH of a pocket's capture circle centre).
-SNOOKER_LAYOUTS = ("snooker", "random", "jaws")
+SNOOKER = "snooker"  # the equipment's name: its table, preset and opening layout
+SNOOKER_LAYOUTS = (SNOOKER, "random", "jaws")
 JAW_REACH = 0.09  # m: a corner jaw reaches ~0.06 m from its pocket's centre, a middle jaw ~0.05 m
 TABLES = {"pool9": lambda: Table.pool(9), "snooker": Table.snooker}
 
@@ -117,7 +118,7 @@ def random_batch(rng, n_envs, layout, preset, n_balls=None, pockets=True, table_
     return random_strikes(s, rng, params), table, params
 
 
-TABLE_KINDS = ("pool", "carom", "snooker")
+TABLE_KINDS = ("pool", "carom", SNOOKER)
 
 
 def table_layout(rng, kind: str):
@@ -130,8 +131,8 @@ def table_layout(rng, kind: str):
     (None: picked by the equipment)."""
     if kind not in TABLE_KINDS:
         raise ValueError(f"unknown table kind {kind!r}; choose one of {TABLE_KINDS}")
-    if kind == "snooker":
-        return SNOOKER_LAYOUTS[int(rng.integers(len(SNOOKER_LAYOUTS)))], "snooker", "snooker", "snooker"
+    if kind == SNOOKER:  # its layouts, preset, table and case table all bear the equipment's name
+        return SNOOKER_LAYOUTS[int(rng.integers(len(SNOOKER_LAYOUTS)))], SNOOKER, SNOOKER, SNOOKER
     layouts = CAROM_LAYOUTS if kind == "carom" else LAYOUTS
     layout = layouts[int(rng.integers(len(layouts)))]
     preset = "seed" if rng.random() < 0.2 else "standard"

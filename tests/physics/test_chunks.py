@@ -13,7 +13,7 @@ def test_chunked_batches_equal_one_call(monkeypatch):
     P, T = PhysicsParams.standard(), Table.pool(9)
     st = strike(rack(T, P, "eight", n_envs=300, seed=1), phi=np.pi / 2, draw=0.25, a=0.0, b=0.2, params=P)
     whole = simulate(st, T, P, record=True, diagnostics=True)
-    per_table = 8 * (16 * 16 + 12 * 16) + S.RECORD_CAPACITY * 152  # chunk_rows' own count
+    per_table = 8 * (16 * 16 + 12 * 16) + S.RECORD_CAPACITY * 8 * (4 + 2 * S.LOG_COLUMNS)  # chunk_rows' own count
     monkeypatch.setattr(S, "MAX_SCRATCH_BYTES", 40 * per_table)
     assert S.chunk_rows(16, True) == 40  # 300 tables in 8 chunks, the last one short
     parts = simulate(st, T, P, record=True, diagnostics=True)

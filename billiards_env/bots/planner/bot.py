@@ -182,7 +182,8 @@ class Champion:
         return LEAVE.values(view, pv) if self.own_leave else self.la.values(view, pv)
 
     def plan(self, c, idx):
-        return ShotPlan.of(Shots(c["phi"][idx], c["speed"][idx], c["a"][idx], c["b"][idx], c["theta"][idx]),
+        theta = c["theta"][idx] if "theta" in c else 0.0  # the level cue where no escape was made (the ExIt search)
+        return ShotPlan.of(Shots(c["phi"][idx], c["speed"][idx], c["a"][idx], c["b"][idx], theta),
                            placement=c["placement"][idx], pocket=c["pocket"][idx], ball=c["ball"][idx])
 
     def decide(self, view, rows, plies: int | None = None):
