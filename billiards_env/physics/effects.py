@@ -32,12 +32,13 @@ class Effects:
       cushion restitution.
     - ``pockets``: six pockets with jaws; off: a closed box.
     - ``airborne``: balls leave the slate (an elevated cue's jump, flight
-      under gravity, bounces on the slate: ``airborne``, issue 46). Off,
-      the default: the planar simulator, whose kernels it leaves as they
-      are. An opt-in effect: ``each_off``, ``minimal``, ``key`` and
-      ``to_dict`` name it only when it is on, so every set and record
-      without it is what it was before it existed. The solvers do not
-      simulate it yet: ``simulate`` refuses it (docs/physics.md, "The third dimension").
+      under gravity, bounces on the slate, contacts in flight, balls driven
+      off the table: ``airborne``, ``ball_ball.flight``, ``cushion.rail``;
+      both solvers). Off, the default: the planar simulator, whose kernels
+      it leaves as they are. An opt-in effect: ``each_off``, ``minimal``,
+      ``key`` and ``to_dict`` name it only when it is on, so every set and
+      record without it is what it was before it existed
+      (docs/physics.md, "The third dimension").
 
     Rolling resistance is always on: without it no ball ever stops.
     """
