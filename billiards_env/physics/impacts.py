@@ -210,6 +210,19 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion, order
             om[e, bq, 2] = 0.5 * (om[e, bq, 2] + buf2[q, 4])
 
     @variant
+    def note_impact(balls, e, t, i, j, out, log):
+        """What an impact of balls i and j at time t leaves on record: the
+        cue ball's first contact, its contact order (``order_on``) and the
+        event log."""
+        if out.first[e] == -1 and (i == 0 or j == 0):
+            out.first[e] = j if i == 0 else i
+        if order_on:
+            if i == 0 or j == 0:
+                note_contact(out, e, C.EV_BALL_BALL, j if i == 0 else i)
+        if log.on:
+            event_log.record(log, balls, e, t, C.EV_BALL_BALL, i, j)
+
+    @variant
     def resolve_impact_set(balls, e, t, imp, ns, p, out, log):
         """Everything a set of ns simultaneous ball-ball impacts (pairs
         imp.i, imp.j) does: impulses, diagnostics of that impulse set
@@ -232,14 +245,7 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion, order
         for q in range(nb):
             settle(balls, e, imp.balls[q], p)
         for s in range(ns):
-            i, j = sim_i[s], sim_j[s]
-            if out.first[e] == -1 and (i == 0 or j == 0):
-                out.first[e] = j if i == 0 else i
-            if order_on:
-                if i == 0 or j == 0:
-                    note_contact(out, e, C.EV_BALL_BALL, j if i == 0 else i)
-            if log.on:
-                event_log.record(log, balls, e, t, C.EV_BALL_BALL, i, j)
+            note_impact(balls, e, t, sim_i[s], sim_j[s], out, log)
         return nb
 
     @variant
@@ -257,13 +263,7 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion, order
                 settle(balls, e, q, p)
         if diag_on:
             out.diag[e, 0] = max(out.diag[e, 0], ball_energy(balls, e, i, p) + ball_energy(balls, e, j, p) - e0)
-        if out.first[e] == -1 and (i == 0 or j == 0):
-            out.first[e] = j if i == 0 else i
-        if order_on:
-            if i == 0 or j == 0:
-                note_contact(out, e, C.EV_BALL_BALL, j if i == 0 else i)
-        if log.on:
-            event_log.record(log, balls, e, t, C.EV_BALL_BALL, i, j)
+        note_impact(balls, e, t, i, j, out, log)
 
     return types.SimpleNamespace(settle=settle, prepare=prepare, resolve_boundary=resolve_boundary,
                                  resolve_impact_set=resolve_impact_set, resolve_flight_impact=resolve_flight_impact,

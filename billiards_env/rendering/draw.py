@@ -158,17 +158,22 @@ def ball_paths(log, params, n_balls: int, samples: int = 24, effects=None) -> li
     return out
 
 
+def _last_record(rec, t: float):
+    """A ball's last (time, state) record at or before ``t`` (None: none yet)."""
+    last = None
+    for tr, st in rec:
+        if tr > t:
+            break
+        last = (tr, st)
+    return last
+
+
 def positions_at(log, params, n_balls: int, t: float, effects=None):
     """(pos [B, 2], on_table [B]) of every ball at time ``t`` of a recorded shot."""
     pos = np.zeros((n_balls, 2))
     on = np.zeros(n_balls, dtype=bool)
     for i, rec in enumerate(_records(log, n_balls)):
-        last = None
-        for tr, st in rec:
-            if tr <= t:
-                last = (tr, st)
-            else:
-                break
+        last = _last_record(rec, t)
         if last is None:
             continue
         tr, st = last
@@ -211,12 +216,7 @@ def balls_at(log, params, n_balls: int, t: float, effects=None, table=None):
     pos, h = np.zeros((n_balls, 2)), np.zeros(n_balls)
     pocket = np.zeros(n_balls, dtype=np.int64)
     for i, rec in enumerate(_records(log, n_balls)):
-        last = None
-        for tr, st in rec:
-            if tr <= t:
-                last = (tr, st)
-            else:
-                break
+        last = _last_record(rec, t)
         if last is None:
             continue
         s = evolve_state(last[1], t - last[0], p, eff.vertical_spin, eff.spin)

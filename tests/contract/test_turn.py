@@ -37,6 +37,22 @@ def _actions(rng, core, n):
     return a
 
 
+def _previewed_step(core, view, plan, actions, idx):
+    """Preview ``plan`` under the env's noise with the draws the step will make, step the env with ``actions``,
+    and check that they agree on the record, the balls, the game state and the next constraints: (preview,
+    step output)."""
+    shoot = ~(view.may_pass & plan.declare)
+    draws = np.zeros((len(idx), 4))
+    draws[shoot] = copy.deepcopy(core.streams).normal(idx[shoot], 4)  # what the step will draw
+    pv = view.preview(plan, noise="env", draws=draws)
+    out = core.step(actions, idx)
+    _same(pv.record, out["record"], "record")
+    assert np.array_equal(pv.pos, core.state.pos) and np.array_equal(pv.pocket, core.state.pocket)
+    _same(pv.state, core.game, "state")
+    _same(pv.next, core.constraints(), "next")
+    return pv, out
+
+
 @pytest.mark.parametrize("game", GAMES)
 def test_preview_is_the_env_bit_for_bit(game):
     """Random positions (the games played on by random turns) and random plans
@@ -51,15 +67,7 @@ def test_preview_is_the_env_bit_for_bit(game):
         view = core.view(idx)
         actions = _actions(rng, core, N_TABLES)
         plan, moved = view.codec.decode(actions)
-        shoot = ~(view.may_pass & plan.declare)
-        draws = np.zeros((N_TABLES, 4))
-        draws[shoot] = copy.deepcopy(core.streams).normal(idx[shoot], 4)  # what the step will draw
-        pv = view.preview(plan, noise="env", draws=draws)
-        out = core.step(actions, idx)
-        _same(pv.record, out["record"], "record")
-        assert np.array_equal(pv.pos, core.state.pos) and np.array_equal(pv.pocket, core.state.pocket)
-        _same(pv.state, core.game, "state")
-        _same(pv.next, core.constraints(), "next")
+        pv, out = _previewed_step(core, view, plan, actions, idx)
         assert np.array_equal(pv.turn.placed, out["info"]["placement"])
         after = view.after(pv, idx, idx)  # the next shooter's view equals the env's own
         mine = core.view(idx)
@@ -221,15 +229,7 @@ def test_elevated_preview_is_the_env_bit_for_bit(game):
         actions = _actions(rng, core, n)
         plan, _ = view.codec.decode(actions)
         elevated += int((plan.theta > 0).sum())
-        shoot = ~(view.may_pass & plan.declare)
-        draws = np.zeros((n, 4))
-        draws[shoot] = copy.deepcopy(core.streams).normal(idx[shoot], 4)
-        pv = view.preview(plan, noise="env", draws=draws)
-        out = core.step(actions, idx)
-        _same(pv.record, out["record"], "record")
-        assert np.array_equal(pv.pos, core.state.pos) and np.array_equal(pv.pocket, core.state.pocket)
-        _same(pv.state, core.game, "state")
-        _same(pv.next, core.constraints(), "next")
+        pv, out = _previewed_step(core, view, plan, actions, idx)
         assert np.array_equal(pv.off_table, out["info"]["off_table"])
         off += int(out["info"]["off_table"].sum())
         done = np.nonzero(out["terminated"] | out["truncated"])[0]
