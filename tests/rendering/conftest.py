@@ -29,6 +29,26 @@ def _find_browser(chromium: str | None = None, driver: str | None = None) -> tup
     return chromium, driver
 
 
+def _log_read_back(back, log, shot: int = 0) -> None:
+    """A replay's shot ``shot`` read back (``Replay.event_states``) is the simulator's event log ``log``, bit for
+    bit: times, kinds, balls, the first ball's state of every event and the second's of every ball-ball event."""
+    import numpy as np
+
+    from billiards_env.physics import constants as C
+    t, kind, balls, states = back.event_states(shot)
+    np.testing.assert_array_equal(t, log.time)
+    np.testing.assert_array_equal(kind, log.kind)
+    np.testing.assert_array_equal(balls, log.balls)
+    np.testing.assert_array_equal(states[:, 0], log.states[:, 0])
+    bb = log.kind == C.EV_BALL_BALL
+    np.testing.assert_array_equal(states[bb, 1], log.states[bb, 1])
+
+
+@pytest.fixture
+def log_read_back():
+    return _log_read_back
+
+
 @pytest.fixture
 def find_browser():
     return _find_browser
