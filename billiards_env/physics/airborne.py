@@ -92,7 +92,7 @@ import math
 from . import constants as C
 from ._jit import njit
 from .motion import slip
-from .roots import first_entry
+from .ball_ball.flight import touch_time
 
 # Alciatore's ball-table coefficient of restitution ("physical properties":
 # e = 0.5), the vertical rebound of a ball dropped on the slate.
@@ -107,7 +107,16 @@ SETTLE_HEIGHT = 1e-4
 def flight(x, y, z, vx, vy, vz, t, g):
     """Position and vertical velocity after ``t`` seconds of flight:
     (x, y, z, vz). The horizontal velocity and the spin do not change."""
-    return x + vx * t, y + vy * t, z + vz * t - 0.5 * g * t * t, vz - g * t
+    z, vz = rise(z, vz, t, g)
+    return x + vx * t, y + vy * t, z, vz
+
+
+@njit
+def rise(z, vz, t, g):
+    """Height and vertical velocity ``t`` seconds on: (z + vz t - g t^2 / 2,
+    vz - g t), the one closed form of the vertical motion (``flight``,
+    ``fly``, ``cushion.rail``, the replays)."""
+    return z + vz * t - 0.5 * g * t * t, vz - g * t
 
 
 @njit
@@ -141,9 +150,9 @@ def fly(balls, e, i, dt, g):
     pos, vel, air = balls.pos, balls.vel, balls.air
     pos[e, i, 0] += vel[e, i, 0] * dt
     pos[e, i, 1] += vel[e, i, 1] * dt
-    vz = air[e, i, 1]
-    air[e, i, 0] = max(air[e, i, 0] + vz * dt - 0.5 * g * dt * dt, 0.0)
-    air[e, i, 1] = vz - g * dt
+    h, vz = rise(air[e, i, 0], air[e, i, 1], dt, g)
+    air[e, i, 0] = max(h, 0.0)
+    air[e, i, 1] = vz
 
 
 @njit
@@ -229,12 +238,7 @@ def flight_contact_time(dx, dy, dz, vx, vy, vz, R, g, H):
     resting on the slate (their centres 2R apart; module docstring), inf if
     it does not. (dx, dy, dz): the flying ball's centre relative to the
     resting ball's, (vx, vy, vz) its velocity; H the horizon (its landing)."""
-    c4 = 0.25 * g * g
-    c3 = -g * vz
-    c2 = vx * vx + vy * vy + vz * vz - g * dz
-    c1 = 2.0 * (dx * vx + dy * vy + dz * vz)
-    c0 = dx * dx + dy * dy + dz * dz - 4.0 * R * R
-    return first_entry(c4, c3, c2, c1, c0, H, 4.0 * R * C.CONTACT_TOL, -math.inf)
+    return touch_time(dx, dy, dz, vx, vy, vz, 0.0, 0.0, -g, 2.0 * R, H)
 
 
 def bounces(pos, vel, spin, R, g, mu, e=SLATE_RESTITUTION, settle_height=SETTLE_HEIGHT):

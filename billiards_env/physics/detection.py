@@ -87,8 +87,7 @@ def pair_time(pos, vel, st, paths, e, i, j, H, p, lag):
         return math.inf
     R2 = 2.0 * p[C.P_R]
     # broad phase: the boxes swept by the two paths stay 2R apart
-    if (_apart(paths[e, i, 2], paths[e, i, 3], paths[e, j, 2], paths[e, j, 3], R2 + BOX_SLACK)
-            or _apart(paths[e, i, 4], paths[e, i, 5], paths[e, j, 4], paths[e, j, 5], R2 + BOX_SLACK)):
+    if paths_apart(paths, e, i, j, R2):
         return math.inf
     xj, yj = pos[e, j, 0], pos[e, j, 1]
     vxj, vyj = vel[e, j, 0], vel[e, j, 1]

@@ -56,7 +56,7 @@ from pathlib import Path
 import numpy as np
 
 from ..physics import constants as C
-from ..physics.airborne import drop_time
+from ..physics.airborne import drop_time, rise
 from ..physics.cushion.rail import RAIL_WIDTH
 from ..physics.effects import Effects
 from ..physics.motion import evolve, transition_time
@@ -84,8 +84,8 @@ def evolve_state(state, dt: float, p: np.ndarray, zspin_on: bool, spin_on: bool)
         dt = min(float(dt), drop_time(float(s[8]), float(s[9]), g))
         out = s.copy()
         out[0] += s[2] * dt; out[1] += s[3] * dt
-        out[8] = max(s[8] + s[9] * dt - 0.5 * g * dt * dt, 0.0)
-        out[9] = s[9] - g * dt
+        h, out[9] = rise(float(s[8]), float(s[9]), dt, g)
+        out[8] = max(h, 0.0)
         return out
     pos = s[None, None, 0:2].copy()
     vel = s[None, None, 2:4].copy()

@@ -30,7 +30,7 @@ import math
 
 from .. import constants as C
 from .._jit import njit
-from ..airborne import drop_time
+from ..airborne import drop_time, rise
 from ..detection import boundary_time as planar_boundary_time
 
 # From the cushion line to the rail's outer edge (m): a pool table's
@@ -43,12 +43,6 @@ OVER_POCKET = -1
 
 
 @njit
-def height_at(h, vz, t, g):
-    """Height of the lowest point and vertical velocity t seconds on."""
-    return h + vz * t - 0.5 * g * t * t, vz - g * t
-
-
-@njit
 def boundary_time(balls, e, i, H, p, geo):
     """Earliest boundary event of ball i in flight within H (its landing):
     (time, kind, index), kind EV_CUSHION / EV_JAW_TIP (strikes it),
@@ -57,7 +51,7 @@ def boundary_time(balls, e, i, H, p, geo):
     if kind < 0:
         return t, kind, idx
     g, hc = p[C.P_G], p[C.P_H_C]
-    h, vz = height_at(balls.air[e, i, 0], balls.air[e, i, 1], t, g)
+    h, vz = rise(balls.air[e, i, 0], balls.air[e, i, 1], t, g)
     if kind == C.EV_POCKET:
         if h <= hc:
             return t, kind, idx
