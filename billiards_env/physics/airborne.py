@@ -238,7 +238,7 @@ def flight_contact_time(dx, dy, dz, vx, vy, vz, R, g, H):
     resting on the slate (their centres 2R apart; module docstring), inf if
     it does not. (dx, dy, dz): the flying ball's centre relative to the
     resting ball's, (vx, vy, vz) its velocity; H the horizon (its landing)."""
-    return touch_time(dx, dy, dz, vx, vy, vz, 0.0, 0.0, -g, 2.0 * R, H)
+    return touch_time((dx, dy, dz), (vx, vy, vz), (0.0, 0.0, -g), 2.0 * R, H)
 
 
 def bounces(pos, vel, spin, R, g, mu, e=SLATE_RESTITUTION, settle_height=SETTLE_HEIGHT):

@@ -88,16 +88,19 @@ def contact_time(balls, e, i, j, acc, H, p, lag):
     g = p[C.P_G]
     xi, yi, hi, vxi, vyi, vzi, axi, ayi, azi = _lagged(balls, e, i, acc[0], acc[1], 0.0, g)
     xj, yj, hj, vxj, vyj, vzj, axj, ayj, azj = _lagged(balls, e, j, acc[2], acc[3], lag, g)
-    return touch_time(xi - xj, yi - yj, hi - hj, vxi - vxj, vyi - vyj, vzi - vzj, axi - axj, ayi - ayj,
-                      azi - azj, 2.0 * p[C.P_R], H)
+    return touch_time((xi - xj, yi - yj, hi - hj), (vxi - vxj, vyi - vyj, vzi - vzj), (axi - axj, ayi - ayj, azi - azj),
+                      2.0 * p[C.P_R], H)
 
 
 @njit
-def touch_time(dx, dy, dz, vx, vy, vz, ax, ay, az, R2, H):
-    """Earliest time in [0, H] at which two centres, ``dx, dy, dz`` apart
-    (the first's minus the second's) with relative velocity ``v`` and
+def touch_time(d, v, a, R2, H):
+    """Earliest time in [0, H] at which two centres ``d`` apart (3-tuples:
+    the first's minus the second's), with relative velocity ``v`` and
     acceleration ``a``, come within ``R2`` = 2R: the quartic of the module
     docstring (inf if they do not)."""
+    dx, dy, dz = d
+    vx, vy, vz = v
+    ax, ay, az = a
     c4 = 0.25 * (ax * ax + ay * ay + az * az)
     c3 = vx * ax + vy * ay + vz * az
     c2 = vx * vx + vy * vy + vz * vz + dx * ax + dy * ay + dz * az
