@@ -54,7 +54,7 @@ def main(argv=None):
     args = ap.parse_args(argv)
     effects = Effects(airborne=True) if args.airborne else Effects()
     rng = np.random.default_rng(args.seed)
-    done = failing = events = off = 0
+    done = failing = events = off = off_object = 0
     t0 = time.perf_counter()
     while done < args.shots:
         n = min(args.batch, args.shots - done)
@@ -66,6 +66,7 @@ def main(argv=None):
         res, violations = run_batch(state, table, params, args.solver, effects=effects)
         events += int(res.n_events.sum())
         off += int((res.state.pocket >= C.OFF_TABLE).sum())
+        off_object += int((res.state.pocket[:, 1:] >= C.OFF_TABLE).sum())  # ball 0 is the cue ball
         for e, v in enumerate(violations):
             if v:
                 failing += 1
@@ -75,6 +76,7 @@ def main(argv=None):
         done += n
     summary = {"solver": args.solver, "airborne": args.airborne, "table": args.table, "shots": done,
                "shots_with_violations": failing, "events": events, "balls_off_table": off,
+               "object_balls_off_table": off_object,
                "theta_max": args.theta_max, "seed": args.seed, "wall_s": round(time.perf_counter() - t0, 1)}
     report(summary, args.summary)
     return 1 if failing else 0

@@ -153,6 +153,8 @@ def main(argv=None) -> int:
     ap.add_argument("--rack", choices=RACKS, default="realistic",
                     help="realistic: seeded gaps and offsets between the balls; perfect: every ball frozen")
     ap.add_argument("--break-nine", choices=BREAK_NINE, default="wins", help="9-ball: the 9 on the break wins or is spotted")
+    ap.add_argument("--airborne", action="store_true",
+                    help="balls fly (effects={'airborne': True}, docs/physics.md): the bots may elevate the cue")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--max-shots", type=int, default=200)
     ap.add_argument("--out", type=Path, default=None,
@@ -172,7 +174,8 @@ def main(argv=None) -> int:
     if champ and args.game not in (None, CHAMPIONSHIP_GAME):
         ap.error(f"--protocol championship plays {CHAMPIONSHIP_GAME}, got --game {args.game}")
     args.game = args.game or (CHAMPIONSHIP_GAME if champ else "nine_ball")
-    config = dict(rack=args.rack, **({"break_nine": args.break_nine} if args.break_nine != "wins" else {}))
+    config = dict(rack=args.rack, **({"break_nine": args.break_nine} if args.break_nine != "wins" else {}),
+                  **({"effects": {"airborne": True}} if args.airborne else {}))
     if args.summary:
         if args.out is None:
             ap.error("--summary reads the JSON files of a folder of matches: name it, e.g. --out results/matches")
@@ -184,6 +187,8 @@ def main(argv=None) -> int:
         ap.error("need at least two different policies")
     if args.chunk_racks is not None and args.chunk_racks < 1:
         ap.error(f"--chunk-racks must be a positive integer, got {args.chunk_racks}")
+    if champ and args.airborne:
+        ap.error("--airborne applies to the standard protocol (the championship is the planar 8-ball of the ladder)")
     if champ and (args.address or args.chunk_racks):
         ap.error("--address and --chunk-racks apply to the standard protocol (the championship times each entrant's "
                  "compute per shot in this process)")

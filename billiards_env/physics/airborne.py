@@ -62,7 +62,7 @@ settles after n = ceil(log(SETTLE_HEIGHT / h_1) / log(e^2)) bounces at
 most, and its centre is never below R (``landing_time`` ends every flight
 at z = R exactly).
 
-A ball in flight and a ball on the slate (``flight_contact_time``). With
+A ball in flight and a ball on the slate (``ball_ball.flight.flight_contact_time``). With
 D the flying ball's centre relative to the resting ball's and a = -g z,
 the squared distance of the centres is a quartic in t,
 
@@ -92,7 +92,6 @@ import math
 from . import constants as C
 from ._jit import njit
 from .motion import slip
-from .ball_ball.flight import touch_time
 
 # Alciatore's ball-table coefficient of restitution ("physical properties":
 # e = 0.5), the vertical rebound of a ball dropped on the slate.
@@ -230,15 +229,6 @@ def settles(vz, g, settle_height):
     """True if a ball leaving the slate at ``vz`` rises less than
     ``settle_height``: its bounces end (vz^2 / (2 g) < settle_height)."""
     return vz * vz < 2.0 * g * settle_height
-
-
-@njit
-def flight_contact_time(dx, dy, dz, vx, vy, vz, R, g, H):
-    """Earliest time in [0, H] at which a ball in flight touches a ball
-    resting on the slate (their centres 2R apart; module docstring), inf if
-    it does not. (dx, dy, dz): the flying ball's centre relative to the
-    resting ball's, (vx, vy, vz) its velocity; H the horizon (its landing)."""
-    return touch_time((dx, dy, dz), (vx, vy, vz), (0.0, 0.0, -g), 2.0 * R, H)
 
 
 def bounces(pos, vel, spin, R, g, mu, e=SLATE_RESTITUTION, settle_height=SETTLE_HEIGHT):

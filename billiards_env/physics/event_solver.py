@@ -238,6 +238,8 @@ def make_run(spin_on, zspin_on, diag_on, impacts):
                 ns = 0
                 for i in range(B):
                     for j in range(i + 1, B):
+                        if air_on and (st[e, i] == C.AIRBORNE or st[e, j] == C.AIRBORNE):
+                            continue  # in flight: resolved alone, in 3D (a pair of its own)
                         if tpair[e, i, j] <= tmin + C.SIMULTANEOUS_TIME and ns < C.MAX_SIMULTANEOUS:
                             sim_i[ns] = i; sim_j[ns] = j; ns += 1
                 for s in range(ns):

@@ -252,14 +252,18 @@ def make_impacts(spin_on, slide_on, zspin_on, diag_on, ball_ball, cushion, order
     def resolve_flight_impact(balls, e, t, i, j, p, out, log):
         """The impact of balls i and j, one of them in flight
         (``ball_ball.flight``): the impulse, the ball on the slate's new
-        motion state, its diagnostics (energy), first contact, contact
+        motion state (in flight if the impact knocked it off the slate), its diagnostics (energy), first contact, contact
         order and event log, as ``resolve_impact_set`` for a planar set."""
         e0 = 0.0
         if diag_on:
             e0 = ball_energy(balls, e, i, p) + ball_energy(balls, e, j, p)
         flight.resolve(balls, e, i, j, p)
         for q in (i, j):
-            if balls.st[e, q] != C.AIRBORNE:
+            if balls.st[e, q] == C.AIRBORNE:
+                continue
+            if airborne.leaves_slate(balls, e, q):
+                balls.st[e, q] = C.AIRBORNE  # knocked off the slate
+            else:
                 settle(balls, e, q, p)
         if diag_on:
             out.diag[e, 0] = max(out.diag[e, 0], ball_energy(balls, e, i, p) + ball_energy(balls, e, j, p) - e0)

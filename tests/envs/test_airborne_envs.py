@@ -67,6 +67,20 @@ def test_nine_ball_cue_ball_jumped_off_is_a_foul_with_ball_in_hand():
     assert not level["off_table"].any() and level["foul"] == R.FOUL_NO_CONTACT
 
 
+def test_nine_ball_object_ball_knocked_off_by_a_jumped_cue_ball_is_a_foul():
+    """9-ball: the cue ball jumped (53 deg, 5.1 m/s) comes down on the 1, 5.5 cm from the foot cushion; the 1
+    is driven into the slate, jumps over the cushion and lands on the rail top (its code OFF_RAIL): a foul
+    (WPA), the 1 not spotted, the cue ball left on the table."""
+    env = gym.make("Billiards-NineBall2P-v1", effects=AIR, opponent="random")
+    env.reset(seed=0)
+    core = env.unwrapped.core
+    y = core.table.length - core.params.R - 0.055
+    set_table(core, {0: (0.635, y - 0.9), 1: (0.635, y), 9: (1.0, 0.5)})
+    _, _, _, _, info = env.step(_jump(core, math.pi / 2, 5.1, 53.0))
+    assert info["off_table"].tolist() == [False, True] + [False] * 8
+    assert info["foul"] == R.FOUL_OFF_TABLE and info["turn_over"]
+
+
 def test_nine_ball_the_next_shooter_places_the_cue_ball_that_left():
     """After the cue ball left the table (its pocket code OFF_FLOOR), the opponent has ball in hand anywhere
     and plays it from where they place it."""
@@ -126,3 +140,20 @@ def test_a_jump_shot_clears_a_blocker_in_a_one_player_task():
     _, reward, terminated, _, info = out[50.0]
     assert info["first_contact"] == 1 and info["pocketed"].tolist() == [False, True, False]
     assert not info["off_table"].any() and not terminated and info["reward_terms"]["contact"] > 0
+
+
+def test_match_script_plays_with_balls_flying(tmp_path):
+    """``scripts/match.py --airborne`` (docs/games.md, champion's escapes): the games are played with the effect on
+    (recorded in the match's JSON), champion against itself without the escapes (the ablation's entrant)."""
+    import importlib.util
+    import json
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    spec = importlib.util.spec_from_file_location("match_script", root / "scripts" / "match.py")
+    match = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(match)
+    assert match.main(["--quick", "--airborne", "--policies", "champion",
+                       "billiards_env.bots.planner.ablations:no_escapes", "--out", str(tmp_path)]) == 0
+    doc = json.loads((tmp_path / "nine_ball_tournament.json").read_text())
+    assert doc["effects"] == {"airborne": True} and sum(p["games"] for p in doc["pairings"]) == 4

@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 
 from billiards_env.physics import Effects
-from billiards_env.physics.airborne import (SETTLE_HEIGHT, SLATE_RESTITUTION, bounces, flight,
-                                            flight_contact_time, landing_time, settles, slate_impact)
+from billiards_env.physics.airborne import (SETTLE_HEIGHT, SLATE_RESTITUTION, bounces, flight, landing_time,
+                                            settles, slate_impact)
+from billiards_env.physics.ball_ball.flight import flight_contact_time
 from billiards_env.physics.strike import cue_strike_3d
 
 G = 9.81

@@ -12,7 +12,7 @@ import pytest
 
 from billiards_env.physics import BallState, Effects, PhysicsParams, Table, simulate, strike_velocity
 from billiards_env.physics import constants as C
-from billiards_env.physics.airborne import SETTLE_HEIGHT, SLATE_RESTITUTION, slate_impact
+from billiards_env.physics.airborne import SETTLE_HEIGHT, SLATE_RESTITUTION, settles, slate_impact
 from billiards_env.physics.cushion.rail import RAIL_WIDTH
 
 AIR = Effects(airborne=True)
@@ -119,18 +119,95 @@ def test_a_ball_in_flight_drops_into_a_pocket_below_the_nose():
     assert 0 <= r.state.pocket[0, 0] < C.OFF_TABLE
 
 
-def test_a_ball_dropped_on_a_ball_conserves_horizontal_momentum_and_loses_energy():
-    """A ball falling onto a resting one off its centre: the slate holds the
-    lower ball (its vertical velocity stays 0), horizontal momentum is kept,
-    energy (with the height's) never rises, and no ball sinks into another."""
-    s = _state([[0.6, 1.0], [0.6 + 0.6 * 2 * R, 1.0]], air=[[0.15, 0.0], [0.0, 0.0]])
-    r = simulate(s, TABLE, P, effects=AIR, record=True, diagnostics=True)
+def _first_impact(r):
+    """The (upper, lower) balls' logged states after the first ball-ball
+    event: x, y, vx, vy, wx, wy, wz, state, h, vz."""
     rec = r.events[0]
     first = np.flatnonzero(rec.kind == C.EV_BALL_BALL)[0]
-    upper, lower = rec.states[first, 0], rec.states[first, 1]
+    a, b = rec.states[first, 0], rec.states[first, 1]
+    return (a, b) if a[8] >= b[8] else (b, a)
+
+
+def _dropped(offset, drop):
+    """A ball falling from rest onto a resting one, its centre ``offset``
+    (times 2R) to the side, touching after falling ``drop`` metres."""
+    dz = 2 * R * math.sqrt(1 - offset * offset)
+    s = _state([[0.6, 1.0], [0.6 + offset * 2 * R, 1.0]], air=[[dz + drop, 0.0], [0.0, 0.0]])
+    return simulate(s, TABLE, P, effects=AIR, record=True, diagnostics=True)
+
+
+def _sound(r):
+    assert r.diagnostics[0, 0] <= 1e-12 and r.diagnostics[0, 2] >= -C.OVERLAP_TOL and not r.truncated[0]
+
+
+def test_a_gentle_drop_on_a_ball_is_held_by_the_slate():
+    """Falling 0.5 mm onto a resting ball off its centre, the blow is too
+    gentle to make the lower ball hop (its rebound would settle): the slate
+    holds it (vz stays 0), horizontal momentum is kept, the upper ball
+    leaves with the restitution e_b along the normal, energy never rises."""
+    r = _dropped(0.6, 5e-4)
+    upper, lower = _first_impact(r)
+    assert lower[9] == 0.0 and lower[7] != C.AIRBORNE
     assert upper[2] + lower[2] == pytest.approx(0.0, abs=1e-15)  # vx: both started at rest horizontally
     assert lower[2] > 0 and upper[2] < 0
-    assert r.diagnostics[0, 0] <= 1e-12 and r.diagnostics[0, 2] >= -C.OVERLAP_TOL and not r.truncated[0]
+    _sound(r)
+
+
+def test_a_blow_from_above_is_the_sequential_impulses():
+    """Dropped 15 cm onto a resting ball, 0.6 of the way to its side: the
+    balls' free impact, the slate's rebound of the lower ball (restitution
+    and friction: ``slate_impact``), again while they approach, written out
+    here from the scalar laws; the kernel's result agrees."""
+    r = _dropped(0.6, 0.15)
+    upper, lower = _first_impact(r)
+    n = np.array([0.6, 0.0, -0.8])  # from the upper centre to the lower one
+    vu, vl, wl = np.array([0.0, 0.0, -math.sqrt(2 * G * 0.15)]), np.zeros(3), np.zeros(3)
+    while (w := -(vl - vu) @ n) > 0:
+        imp = 0.5 * (1 + P.e_b) * w
+        vu, vl = vu - imp * n, vl + imp * n
+        if vl[2] < 0:
+            *v, wx, wy, wz = slate_impact(*vl, *wl, R, SLATE_RESTITUTION, P.mu_s)
+            vl, wl = np.array(v), np.array([wx, wy, wz])
+            if settles(vl[2], G, SETTLE_HEIGHT):
+                vl[2] = 0.0
+    assert np.allclose(upper[[2, 3, 9]], vu, rtol=1e-9, atol=1e-12)
+    assert np.allclose(lower[[2, 3, 9]], vl, rtol=1e-9, atol=1e-12)
+    assert np.allclose(lower[[4, 5, 6]], wl, rtol=1e-9, atol=1e-12)
+
+
+def test_a_ball_dropped_on_the_top_of_another_is_held_by_the_slate():
+    """Dropped 5 cm onto a resting ball 0.3 of the way to its side (within
+    ``TOP_ZONE`` of the top): the slate holds the lower ball, the upper one
+    bounces off with e_b along the normal."""
+    r = _dropped(0.3, 0.05)
+    upper, lower = _first_impact(r)
+    assert lower[9] == 0.0 and lower[7] != C.AIRBORNE
+    _sound(r)
+
+
+def test_a_hard_blow_from_above_knocks_the_ball_off_the_slate():
+    """Falling 15 cm onto a resting ball off its centre: the lower ball is
+    driven into the slate and rebounds off it (it flies, then lands again);
+    energy never rises and no ball sinks into another."""
+    r = _dropped(0.6, 0.15)
+    upper, lower = _first_impact(r)
+    assert lower[7] == C.AIRBORNE and lower[9] > 0.0
+    assert len(_events(r, C.EV_SLATE, ball=1)) > 0
+    _sound(r)
+
+
+def test_a_jumped_cue_ball_knocks_an_object_ball_off_the_table():
+    """A cue ball coming down at 2 m/s and forward at 3 m/s onto an object
+    ball 6 cm from the cushion, 0.7 of the way to its side: the object ball
+    is driven into the slate, jumps, clears the cushion's nose and comes down
+    on the rail top; the cue ball stays on the table."""
+    y = TABLE.length - R - 0.06
+    dy = 0.7 * 2 * R
+    s = _state([[0.635, y - dy - 1e-6], [0.635, y]], air=[[math.sqrt(4 * R * R - dy * dy) + 1e-6, -2.0], [0.0, 0.0]])
+    s.vel[0, 0] = (0.0, 3.0)
+    r = simulate(s, TABLE, P, effects=AIR, diagnostics=True)
+    assert r.state.pocket[0, 1] == C.OFF_RAIL and r.state.pocket[0, 0] < 0
+    _sound(r)
 
 
 @pytest.mark.parametrize("dt", [1e-3, 1e-4])

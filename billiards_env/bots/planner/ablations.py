@@ -49,3 +49,8 @@ def exact3(seed: int = 0) -> Champion:
 def no_exact_break(seed: int = 0) -> Champion:
     """Without noise, the searched break as under noise, not searched again on each rack."""
     return _named(Champion(seed=seed, exact_breaks=0), "champion-no-exact-break")
+
+
+def no_escapes(seed: int = 0) -> Champion:
+    """Where balls fly (``scripts/match.py --airborne``), without the jump and massé strokes out of a hook."""
+    return _named(Champion(seed=seed, parts=Parts(escapes=False)), "champion-no-escapes")
