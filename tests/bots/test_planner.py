@@ -4,11 +4,13 @@ import numpy as np
 
 from billiards_env.bots import make_bot
 from billiards_env.bots.planner import Champion
+from billiards_env.bots.planner import candidates as CAND
 from billiards_env.bots.planner.aim import corrected, departure
 from billiards_env.bots.planner.breaks import NOMINAL, BreakSearch
 from billiards_env.bots.planner.halving import halve
 from billiards_env.bots.planner.windows import windows_of
 from billiards_env.contract import ShotPlan
+from billiards_env.contract.codec import MAX_ACTION_ELEVATION
 from billiards_env.envs.games import GameConfig, GameCore
 from billiards_env.physics.strike import Shots
 from billiards_env.studies.matches import play_pairing
@@ -139,3 +141,6 @@ def test_escapes_jump_and_masse_out_of_a_hook_where_balls_fly():
     assert not (Champion(seed=1).candidates(flat, np.array([0]))["theta"] > 0).any()
     assert not (Champion(seed=1, parts=Parts(escapes=False)).candidates(view, np.array([0]))["theta"] > 0).any()
     assert plan.theta.shape == (1,)
+    # every stroke is one the env's action can carry (its steepest cue, contract.codec): the chosen plan encodes
+    assert max(CAND.JUMP_THETAS + CAND.MASSE_THETAS) <= MAX_ACTION_ELEVATION
+    assert core.actions_of(plan, [0]).shape == (1, 9)
