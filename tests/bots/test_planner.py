@@ -144,3 +144,32 @@ def test_escapes_jump_and_masse_out_of_a_hook_where_balls_fly():
     # every stroke is one the env's action can carry (its steepest cue, contract.codec): the chosen plan encodes
     assert max(CAND.JUMP_THETAS + CAND.MASSE_THETAS) <= MAX_ACTION_ELEVATION
     assert core.actions_of(plan, [0]).shape == (1, 9)
+
+
+# a 10-ball table from a match (seed 1): the 4 (the lowest ball) on the foot cushion with no open pot, the 5
+# between it and the table's centre, the 7-10 along the foot cushion
+HIDDEN_FOUR = {4: (0.4307, 2.5026), 5: (0.5458, 2.1198), 7: (1.0740, 2.4808), 8: (0.3788, 2.4532),
+               9: (0.9251, 2.4753), 10: (1.1732, 2.4958)}
+
+
+def test_ten_ball_ball_in_hand_safety_is_played_from_a_spot_that_sees_the_lowest_ball():
+    """Ball in hand with no open pot: lookahead's ball-in-hand starts fall back to the table's centre, where the
+    5 hides the 4, and every safety from there fouled (the 5 or another ball first). Champion adds safeties
+    from spots around the 4 that see it (``candidates.hand_safeties``) and values the opponent's ball in hand
+    at ``HAND_VALUE`` at least; its safety is then legal under tournament noise."""
+    from billiards_env.bots.planner.bot import Parts
+    from billiards_env.rules import records as RR
+    core = game_table("ten_ball", HIDDEN_FOUR, hand=RR.IN_HAND_ANYWHERE, noise="tournament")
+    view = core.view([0])
+
+    def fouls(bot):
+        c, best, _ = bot.decide(view, np.arange(1))
+        idx = np.full(32, best[0])
+        pv = view.preview(bot.plan(c, idx), np.zeros(32, np.int64), noise=bot.la.noise(view),
+                          draws=np.random.default_rng(5).normal(size=(32, 4)))
+        return c["placement"][best[0]], (pv.record.foul > 0).mean()
+
+    spot, rate = fouls(Champion(seed=0))
+    assert np.hypot(*(spot - HIDDEN_FOUR[4])) < 0.8 and rate < 0.25
+    old_spot, old_rate = fouls(Champion(seed=0, parts=Parts(hand_safe=False, option=False)))
+    assert np.allclose(old_spot, [0.635, 1.27]) and old_rate > 0.75

@@ -20,8 +20,9 @@ import numpy as np
 
 from ...contract.plan import ShotPlan
 from ...physics.strike import Shots
+from ...rules import records as RR
 from ..game_lookahead import Budget, GameLookahead
-from ..game_lookahead.search import declarations
+from ..game_lookahead.search import _rank_in_row, declarations
 from ..serial import serial_act
 from . import candidates as CAND
 from . import breaks as BR
@@ -39,6 +40,7 @@ HELPER = dict(reply_eval=0, n_safe=16, n_kick=8, n_bank=16, n_push=24, hand_pots
 # with ``replies``: lookahead's two plies on the best survivors (the opponent's reply searched from the leaves
 # where the turn passes, ``GameLookahead.replies``): that many per table, of them kept for safeties, samples
 REPLY = dict(reply_eval=6, reply_safe=3, reply_samples=8)
+HAND_VALUE = 0.6           # 10-ball: the least an opponent's ball in hand after a foul is worth to it
 EXACT_K = 6                # without noise: candidates of a table whose next shot is searched too (``exact``)
 EXACT_BREAKS = 64          # without noise: break strikes previewed on the rack itself (``exact_break``)
 
@@ -49,7 +51,9 @@ class Parts:
     corrected for throw), ``windows`` (pots aimed into the measured pocket windows; off: lookahead's pots),
     ``searched_break``, ``own_leave`` (the window model's leave; off: lookahead's), ``replies`` (lookahead's
     reply search on the best survivors) and ``escapes`` (jump and massé strokes out of a hook, where the
-    equipment lets balls fly: ``candidates.escapes``; nothing changes where it does not)."""
+    equipment lets balls fly: ``candidates.escapes``; nothing changes where it does not), ``hand_safe``
+    (safeties from ball-in-hand spots that see a legal ball: ``candidates.hand_safeties``) and ``option``
+    (10-ball: an illegal pot's option and the opponent's ball in hand valued as ``Champion.values`` says)."""
 
     throw: bool = True
     windows: bool = True
@@ -57,6 +61,8 @@ class Parts:
     own_leave: bool = True
     replies: bool = True
     escapes: bool = True
+    hand_safe: bool = True
+    option: bool = True
 
 
 class PlanRows:
@@ -115,6 +121,7 @@ class Champion:
         self.breaks = BreakSearch() if parts.searched_break else None
         self.own_leave = parts.own_leave
         self.escapes = parts.escapes
+        self.hand_safe, self.option = parts.hand_safe, parts.option
         self.variants = dict(variants or {})   # the pots' speed factors, tip heights and sides (candidates.pots)
         self.exact_plies, self.exact_k = int(exact_plies), int(exact_k)  # without noise: plies searched exactly
         self.exact_breaks = int(exact_breaks)  # without noise: break strikes tried on each rack itself
@@ -157,6 +164,10 @@ class Champion:
         first = np.searchsorted(srow, rows)
         saf = CAND.safeties(self, view, rows, cue[first], placed[first])
         parts = [pots, saf]
+        if self.hand_safe:  # safeties from spots that see a legal ball, where the first start sees none
+            extra = CAND.hand_safeties(self, view, rows, cue[first], placed[first], pots)
+            if extra is not None:
+                parts.append(extra)
         esc = CAND.escapes(self, view, rows, cue[first], placed[first], pots) if self.escapes else None
         if esc is not None:  # jump and massé strokes out of a hook, where balls fly
             parts.append(esc)
@@ -179,7 +190,24 @@ class Champion:
 
     def values(self, view, pv):
         """The mover's one-ply value of previewed shots: the planner's leave (``leave``), or lookahead's."""
-        return LEAVE.values(view, pv) if self.own_leave else self.la.values(view, pv)
+        v = LEAVE.values(view, pv) if self.own_leave else self.la.values(view, pv)
+        opt = self.options(view, pv)
+        if opt is None:
+            return v
+        # 10-ball: the opponent's ball in hand is worth HAND_VALUE at least (a table where no pot is open for it
+        # is still one where it places the cue ball for a safety), and an option the lesser of v and 1 - v
+        foul = (pv.next.ball_in_hand != RR.IN_HAND_NONE) & (pv.next.shooter != pv.record.shooter) \
+            & ~pv.record.game_over
+        v = np.where(foul, np.minimum(v, 1.0 - HAND_VALUE), v)
+        return np.where(opt, np.minimum(v, 1.0 - v), v)
+
+    def options(self, view, pv):
+        """[k] the previewed shots that hand the opponent the option to shoot or pass back (10-ball: a ball
+        pocketed without a foul but not as called), None where the game has none: the opponent takes the better
+        of the two, so the mover is left the lesser of its value v and 1 - v."""
+        if not (self.option and getattr(view.rules, "calls_ball", False)):
+            return None
+        return pv.next.may_pass & (pv.next.shooter != pv.record.shooter) & ~pv.record.game_over
 
     def plan(self, c, idx):
         theta = c["theta"][idx] if "theta" in c else 0.0  # the level cue where no escape was made (the ExIt search)
@@ -286,11 +314,38 @@ class Champion:
         vs = self.values(view, pvn).reshape(len(pick), S)
         vn = vs.mean(axis=1)
         before = self.la.sims
-        sel, v2 = self.la.replies(view, pvn, (vs, vn, c["safe"][pick], local[pick], n), prow)
+        judged = (vs, vn, c["safe"][pick], local[pick], n)
+        opt = self.options(view, pvn)
+        sel, v2 = self.la.replies(view, pvn, judged, prow) if opt is None else _replies(self.la, view, pvn, judged,
+                                                                                        prow, opt)
         self.sims += self.la.sims - before
         score = np.full(len(local), -np.inf)
         score[pick] = np.where(sel, mean[pick] + (v2 - vn), -np.inf)
         return score
+
+
+def _replies(la, view, pvn, judged, prow, opt):
+    """``GameLookahead.replies`` (the same selection, samples and reply search) where the outcomes ``opt`` [k S]
+    hand the opponent the option to pass back: there the leave is worth the lesser of 1 minus the opponent's best
+    reply and that reply (``Champion.options``), not the former alone."""
+    vs, vn, safe, lp, n = judged
+    k, S = vs.shape
+    ra, rs = la.budget.reply_eval, la.budget.reply_safe
+    sel = (_rank_in_row((-vn,), lp, n) < ra - rs) | (safe & (_rank_in_row((-vn, ~safe), lp, n) < rs))
+    j = np.nonzero(sel)[0]
+    S2 = min(la.budget.reply_samples, S)
+    ids = (j[:, None] * S + np.arange(S2)).ravel()
+    rec, nxt = pvn.record, pvn.next
+    keep = nxt.shooter == rec.shooter
+    ids = ids[~rec.game_over[ids] & (la.budget.reply_keep | ~keep[ids])]
+    delta = np.zeros(k * S)
+    for lo in range(0, len(ids), 4 * CHUNK):
+        part = ids[lo:lo + 4 * CHUNK]
+        r = la.reply_value(view.after(pvn, part, prow[part]))
+        r = np.where(opt[part], np.minimum(r, 1.0 - r), r)
+        delta[part] = np.where(keep[part], 1.0 - r, r) - vs.ravel()[part]
+    vn = vn + delta.reshape(k, S)[:, :S2].sum(axis=1) / S2
+    return sel, vn
 
 
 def _rank(key, row, n, mask):

@@ -146,6 +146,101 @@ def safeties(bot, view, rows, cue, placed):
     return out
 
 
+HAND_SAFE_DISTS = (0.35, 0.15, 0.7)  # m: ball-in-hand safety spots this far from a legal ball ...
+HAND_SAFE_DIRS = 16                  # ... in these directions around it (taken spread: 0, 180, 90, 270 deg, ...)
+HAND_SAFE_SPOTS = 3                  # spots per table
+
+
+@numba.njit(cache=True, nogil=True)
+def _hittable(pos, on, targets, cue, R, d2, out):
+    """out[k]: the cue ball at ``cue[k]`` meets some legal ball of table k full, its path (to where it touches
+    the ball) clear of every other ball."""
+    for k in range(pos.shape[0]):
+        out[k] = False
+        for b in range(1, pos.shape[1]):
+            if not (targets[k, b] and on[k, b]):
+                continue
+            dx, dy = pos[k, b, 0] - cue[k, 0], pos[k, b, 1] - cue[k, 1]
+            d = math.hypot(dx, dy)
+            if d <= 2 * R:
+                continue
+            gx, gy = pos[k, b, 0] - 2 * R * dx / d, pos[k, b, 1] - 2 * R * dy / d
+            if not blocked(pos[k], on[k], b, -1, cue[k, 0], cue[k, 1], gx, gy, d2):
+                out[k] = True
+                break
+
+
+def _spread(n):
+    """0 .. n-1 (a power of 2) ordered so that every prefix is spread around the circle: 0, n/2, n/4, 3n/4, ..."""
+    bits = n.bit_length() - 1
+    return [int(format(i, f"0{bits}b")[::-1], 2) for i in range(n)]
+
+
+def hand_safeties(bot, view, rows, cue, placed, pots=None):
+    """Safeties from better ball-in-hand spots: on the tables among ``rows`` with the cue ball in hand whose
+    first start ``cue`` [n, 2] (the spot of their best pot; with no open pot the table's centre or the head spot)
+    sees no legal ball in a straight clear line (10-ball, with ``pots``: or where no pot's success estimate
+    reaches ``HOOKED_PROB``), ``GameLookahead``'s safeties and kicks from up to
+    ``HAND_SAFE_SPOTS`` legal spots that do (around the legal balls, spread in direction); None if no table
+    needs them. (With the cue ball placed at the centre and the lowest ball hidden, a 10-ball table's safety
+    from there fouled: 23 of champion's 91 ball-in-hand shots at seed 1, 40 racks.)"""
+    R_ = view.params.R
+    hand = placed & view.in_hand[rows]
+    if not hand.any():
+        return None
+    d2 = (2 * R_ + CLEAR) ** 2
+    on = view.on_table[rows].copy()
+    on[:, 0] = False
+    tg = view.targets[rows] & on
+    ok = np.ones(len(rows), bool)
+    h = np.flatnonzero(hand)
+    out = np.empty(len(h), np.bool_)
+    _hittable(np.ascontiguousarray(view.pos[rows[h]]), np.ascontiguousarray(on[h]), np.ascontiguousarray(tg[h]),
+              np.ascontiguousarray(cue[h]), R_, d2, out)
+    ok[h] = out
+    if pots is not None and getattr(view.rules, "calls_ball", False) and len(pots["row"]):
+        # 10-ball: also where no pot is likely from any start (the lowest ball tied up; then the starts are the
+        # centre's fallback, whose safeties, even where it sees the ball, fouled a third of the time)
+        best = np.zeros(view.n)
+        np.maximum.at(best, pots["row"], pots["prob"])
+        ok &= ~hand | (best[rows] >= HOOKED_PROB)
+    elif pots is not None and getattr(view.rules, "calls_ball", False):
+        ok &= ~hand
+    need = np.flatnonzero(~ok)
+    if not len(need):
+        return None
+    dirs = 2 * np.pi * np.asarray(_spread(HAND_SAFE_DIRS)) / HAND_SAFE_DIRS
+    srow, spots = [], []
+    for i in need:
+        r = rows[i]
+        got = []
+        for b in np.flatnonzero(tg[i]):
+            for dist in HAND_SAFE_DISTS:
+                xy = view.pos[r, b] + dist * np.stack([np.cos(dirs), np.sin(dirs)], axis=1)
+                legal, moved = view.legal_placement(xy, np.full(len(xy), r))
+                test = np.empty(len(xy), np.bool_)
+                one = np.zeros_like(tg[i])
+                one[b] = True
+                _hittable(np.ascontiguousarray(np.repeat(view.pos[r][None], len(xy), axis=0)),
+                          np.ascontiguousarray(np.repeat(on[i][None], len(xy), axis=0)),
+                          np.ascontiguousarray(np.repeat(one[None], len(xy), axis=0)), np.ascontiguousarray(legal),
+                          R_, d2, test)
+                got += [legal[j] for j in np.flatnonzero(test)][:HAND_SAFE_SPOTS - len(got)]
+                if len(got) >= HAND_SAFE_SPOTS:
+                    break
+            if len(got) >= HAND_SAFE_SPOTS:
+                break
+        srow += [r] * len(got)
+        spots += got
+    if not srow:
+        return None
+    srow, spots = np.asarray(srow, np.int64), np.asarray(spots, np.float64)
+    out = bot.la.safeties(view, srow, spots, np.ones(len(srow), bool))
+    out["ball"] = np.full(len(out["row"]), -1, np.int64)
+    out["prob"] = np.zeros(len(out["row"]))
+    return out
+
+
 def escapes(bot, view, rows, cue, placed, pots):
     """Jump and massé strokes (``ShotPlan.theta``) at the ``ESCAPE_TARGETS`` nearest legal balls of the tables
     among ``rows`` that are hooked: the cue ball where it lies (not in hand) and no pot from there with a success
