@@ -157,3 +157,20 @@ def test_match_script_plays_with_balls_flying(tmp_path):
                        "billiards_env.bots.planner.ablations:no_escapes", "--out", str(tmp_path)]) == 0
     doc = json.loads((tmp_path / "nine_ball_tournament.json").read_text())
     assert doc["effects"] == {"airborne": True} and sum(p["games"] for p in doc["pairings"]) == 4
+
+
+def test_escapes_worth_script_quick(tmp_path):
+    """``scripts/escapes_worth.py --quick`` (docs/games.md): champion against itself without the escapes, balls
+    flying; the JSON counts each side's decisions and elevated strokes (none without the escapes)."""
+    import importlib.util
+    import json
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    spec = importlib.util.spec_from_file_location("escapes_worth", root / "scripts" / "escapes_worth.py")
+    script = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(script)
+    assert script.main(["--quick", "--out", str(tmp_path / "w.json")]) == 0
+    doc = json.loads((tmp_path / "w.json").read_text())
+    assert doc["summary"]["games"] == 4 and doc["elevated"]["champion-no-escapes"] == 0
+    assert doc["decisions"]["champion"] > 0
