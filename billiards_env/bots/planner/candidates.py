@@ -177,9 +177,9 @@ def _spread(n):
 
 
 def hand_safeties(bot, view, rows, cue, placed, pots=None):
-    """Safeties from better ball-in-hand spots: on the tables among ``rows`` with the cue ball in hand whose
-    first start ``cue`` [n, 2] (the spot of their best pot; with no open pot the table's centre or the head spot)
-    sees no legal ball in a straight clear line (10-ball, with ``pots``: or where no pot's success estimate
+    """Safeties from better ball-in-hand spots (champion plays them in 10-ball): on the tables among ``rows``
+    with the cue ball in hand whose first start ``cue`` [n, 2] (the spot of their best pot; with no open pot the
+    table's centre or the head spot) sees no legal ball in a straight clear line (10-ball, with ``pots``: or where no pot's success estimate
     reaches ``HOOKED_PROB``), ``GameLookahead``'s safeties and kicks from up to
     ``HAND_SAFE_SPOTS`` legal spots that do (around the legal balls, spread in direction); None if no table
     needs them. (With the cue ball placed at the centre and the lowest ball hidden, a 10-ball table's safety
