@@ -118,7 +118,7 @@ class GameLookahead(Valuation, Candidates, Breaks):
         return ((c["phi"][best], c["speed"][best], c["a"][best], c["b"][best]), c["placement"][best],
                 c["pocket"][best], vn[first], c["safe"][best])
 
-    def replies(self, view, pvn, judged, prow):
+    def replies(self, view, pvn, judged, prow, opt=None):
         """The 2-ply judgement of the best noisy candidates: ``judged`` (their sample values [k, S], means [k],
         safe [k], local row [k], rows n), ``pvn`` their noisy previews (k x S, candidate-major) on view rows
         ``prow``. The ``reply_eval`` best per row (``reply_safe`` kept for safeties and kicks) are selected; on
@@ -127,7 +127,8 @@ class GameLookahead(Valuation, Candidates, Breaks):
         ``reply_keep``, on the outcomes where the mover keeps the table too, the mover's own next shot searched the
         same way, and the leave is worth its value. Each selected
         mean moves by the mean change over those samples (the other samples keep their one-shot value):
-        (selected [k], means [k])."""
+        (selected [k], means [k]). ``opt`` [k S] (champion's, 10-ball; None: none): the outcomes that hand the
+        opponent the option to pass back, where the leave is worth the lesser of the reply's value and 1 minus it."""
         vs, vn, safe, lp, n = judged
         k, S = vs.shape
         ra, rs = self.budget.reply_eval, self.budget.reply_safe
@@ -142,6 +143,8 @@ class GameLookahead(Valuation, Candidates, Breaks):
         for lo in range(0, len(ids), 4 * CHUNK):
             part = ids[lo:lo + 4 * CHUNK]
             r = self.reply_value(view.after(pvn, part, prow[part]))
+            if opt is not None:
+                r = np.where(opt[part], np.minimum(r, 1.0 - r), r)
             delta[part] = np.where(keep[part], 1.0 - r, r) - vs.ravel()[part]
         vn = vn + delta.reshape(k, S)[:, :S2].sum(axis=1) / S2
         return sel, vn

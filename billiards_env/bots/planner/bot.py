@@ -22,7 +22,7 @@ from ...contract.plan import ShotPlan
 from ...physics.strike import Shots
 from ...rules import records as RR
 from ..game_lookahead import Budget, GameLookahead
-from ..game_lookahead.search import _rank_in_row, declarations
+from ..game_lookahead.search import declarations
 from ..serial import serial_act
 from . import candidates as CAND
 from . import breaks as BR
@@ -318,36 +318,11 @@ class Champion:
         before = self.la.sims
         judged = (vs, vn, c["safe"][pick], local[pick], n)
         opt = self.options(view, pvn)
-        sel, v2 = self.la.replies(view, pvn, judged, prow) if opt is None else _replies(self.la, view, pvn, judged,
-                                                                                        prow, opt)
+        sel, v2 = self.la.replies(view, pvn, judged, prow, opt)
         self.sims += self.la.sims - before
         score = np.full(len(local), -np.inf)
         score[pick] = np.where(sel, mean[pick] + (v2 - vn), -np.inf)
         return score
-
-
-def _replies(la, view, pvn, judged, prow, opt):
-    """``GameLookahead.replies`` (the same selection, samples and reply search) where the outcomes ``opt`` [k S]
-    hand the opponent the option to pass back: there the leave is worth the lesser of 1 minus the opponent's best
-    reply and that reply (``Champion.options``), not the former alone."""
-    vs, vn, safe, lp, n = judged
-    k, S = vs.shape
-    ra, rs = la.budget.reply_eval, la.budget.reply_safe
-    sel = (_rank_in_row((-vn,), lp, n) < ra - rs) | (safe & (_rank_in_row((-vn, ~safe), lp, n) < rs))
-    j = np.nonzero(sel)[0]
-    S2 = min(la.budget.reply_samples, S)
-    ids = (j[:, None] * S + np.arange(S2)).ravel()
-    rec, nxt = pvn.record, pvn.next
-    keep = nxt.shooter == rec.shooter
-    ids = ids[~rec.game_over[ids] & (la.budget.reply_keep | ~keep[ids])]
-    delta = np.zeros(k * S)
-    for lo in range(0, len(ids), 4 * CHUNK):
-        part = ids[lo:lo + 4 * CHUNK]
-        r = la.reply_value(view.after(pvn, part, prow[part]))
-        r = np.where(opt[part], np.minimum(r, 1.0 - r), r)
-        delta[part] = np.where(keep[part], 1.0 - r, r) - vs.ravel()[part]
-    vn = vn + delta.reshape(k, S)[:, :S2].sum(axis=1) / S2
-    return sel, vn
 
 
 def _rank(key, row, n, mask):
