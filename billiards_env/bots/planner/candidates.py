@@ -179,9 +179,9 @@ def _spread(n):
 def hand_safeties(bot, view, rows, cue, placed, pots=None):
     """Safeties from better ball-in-hand spots (champion plays them in 10-ball): on the tables among ``rows``
     with the cue ball in hand whose first start ``cue`` [n, 2] (the spot of their best pot; with no open pot the
-    table's centre or the head spot) sees no legal ball in a straight clear line (10-ball, with ``pots``: or where no pot's success estimate
-    reaches ``HOOKED_PROB``), ``GameLookahead``'s safeties and kicks from up to
-    ``HAND_SAFE_SPOTS`` legal spots that do (around the legal balls, spread in direction); None if no table
+    table's centre or the head spot) sees no legal ball in a straight clear line (with ``pots``: or where no pot's
+    success estimate reaches ``HOOKED_PROB``), ``GameLookahead``'s safeties and kicks from up to ``HAND_SAFE_SPOTS``
+    legal spots that do (around the legal balls, spread in direction); None if no table
     needs them. (With the cue ball placed at the centre and the lowest ball hidden, a 10-ball table's safety
     from there fouled: 23 of champion's 91 ball-in-hand shots at seed 1, 40 racks.)"""
     R_ = view.params.R
@@ -198,14 +198,12 @@ def hand_safeties(bot, view, rows, cue, placed, pots=None):
     _hittable(np.ascontiguousarray(view.pos[rows[h]]), np.ascontiguousarray(on[h]), np.ascontiguousarray(tg[h]),
               np.ascontiguousarray(cue[h]), R_, d2, out)
     ok[h] = out
-    if pots is not None and getattr(view.rules, "calls_ball", False) and len(pots["row"]):
-        # 10-ball: also where no pot is likely from any start (the lowest ball tied up; then the starts are the
-        # centre's fallback, whose safeties, even where it sees the ball, fouled a third of the time)
+    if pots is not None:
+        # also where no pot is likely from any start (the lowest ball tied up; then the starts are the centre's
+        # fallback, whose safeties, even where it sees the ball, fouled a third of the time)
         best = np.zeros(view.n)
         np.maximum.at(best, pots["row"], pots["prob"])
         ok &= ~hand | (best[rows] >= HOOKED_PROB)
-    elif pots is not None and getattr(view.rules, "calls_ball", False):
-        ok &= ~hand
     need = np.flatnonzero(~ok)
     if not len(need):
         return None

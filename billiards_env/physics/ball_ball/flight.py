@@ -70,6 +70,7 @@ from .. import constants as C
 from .. import airborne
 from .._jit import njit
 from ..roots import first_entry
+from .contact import normal_impulse
 
 # A ball dropped exactly onto the top of another (the line of centres
 # exactly vertical) would bounce there for ever, each bounce lower by e_b^2,
@@ -176,12 +177,6 @@ def _push(balls, e, i, j, n, P, low):
 
 
 @njit
-def _restitution(w, p):
-    """The balls' restitution at approach speed w: e_b, 0 below ZENO_SPEED."""
-    return 0.0 if w < C.ZENO_SPEED else p[C.P_E_B]
-
-
-@njit
 def resolve(balls, e, i, j, p):
     """The impact of touching balls i and j, one of them in flight (module
     docstring). Returns the normal approach speed (m/s) before it."""
@@ -203,14 +198,14 @@ def resolve(balls, e, i, j, p):
     elif st[e, j] != C.AIRBORNE and n[2] < 0.0:
         low = j
     if low < 0:
-        _push(balls, e, i, j, n, 0.5 * (1.0 + _restitution(w0, p)) * w0, -1)
+        _push(balls, e, i, j, n, normal_impulse(w0, p), -1)
         return w0
     g = p[C.P_G]
     for k in range(MAX_PASSES):
         w = _approach(balls, e, i, j, n)
         if w <= 0.0:
             return w0
-        P = 0.5 * (1.0 + _restitution(w, p)) * w
+        P = normal_impulse(w, p)
         if k == 0 and (n[0] * n[0] + n[1] * n[1] < TOP_ZONE * TOP_ZONE
                        or airborne.settles(airborne.SLATE_RESTITUTION * P * abs(n[2]), g, airborne.SETTLE_HEIGHT)):
             break  # a blow on the top, or a gentle one: the slate holds the ball from the start
@@ -222,5 +217,5 @@ def resolve(balls, e, i, j, p):
     w = _approach(balls, e, i, j, n)
     if w > 0.0:
         nh2 = n[0] * n[0] + n[1] * n[1]
-        _push(balls, e, i, j, n, (1.0 + _restitution(w, p)) * w / (1.0 + nh2), low)
+        _push(balls, e, i, j, n, 2.0 * normal_impulse(w, p) / (1.0 + nh2), low)  # (1 + e) w / (1 + n_h^2)
     return w0
