@@ -173,3 +173,29 @@ def test_ten_ball_ball_in_hand_safety_is_played_from_a_spot_that_sees_the_lowest
     assert np.hypot(*(spot - HIDDEN_FOUR[4])) < 0.8 and rate < 0.25
     old_spot, old_rate = fouls(Champion(seed=0, parts=Parts(hand_safe=False, option=False)))
     assert np.allclose(old_spot, [0.635, 1.27]) and old_rate > 0.75
+
+
+def test_kick_scan_finds_the_legal_kicks_of_a_hooked_table():
+    """Hooked (the 1 straight behind the 5, the cue ball where it lies): ``candidates.kick_scan`` previews
+    ``SCAN_DIRS`` directions without noise and keeps the runs of directions whose shot is legal, the widest
+    first; every run's centre struck at ``SCAN_SPEED`` meets the 1 first, legally. A table whose cue ball sees
+    its legal ball full gets no scan, and neither does a placed cue ball."""
+    from billiards_env.rules import records as RR
+    core = game_table("nine_ball", {0: (0.635, 0.6), 5: (0.635, 0.75), 1: (0.635, 1.2), 9: (1.1, 2.2)},
+                      noise="tournament")
+    view = core.view([0])
+    bot = Champion(seed=3)
+    rows, cue = np.arange(1), view.pos[:, 0].copy()
+    c = CAND.kick_scan(bot, view, rows, cue, np.zeros(1, bool))
+    assert c is not None and c["safe"].all() and (c["row"] == 0).all()
+    mid = c["speed"] == CAND.SCAN_SPEED
+    assert mid.sum() >= 3, c
+    pv = view.preview(bot.plan(c, np.flatnonzero(mid)), c["row"][mid])
+    centre = pv.record.foul == RR.FOUL_NONE
+    assert (pv.first_contact[centre] == 1).all() and centre.mean() >= 0.5, (pv.record.foul, pv.first_contact)
+    assert CAND.kick_scan(bot, view, rows, cue, np.ones(1, bool)) is None
+    open_view = game_table("nine_ball", {0: (0.3, 0.6), 5: (0.635, 0.75), 1: (0.635, 1.2), 9: (1.1, 2.2)}).view([0])
+    assert CAND.kick_scan(bot, open_view, rows, open_view.pos[:, 0].copy(), np.zeros(1, bool)) is None
+    # the runs of a circular scan: the one across the end of the array is joined, the widest comes first
+    assert CAND._runs(np.array([1, 1, 0, 0, 1, 1, 1, 0, 1], bool)) == [(4, 3), (8, 3)]
+    assert CAND._runs(np.zeros(4, bool)) == [] and CAND._runs(np.ones(4, bool)) == [(0, 4)]

@@ -54,3 +54,10 @@ def no_exact_break(seed: int = 0) -> Champion:
 def no_escapes(seed: int = 0) -> Champion:
     """Where balls fly (``scripts/match.py --airborne``), without the jump and massé strokes out of a hook."""
     return _named(Champion(seed=seed, parts=Parts(escapes=False)), "champion-no-escapes")
+
+
+
+def no_kick_scan(seed: int = 0) -> Champion:
+    """Without the kicks found by scanning the simulator on hooked tables (``candidates.kick_scan``) and without
+    the spare first-round places given to the safeties (``Parts.safe_fill``): champion before both."""
+    return _named(Champion(seed=seed, parts=Parts(kick_scan=False, safe_fill=False)), "champion-no-kick-scan")

@@ -63,6 +63,8 @@ class Parts:
     escapes: bool = True
     hand_safe: bool = True
     option: bool = True
+    kick_scan: bool = True
+    safe_fill: bool = True
 
 
 class PlanRows:
@@ -122,6 +124,7 @@ class Champion:
         self.own_leave = parts.own_leave
         self.escapes = parts.escapes
         self.hand_safe, self.option = parts.hand_safe, parts.option
+        self.kick_scan, self.safe_fill = parts.kick_scan, parts.safe_fill
         self.variants = dict(variants or {})   # the pots' speed factors, tip heights and sides (candidates.pots)
         self.exact_plies, self.exact_k = int(exact_plies), int(exact_k)  # without noise: plies searched exactly
         self.exact_breaks = int(exact_breaks)  # without noise: break strikes tried on each rack itself
@@ -170,6 +173,10 @@ class Champion:
             extra = CAND.hand_safeties(self, view, rows, cue[first], placed[first], pots)
             if extra is not None:
                 parts.append(extra)
+        if self.kick_scan:
+            scan = CAND.kick_scan(self, view, rows, cue[first], placed[first])
+            if scan is not None:
+                parts.append(scan)
         esc = CAND.escapes(self, view, rows, cue[first], placed[first], pots) if self.escapes else None
         if esc is not None:  # jump and massé strokes out of a hook, where balls fly
             parts.append(esc)
@@ -230,8 +237,12 @@ class Champion:
         # pot's success estimate (``candidates.pot_options``) before choosing the first round's entrants
         prior = np.where(c["safe"], v0, c["prob"] * v0 + (1 - c["prob"]) * MISS_VALUE)
         # the first noisy round: the best pots and the best safeties of each table by that prior
+        safe_quota = self.first_safe
+        if self.safe_fill:  # a table with fewer pots than places gives the spare places to its safeties
+            n_pots = np.bincount(local[~c["safe"]], minlength=n)
+            safe_quota = (self.first_safe + np.maximum(self.first_pots - n_pots, 0))[local]
         first = (_rank(-prior, local, n, ~c["safe"]) < self.first_pots) | (_rank(-prior, local, n, c["safe"])
-                                                                             < self.first_safe)
+                                                                             < safe_quota)
         noise = self.la.noise(view)
 
         def judge(idx, draws):

@@ -17,6 +17,9 @@ import math
 import numba
 import numpy as np
 
+from ...contract.plan import ShotPlan
+from ...physics.strike import Shots
+from ...rules import records as RR
 from ..geometry.lines import blocked
 from . import aim as AIM
 from .windows import windows_of
@@ -144,6 +147,76 @@ def safeties(bot, view, rows, cue, placed):
     out["ball"] = np.full(len(out["row"]), -1, np.int64)
     out["prob"] = np.zeros(len(out["row"]))
     return out
+
+
+SCAN_DIRS = 360                   # the kick scan of a hooked table: this many cue directions, noise-free ...
+SCAN_SPEED = 2.5                  # m/s: ... at this speed, finding the direction runs that hit a legal ball legally
+SCAN_RUNS = 6                     # the widest runs kept per table ...
+SCAN_SPEEDS = (1.6, 2.5, 4.0)     # m/s: ... each struck at its centre at these speeds (and off-centre where wide)
+SCAN_WIDE = 3                     # a run this many directions wide or wider is also struck a quarter in from each end
+
+
+def kick_scan(bot, view, rows, cue, placed):
+    """Kicks found by scanning the simulator (champion's): on the tables among ``rows`` whose cue ball lies where
+    it is (``cue`` [n, 2], not ``placed``) and meets no legal ball full along a clear line, ``SCAN_DIRS``
+    directions around the circle are previewed without noise at ``SCAN_SPEED``; the runs of neighbouring
+    directions whose shot is legal (first a legal ball, then a rail) are where a kick gets there, the widest the
+    most forgiving of aim error. The ``SCAN_RUNS`` widest give candidates at their centres (and, from
+    ``SCAN_WIDE`` directions, a quarter in from each end) at ``SCAN_SPEEDS``. None where no table needs them."""
+    R_ = view.params.R
+    on = view.on_table[rows].copy()
+    on[:, 0] = False
+    tg = view.targets[rows] & on
+    seen = np.empty(len(rows), np.bool_)
+    _hittable(np.ascontiguousarray(view.pos[rows]), np.ascontiguousarray(on), np.ascontiguousarray(tg),
+              np.ascontiguousarray(cue), R_, (2 * R_ + CLEAR) ** 2, seen)
+    hooked = np.flatnonzero(~seen & ~placed)
+    if not len(hooked):
+        return None
+    hr = rows[hooked]
+    D = SCAN_DIRS
+    step = 2 * np.pi / D
+    rep = np.repeat(hr, D)
+    phi = np.tile(np.arange(D) * step, len(hr)) + bot.rng.uniform(0, step, len(hr)).repeat(D)
+    call = np.full(len(hr), -1, np.int64)
+    need = view.call_needed[hr]
+    if need.any():
+        call[need] = bot.la.eight_pocket(view, hr[need])
+    plan = ShotPlan.of(Shots(phi, np.full(len(rep), SCAN_SPEED), 0.0, 0.0), pocket=call.repeat(D))
+    pv = view.preview(plan, rep)
+    bot.sims += len(rep)
+    legal = (pv.record.foul == RR.FOUL_NONE).reshape(len(hr), D)
+    out_row, out_phi = [], []
+    for i in range(len(hr)):
+        runs = _runs(legal[i])
+        for start, length in runs[:SCAN_RUNS]:
+            mid = phi[i * D] + (start + (length - 1) / 2) * step
+            offs = [0.0] + ([-length / 4 * step, length / 4 * step] if length >= SCAN_WIDE else [])
+            out_phi += [mid + o for o in offs]
+            out_row += [i] * len(offs)
+    if not out_row:
+        return None
+    k = np.repeat(np.asarray(out_row, np.int64), len(SCAN_SPEEDS))
+    m = len(k)
+    return dict(row=hr[k], phi=np.repeat(np.asarray(out_phi), len(SCAN_SPEEDS)) % (2 * np.pi),
+                speed=np.tile(np.asarray(SCAN_SPEEDS, np.float64), len(out_row)), a=np.zeros(m), b=np.zeros(m),
+                placement=np.full((m, 2), np.nan), pocket=call[k], safe=np.ones(m, bool),
+                ball=np.full(m, -1, np.int64), prob=np.zeros(m))
+
+
+def _runs(ok):
+    """[(start, length)] of the runs of True in the circular bool array ``ok``, the longest first."""
+    n = len(ok)
+    if ok.all():
+        return [(0, n)]
+    if not ok.any():
+        return []
+    shift = int(np.argmin(ok))           # start the walk at a False so no run wraps
+    o = np.roll(ok, -shift)
+    edges = np.diff(np.concatenate([[0], o.astype(np.int8), [0]]))
+    starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+    runs = [((s + shift) % n, e - s) for s, e in zip(starts, ends)]
+    return sorted(runs, key=lambda r: -r[1])
 
 
 HAND_SAFE_DISTS = (0.35, 0.15, 0.7)  # m: ball-in-hand safety spots this far from a legal ball ...
