@@ -199,3 +199,35 @@ def test_kick_scan_finds_the_legal_kicks_of_a_hooked_table():
     # the runs of a circular scan: the one across the end of the array is joined, the widest comes first
     assert CAND._runs(np.array([1, 1, 0, 0, 1, 1, 1, 0, 1], bool)) == [(4, 3), (8, 3)]
     assert CAND._runs(np.zeros(4, bool)) == [] and CAND._runs(np.ones(4, bool)) == [(0, 4)]
+
+
+def test_safety_grid_covers_the_soft_shots_at_the_nearest_legal_balls():
+    """``candidates.safety_grid``: at the nearest legal ball(s), every contact offset from full to 0.95 of the
+    thinnest hit at every grid speed and tip height, all safeties; on a table with no open pot (the 1 on the
+    foot cushion behind the 9's line, the cue ball far up the table) the grid's best noise-free safety is worth
+    at least lookahead's best random one, and champion's chosen shot is legal under tournament noise on most of
+    32 seeded draws."""
+    from billiards_env.rules import records as RR
+    core = game_table("nine_ball", {0: (0.4, 0.7), 1: (0.9, 2.48), 9: (0.7, 2.2)}, noise="tournament")
+    view = core.view([0])
+    bot = Champion(seed=2)
+    rows, cue = np.arange(1), view.pos[:, 0].copy()
+    g = CAND.safety_grid(bot, view, rows, cue, np.zeros(1, bool))
+    n = CAND.GRID_CUTS * len(CAND.GRID_SPEEDS) * len(CAND.GRID_HEIGHTS)
+    assert len(g["row"]) == n and g["safe"].all()   # one legal ball in 9-ball
+    to = np.subtract(view.pos[0, 1], cue[0])
+    half = np.arcsin(2 * view.params.R / np.hypot(*to)) * 0.95
+    off = (g["phi"] - np.arctan2(to[1], to[0]) + np.pi) % (2 * np.pi) - np.pi
+    assert np.isclose(off.max(), half) and np.isclose(off.min(), -half) and np.isclose(np.abs(off).min(), 0)
+    assert set(np.round(g["speed"], 6)) == set(CAND.GRID_SPEEDS)
+    lo = bot.la.safeties(view, rows, cue, np.zeros(1, bool))
+    v_grid = bot.values(view, view.preview(bot.plan(g, np.arange(n)), g["row"])).max()
+    lo_idx = np.arange(len(lo["row"]))
+    lo_plan = ShotPlan.of(Shots(lo["phi"], lo["speed"], lo["a"], lo["b"]), placement=lo["placement"])
+    v_la = bot.values(view, view.preview(lo_plan, lo["row"][lo_idx])).max()
+    assert v_grid >= v_la - 1e-9, (v_grid, v_la)
+    c, best, _ = bot.decide(view, rows)
+    idx = np.full(32, best[0])
+    pv = view.preview(bot.plan(c, idx), np.zeros(32, np.int64), noise=bot.la.noise(view),
+                      draws=np.random.default_rng(5).normal(size=(32, 4)))
+    assert (pv.record.foul == RR.FOUL_NONE).mean() >= 0.75

@@ -57,7 +57,14 @@ def no_escapes(seed: int = 0) -> Champion:
 
 
 
+def no_safety_grid(seed: int = 0) -> Champion:
+    """Without the grid of soft shots (``candidates.safety_grid``), 8 safeties in the first noisy round: champion
+    before the grid (with the kick scan)."""
+    return _named(Champion(seed=seed, parts=Parts(safety_grid=False), first_safe=8), "champion-no-safety-grid")
+
+
 def no_kick_scan(seed: int = 0) -> Champion:
-    """Without the kicks found by scanning the simulator on hooked tables (``candidates.kick_scan``) and without
-    the spare first-round places given to the safeties (``Parts.safe_fill``): champion before both."""
-    return _named(Champion(seed=seed, parts=Parts(kick_scan=False, safe_fill=False)), "champion-no-kick-scan")
+    """Without the kicks found by scanning the simulator on hooked tables (``candidates.kick_scan``), the spare
+    first-round places given to the safeties (``Parts.safe_fill``) and the safety grid: champion before all three."""
+    return _named(Champion(seed=seed, parts=Parts(kick_scan=False, safe_fill=False, safety_grid=False), first_safe=8),
+                  "champion-no-kick-scan")

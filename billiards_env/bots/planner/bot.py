@@ -1,7 +1,8 @@
 """``Champion``: the game bot of ``bots.planner`` (``make_bot("champion")``).
 
 Per table to move: the candidates (``candidates``: window-aimed, throw-corrected pots from the cue ball or from
-searched ball-in-hand spots; safeties, kicks and a 360-degree kick fan) are previewed once without noise and
+searched ball-in-hand spots; safeties (lookahead's and a grid of soft shots), kicks, a 360-degree kick fan, and on
+a hooked table the kicks found by scanning the simulator) are previewed once without noise and
 valued with the one-ply leave (``leave.values``: a win 1, a loss 0, else ``position_value`` of the next
 shooter's best pot's ease, in the planner's window model; ``Parts(own_leave=False)``: lookahead's); the best few
 per table go through successive halving under the env's noise (``halving``); the best sampled ones (``REPLY``)
@@ -33,7 +34,7 @@ from .halving import ROUNDS, halve
 CHUNK = 128                # tables decided per batch of previews (memory stays bounded)
 FIRST_POTS = 20            # pots per table entering the noisy rounds (by the prior: value times success estimate)
 MISS_VALUE = 0.25          # the mover's value after a missed pot (the opponent usually has a shot)
-FIRST_SAFE = 8             # safeties and kicks per table entering them
+FIRST_SAFE = 16            # safeties and kicks per table entering them (8 before the safety grid)
 MIN_AIM_SIGMA = math.radians(0.125)  # rad: aim noise the pot ranking assumes at least (tournament level)
 # the lookahead whose parts are reused: its starts, safeties, leave valuation, pushes and break strikes
 HELPER = dict(reply_eval=0, n_safe=16, n_kick=8, n_bank=16, n_push=24, hand_pots=3)
@@ -53,7 +54,10 @@ class Parts:
     reply search on the best survivors) and ``escapes`` (jump and massé strokes out of a hook, where the
     equipment lets balls fly: ``candidates.escapes``; nothing changes where it does not), ``hand_safe``
     (safeties from ball-in-hand spots that see a legal ball: ``candidates.hand_safeties``) and ``option``
-    (10-ball: an illegal pot's option and the opponent's ball in hand valued as ``Champion.values`` says)."""
+    (10-ball: an illegal pot's option and the opponent's ball in hand valued as ``Champion.values`` says),
+    ``kick_scan`` (kicks found by scanning the simulator on hooked tables: ``candidates.kick_scan``),
+    ``safe_fill`` (a table with fewer pots than the first round's places gives the spare ones to its safeties)
+    and ``safety_grid`` (soft shots on a grid at the nearest legal balls: ``candidates.safety_grid``)."""
 
     throw: bool = True
     windows: bool = True
@@ -65,6 +69,7 @@ class Parts:
     option: bool = True
     kick_scan: bool = True
     safe_fill: bool = True
+    safety_grid: bool = True
 
 
 class PlanRows:
@@ -125,6 +130,7 @@ class Champion:
         self.escapes = parts.escapes
         self.hand_safe, self.option = parts.hand_safe, parts.option
         self.kick_scan, self.safe_fill = parts.kick_scan, parts.safe_fill
+        self.safety_grid = parts.safety_grid
         self.variants = dict(variants or {})   # the pots' speed factors, tip heights and sides (candidates.pots)
         self.exact_plies, self.exact_k = int(exact_plies), int(exact_k)  # without noise: plies searched exactly
         self.exact_breaks = int(exact_breaks)  # without noise: break strikes tried on each rack itself
@@ -173,6 +179,10 @@ class Champion:
             extra = CAND.hand_safeties(self, view, rows, cue[first], placed[first], pots)
             if extra is not None:
                 parts.append(extra)
+        if self.safety_grid:
+            grid = CAND.safety_grid(self, view, rows, cue[first], placed[first])
+            if grid is not None:
+                parts.append(grid)
         if self.kick_scan:
             scan = CAND.kick_scan(self, view, rows, cue[first], placed[first])
             if scan is not None:

@@ -5,7 +5,9 @@
   estimate (the window's angular half-width against the aim noise carried through the contact), the best few in
   speed and tip-height variants, each aim corrected for throw (``aim``);
 - **safeties and kicks**: ``GameLookahead``'s soft shots at the legal balls and one-rail kicks, plus a 360-degree
-  fan of cue directions at a few speeds (the preview keeps what the rules call legal);
+  fan of cue directions at a few speeds (the preview keeps what the rules call legal); a grid of soft shots at the
+  nearest legal balls (``safety_grid``); on a hooked table, the kicks found by scanning the simulator
+  (``kick_scan``);
 - **escapes** from a hook, where the equipment lets balls fly (``Effects(airborne=True)``): jump strokes over the
   blocker and massé strokes that curve around it, at the nearest legal balls of the tables with no open pot; the
   preview (which flies them as the env does) judges them with the safeties.
@@ -217,6 +219,46 @@ def _runs(ok):
     starts, ends = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
     runs = [((s + shift) % n, e - s) for s, e in zip(starts, ends)]
     return sorted(runs, key=lambda r: -r[1])
+
+
+GRID_BALLS = 2                    # the safety grid: soft shots at this many nearest legal balls of a table ...
+GRID_CUTS = 9                     # ... at this many contact offsets across each, full to 0.95 of the thinnest ...
+GRID_SPEEDS = (0.6, 1.0, 1.6, 2.4, 3.4)   # m/s: ... at these speeds ...
+GRID_HEIGHTS = (-0.3, 0.0, 0.3)   # ... and tip heights (units of R): draw, stun, follow
+
+
+def safety_grid(bot, view, rows, cue, placed):
+    """Soft shots on a grid (champion's safeties, beside lookahead's random ones): at the ``GRID_BALLS`` nearest
+    legal balls of each table, ``GRID_CUTS`` contact offsets across the ball (the cue ball's line from through
+    the centre to 0.95 of the thinnest hit) x ``GRID_SPEEDS`` x ``GRID_HEIGHTS``, from cue balls ``cue`` [n, 2]."""
+    R_ = view.params.R
+    n = len(rows)
+    on = view.on_table[rows] & view.targets[rows]
+    on[:, 0] = False
+    d = np.where(on, np.hypot(*(view.pos[rows] - cue[:, None]).transpose(2, 0, 1)), np.inf)
+    order = np.argsort(d, axis=1, kind="stable")[:, :GRID_BALLS]
+    t_row, t_k = np.nonzero(np.take_along_axis(d, order, axis=1) < np.inf)
+    if not len(t_row):
+        return None
+    ball = order[t_row, t_k]
+    to = view.pos[rows[t_row], ball] - cue[t_row]
+    dist = np.maximum(np.hypot(to[:, 0], to[:, 1]), 2 * R_)
+    half = np.arcsin(np.minimum(2 * R_ / dist, 1.0)) * 0.95
+    cut, sp, hb = (x.ravel() for x in np.meshgrid(np.linspace(-1, 1, GRID_CUTS), GRID_SPEEDS, GRID_HEIGHTS,
+                                                  indexing="ij"))
+    k = len(cut)
+    rep = np.repeat(np.arange(len(t_row)), k)
+    phi = (np.arctan2(to[:, 1], to[:, 0]) )[rep] + half[rep] * np.tile(cut, len(t_row))
+    r = t_row[rep]
+    call = np.full(n, -1, np.int64)
+    need = view.call_needed[rows]
+    if need.any():
+        call[need] = bot.la.eight_pocket(view, rows[need])
+    m = len(rep)
+    return dict(row=rows[r], phi=phi, speed=np.tile(np.asarray(sp, np.float64), len(t_row)), a=np.zeros(m),
+                b=np.tile(np.asarray(hb, np.float64), len(t_row)),
+                placement=np.where(placed[r, None], cue[r], np.nan), pocket=call[r], safe=np.ones(m, bool),
+                ball=np.full(m, -1, np.int64), prob=np.zeros(m))
 
 
 HAND_SAFE_DISTS = (0.35, 0.15, 0.7)  # m: ball-in-hand safety spots this far from a legal ball ...
