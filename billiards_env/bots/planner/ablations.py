@@ -56,7 +56,6 @@ def no_escapes(seed: int = 0) -> Champion:
     return _named(Champion(seed=seed, parts=Parts(escapes=False)), "champion-no-escapes")
 
 
-
 def no_safety_grid(seed: int = 0) -> Champion:
     """Without the grid of soft shots (``candidates.safety_grid``), 8 safeties in the first noisy round: champion
     before the grid (with the kick scan)."""

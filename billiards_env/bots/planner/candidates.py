@@ -151,6 +151,28 @@ def safeties(bot, view, rows, cue, placed):
     return out
 
 
+def _nearest_targets(view, rows, cue, k):
+    """The ``k`` nearest legal balls of each table among ``rows`` from cue balls ``cue`` [n, 2]: (the local row of
+    each pair [m], its ball [m], the vector from the cue ball to it [m, 2])."""
+    on = view.on_table[rows] & view.targets[rows]
+    on[:, 0] = False
+    d = np.where(on, np.hypot(*(view.pos[rows] - cue[:, None]).transpose(2, 0, 1)), np.inf)
+    order = np.argsort(d, axis=1, kind="stable")[:, :k]
+    t_row, t_k = np.nonzero(np.take_along_axis(d, order, axis=1) < np.inf)
+    ball = order[t_row, t_k]
+    return t_row, ball, view.pos[rows[t_row], ball] - cue[t_row]
+
+
+def _calls(bot, view, rows):
+    """[n] the pocket a safety on each table among ``rows`` calls: lookahead's choice for the 8 where a call is
+    needed (8-ball), else -1."""
+    call = np.full(len(rows), -1, np.int64)
+    need = view.call_needed[rows]
+    if need.any():
+        call[need] = bot.la.eight_pocket(view, rows[need])
+    return call
+
+
 SCAN_DIRS = 360                   # the kick scan of a hooked table: this many cue directions, noise-free ...
 SCAN_SPEED = 2.5                  # m/s: ... at this speed, finding the direction runs that hit a legal ball legally
 SCAN_RUNS = 6                     # the widest runs kept per table ...
@@ -180,10 +202,7 @@ def kick_scan(bot, view, rows, cue, placed):
     step = 2 * np.pi / D
     rep = np.repeat(hr, D)
     phi = np.tile(np.arange(D) * step, len(hr)) + bot.rng.uniform(0, step, len(hr)).repeat(D)
-    call = np.full(len(hr), -1, np.int64)
-    need = view.call_needed[hr]
-    if need.any():
-        call[need] = bot.la.eight_pocket(view, hr[need])
+    call = _calls(bot, view, hr)
     plan = ShotPlan.of(Shots(phi, np.full(len(rep), SCAN_SPEED), 0.0, 0.0), pocket=call.repeat(D))
     pv = view.preview(plan, rep)
     bot.sims += len(rep)
@@ -232,28 +251,18 @@ def safety_grid(bot, view, rows, cue, placed):
     legal balls of each table, ``GRID_CUTS`` contact offsets across the ball (the cue ball's line from through
     the centre to 0.95 of the thinnest hit) x ``GRID_SPEEDS`` x ``GRID_HEIGHTS``, from cue balls ``cue`` [n, 2]."""
     R_ = view.params.R
-    n = len(rows)
-    on = view.on_table[rows] & view.targets[rows]
-    on[:, 0] = False
-    d = np.where(on, np.hypot(*(view.pos[rows] - cue[:, None]).transpose(2, 0, 1)), np.inf)
-    order = np.argsort(d, axis=1, kind="stable")[:, :GRID_BALLS]
-    t_row, t_k = np.nonzero(np.take_along_axis(d, order, axis=1) < np.inf)
+    t_row, _, to = _nearest_targets(view, rows, cue, GRID_BALLS)
     if not len(t_row):
         return None
-    ball = order[t_row, t_k]
-    to = view.pos[rows[t_row], ball] - cue[t_row]
     dist = np.maximum(np.hypot(to[:, 0], to[:, 1]), 2 * R_)
     half = np.arcsin(np.minimum(2 * R_ / dist, 1.0)) * 0.95
     cut, sp, hb = (x.ravel() for x in np.meshgrid(np.linspace(-1, 1, GRID_CUTS), GRID_SPEEDS, GRID_HEIGHTS,
                                                   indexing="ij"))
     k = len(cut)
     rep = np.repeat(np.arange(len(t_row)), k)
-    phi = (np.arctan2(to[:, 1], to[:, 0]) )[rep] + half[rep] * np.tile(cut, len(t_row))
+    phi = np.arctan2(to[:, 1], to[:, 0])[rep] + half[rep] * np.tile(cut, len(t_row))
     r = t_row[rep]
-    call = np.full(n, -1, np.int64)
-    need = view.call_needed[rows]
-    if need.any():
-        call[need] = bot.la.eight_pocket(view, rows[need])
+    call = _calls(bot, view, rows)
     m = len(rep)
     return dict(row=rows[r], phi=phi, speed=np.tile(np.asarray(sp, np.float64), len(t_row)), a=np.zeros(m),
                 b=np.tile(np.asarray(hb, np.float64), len(t_row)),
@@ -369,13 +378,7 @@ def escapes(bot, view, rows, cue, placed, pots):
     rows, cue = rows[keep], cue[keep]
     if not len(rows):
         return None
-    on = view.on_table[rows] & view.targets[rows]
-    on[:, 0] = False
-    d = np.where(on, np.hypot(*(view.pos[rows] - cue[:, None]).transpose(2, 0, 1)), np.inf)
-    order = np.argsort(d, axis=1, kind="stable")[:, :ESCAPE_TARGETS]
-    t_row, t_k = np.nonzero(np.take_along_axis(d, order, axis=1) < np.inf)
-    ball = order[t_row, t_k]
-    to = view.pos[rows[t_row], ball] - cue[t_row]
+    t_row, _, to = _nearest_targets(view, rows, cue, ESCAPE_TARGETS)
     aim = np.arctan2(to[:, 1], to[:, 0])
     strokes = [(th, v, 0.0, 0.0) for th in JUMP_THETAS for v in JUMP_SPEEDS]
     strokes += [(th, v, side * MASSE_SIDE, turn * side) for th in MASSE_THETAS for v in MASSE_SPEEDS
@@ -386,11 +389,6 @@ def escapes(bot, view, rows, cue, placed, pots):
     n = len(rep)
     out = dict(row=rows[t_row][rep], phi=aim[rep] + np.tile(turn, len(t_row)), speed=np.tile(v, len(t_row)),
                a=np.tile(a, len(t_row)), b=np.zeros(n), theta=np.tile(th, len(t_row)),
-               placement=np.full((n, 2), np.nan), pocket=np.full(n, -1, np.int64), safe=np.ones(n, bool),
-               ball=np.full(n, -1, np.int64), prob=np.zeros(n))
-    need = view.call_needed[rows]
-    if need.any():  # the pocket the safeties call (the 8 in 8-ball)
-        call = np.full(len(rows), -1, np.int64)
-        call[need] = bot.la.eight_pocket(view, rows[need])
-        out["pocket"] = call[t_row][rep]
+               placement=np.full((n, 2), np.nan), pocket=_calls(bot, view, rows)[t_row][rep],  # 8-ball: the 8's
+               safe=np.ones(n, bool), ball=np.full(n, -1, np.int64), prob=np.zeros(n))
     return out
